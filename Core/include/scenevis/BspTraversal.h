@@ -1,0 +1,82 @@
+#pragma once
+/**
+ * @file BspTraversal.h
+ * @brief Visibility order of a bsp::Tree's fragments for a view: full walk and incremental update.
+ *
+ * At every node the viewer's side is the sign of dot(plane, eye) (View.h). Back-to-front emits the
+ * subtree on the far side, then the node's own fragments, then the near subtree; front-to-back is
+ * the reverse. An eye exactly on a plane (dot == 0) counts as in front: any order of the two sides
+ * is valid there, since they project to disjoint parts of the image. Own fragments of one node are
+ * coplanar and emitted in ascending fragment id (deterministic). Walks are iterative.
+ */
+
+#include "scenevis/BspTree.h"
+#include "scenevis/View.h"
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+namespace scenevis
+{
+namespace bsp
+{
+
+enum class Direction
+{
+  BackToFront,
+  FrontToBack
+};
+
+/// Writes a permutation of all fragment ids into `order` (resized to tree.fragments.size()).
+void order(const Tree& tree, const View& view, Direction direction,
+  std::vector<std::uint32_t>& order);
+
+/**
+ * Keeps an order up to date as the viewer moves, touching only what changed.
+ *
+ * Each subtree owns a contiguous range of the order; a node's range is laid out as
+ * [first child][own fragments][second child]. When the viewer crosses a node's plane only that
+ * node's two child blocks swap places (inner order unchanged). To find crossed planes without
+ * visiting every node, each subtree keeps a safe ball in normalised homogeneous eye space: the eye
+ * it was last checked at and the distance to the nearest plane within it. A new eye inside the ball
+ * cannot have crossed any plane of that subtree, which is skipped whole. Small camera steps
+ * therefore visit only the few subtrees whose planes pass close to the eye.
+ *
+ * The result after update(view) is identical to order(tree, view, direction, ...).
+ */
+class IncrementalOrder
+{
+public:
+  struct UpdateStatistics
+  {
+    std::size_t nodesVisited = 0;
+    std::size_t nodesFlipped = 0;
+    std::size_t fragmentsMoved = 0;
+  };
+
+  /// `tree` must outlive this object and must not change.
+  IncrementalOrder(const Tree& tree, Direction direction);
+
+  /// Brings order() up to date for `view`. The first call does a full walk.
+  const UpdateStatistics& update(const View& view);
+
+  const std::vector<std::uint32_t>& order() const { return Order; }
+  const UpdateStatistics& lastUpdate() const { return Last; }
+  /// Heap bytes held (excluding the tree).
+  std::size_t memoryBytes() const;
+
+private:
+  // Implementation detail; see BspTraversal.cpp.
+  const Tree* TreePtr;
+  Direction Dir;
+  std::vector<std::uint32_t> Order;
+  UpdateStatistics Last;
+  struct NodeState;
+  std::vector<NodeState> States;
+  std::vector<glm::dvec4> Anchors; // normalised eyes referred to by NodeState::anchor
+  bool Initialized = false;
+};
+
+} // namespace bsp
+} // namespace scenevis

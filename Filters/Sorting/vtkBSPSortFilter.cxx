@@ -1,0 +1,3 @@
+#include "vtkBSPSortFilter.h"
+#include "vtkObjectFactory.h"
+vtkStandardNewMacro(vtkBSPSortFilter);
