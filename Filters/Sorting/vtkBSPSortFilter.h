@@ -1,17 +1,162 @@
+/**
+ * @class   vtkBSPSortFilter
+ * @brief   Exact back-to-front (or front-to-back) order of polygons with a reusable BSP tree.
+ *
+ * vtkBSPSortFilter orders the polygons of its input for a camera so that translucent surfaces
+ * blend correctly when drawn in output order. Unlike vtkDepthSortPolyData, which sorts one depth
+ * per cell and is wrong for intersecting, long or cyclically overlapping polygons, it builds a
+ * polygon-aligned BSP tree (Fuchs, Kedem, Naylor 1980) once, splitting polygons that straddle a
+ * partition plane, and then only walks it when the camera moves. The result is exact for any
+ * perspective or parallel camera.
+ *
+ * Work done per update:
+ * - input (or partition settings) changed: the tree is rebuilt (progress events are fired);
+ * - only the camera or prop changed: the order is brought up to date incrementally (only subtrees
+ *   whose plane the eye crossed are touched) and the output cells are re-emitted;
+ * - nothing changed: the pipeline does not execute at all.
+ *
+ * Output: the input's points followed by the points created by splits, with ALL point data
+ * interpolated (normals re-normalised); verts and lines pass through first and unchanged, then the
+ * polygon fragments in visibility order (triangle strips are handled as their triangles, concave
+ * and non-planar polygons are triangulated). Cell data are copied from each fragment's input cell.
+ * Two cell-data arrays are added: OriginalCellId (input cell id of each output cell) and SortRank
+ * (position of the fragment in the order; -1 for verts and lines), so the order itself can be
+ * shown with a lookup table, as in VTK's TestDepthSortPolyData.
+ *
+ * Note that VTK 9.1 draws translucent geometry with order-independent blending by default, which
+ * ignores primitive order; set a vtkOrderedTranslucentPass (SceneVis::RenderingTranslucency) on
+ * the renderer to see the order on screen.
+ *
+ * Bad input: points with NaN/Inf coordinates and polygons with fewer than three distinct points
+ * or zero area are removed with a warning that counts them; without a camera the input passes
+ * through unsorted with an error.
+ *
+ * @sa vtkDepthSortPolyData
+ */
+
 #ifndef vtkBSPSortFilter_h
 #define vtkBSPSortFilter_h
-#include "SceneVisFiltersSortingModule.h"
+
+#include "SceneVisFiltersSortingModule.h" // For export macro
 #include "vtkPolyDataAlgorithm.h"
+
+#include <memory> // For std::unique_ptr
+
+class vtkCamera;
+class vtkProp3D;
+
 class SCENEVISFILTERSSORTING_EXPORT vtkBSPSortFilter : public vtkPolyDataAlgorithm
 {
 public:
   static vtkBSPSortFilter* New();
   vtkTypeMacro(vtkBSPSortFilter, vtkPolyDataAlgorithm);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  enum Directions
+  {
+    VTK_DIRECTION_BACK_TO_FRONT = 0,
+    VTK_DIRECTION_FRONT_TO_BACK = 1
+  };
+
+  enum PartitionModes
+  {
+    PARTITION_FIRST_IN_LIST = 0, ///< The textbook choice; convex meshes become deep chains.
+    PARTITION_SCORED = 1         ///< Sampled candidates scored by splits and balance (default).
+  };
+
+  ///@{
+  /**
+   * The camera that defines the order. Required.
+   */
+  virtual void SetCamera(vtkCamera*);
+  vtkGetObjectMacro(Camera, vtkCamera);
+  ///@}
+
+  ///@{
+  /**
+   * Optional prop whose matrix maps the input's coordinates to world coordinates; the camera is
+   * then taken into data coordinates through the inverse of that matrix.
+   */
+  void SetProp3D(vtkProp3D*);
+  vtkProp3D* GetProp3D();
+  ///@}
+
+  ///@{
+  /**
+   * Back to front (default) or front to back.
+   */
+  vtkSetClampMacro(Direction, int, VTK_DIRECTION_BACK_TO_FRONT, VTK_DIRECTION_FRONT_TO_BACK);
+  vtkGetMacro(Direction, int);
+  void SetDirectionToBackToFront() { this->SetDirection(VTK_DIRECTION_BACK_TO_FRONT); }
+  void SetDirectionToFrontToBack() { this->SetDirection(VTK_DIRECTION_FRONT_TO_BACK); }
+  ///@}
+
+  ///@{
+  /**
+   * How partition planes are chosen (see scenevis/BspBuilder.h). Changing any of these rebuilds
+   * the tree on the next update.
+   */
+  vtkSetClampMacro(PartitionMode, int, PARTITION_FIRST_IN_LIST, PARTITION_SCORED);
+  vtkGetMacro(PartitionMode, int);
+  vtkSetClampMacro(CandidateCount, int, 1, 1024);
+  vtkGetMacro(CandidateCount, int);
+  vtkSetClampMacro(SplitWeight, double, 0.0, 1e6);
+  vtkGetMacro(SplitWeight, double);
+  vtkSetMacro(Seed, unsigned int);
+  vtkGetMacro(Seed, unsigned int);
+  vtkSetClampMacro(RelativeTolerance, double, 0.0, 1e-3);
+  vtkGetMacro(RelativeTolerance, double);
+  ///@}
+
+  ///@{
+  /**
+   * Whether to add the OriginalCellId and SortRank cell-data arrays (default on).
+   */
+  vtkSetMacro(GenerateOrderArrays, vtkTypeBool);
+  vtkGetMacro(GenerateOrderArrays, vtkTypeBool);
+  vtkBooleanMacro(GenerateOrderArrays, vtkTypeBool);
+  ///@}
+
+  ///@{
+  /**
+   * Statistics of the last build and update.
+   */
+  vtkIdType GetNumberOfFragments() const;
+  vtkIdType GetNumberOfSplits() const;
+  vtkIdType GetNumberOfRemovedPolygons() const;
+  vtkIdType GetTreeDepth() const;
+  double GetLastBuildTime() const;     ///< Seconds.
+  double GetLastOrderTime() const;     ///< Seconds.
+  vtkIdType GetNumberOfBuilds() const; ///< Trees built since construction.
+  vtkIdType GetLastNodesVisited() const;
+  ///@}
+
+  vtkMTimeType GetMTime() override;
+
+  static const char* OriginalCellIdArrayName() { return "OriginalCellId"; }
+  static const char* SortRankArrayName() { return "SortRank"; }
+
 protected:
-  vtkBSPSortFilter() = default;
-  ~vtkBSPSortFilter() override = default;
+  vtkBSPSortFilter();
+  ~vtkBSPSortFilter() override;
+
+  int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+
+  vtkCamera* Camera = nullptr;
+  int Direction = VTK_DIRECTION_BACK_TO_FRONT;
+  int PartitionMode = PARTITION_SCORED;
+  int CandidateCount = 16;
+  double SplitWeight = 4.0;
+  unsigned int Seed = 1;
+  double RelativeTolerance = 1e-10;
+  vtkTypeBool GenerateOrderArrays = true;
+
 private:
   vtkBSPSortFilter(const vtkBSPSortFilter&) = delete;
   void operator=(const vtkBSPSortFilter&) = delete;
+
+  struct Internals;
+  std::unique_ptr<Internals> Internal;
 };
+
 #endif

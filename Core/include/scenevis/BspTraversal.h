@@ -68,13 +68,31 @@ public:
 
 private:
   // Implementation detail; see BspTraversal.cpp.
+  struct NodeState
+  {
+    std::uint32_t offset; // start of this subtree's range, relative to its parent's range start
+    std::uint32_t size;   // fragments in this subtree
+    std::uint32_t anchor; // bit 31: viewer in front at the last check; low bits: Anchors index
+    float radius;         // safe distance around the anchor (rounded down)
+  };
+  struct Frame
+  {
+    std::uint32_t node;
+    std::uint32_t start;
+    std::uint32_t parentFrame;
+    bool expanded;
+    double radius;
+  };
+  void walk(const View& view, bool full);
+
   const Tree* TreePtr;
   Direction Dir;
   std::vector<std::uint32_t> Order;
   UpdateStatistics Last;
-  struct NodeState;
   std::vector<NodeState> States;
   std::vector<glm::dvec4> Anchors; // normalised eyes referred to by NodeState::anchor
+  std::vector<Frame> Stack;
+  double Scale = 1.0; // eye coordinates are divided by this (the bounds diagonal)
   bool Initialized = false;
 };
 

@@ -1,0 +1,990 @@
+#include "scenevis/BspBuilder.h"
+
+#include <glm/geometric.hpp>
+#include <glm/vec2.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <utility>
+
+namespace scenevis
+{
+namespace bsp
+{
+namespace
+{
+
+constexpr double kTwoPi = 6.28318530717958647692;
+
+/// Free planes are tried only on lists longer than this. Below it the scored polygon planes
+/// decide alone, which on a convex patch means a chain at most this deep: much cheaper than the
+/// splits a free plane costs there (each plane through a patch of m triangles cuts about
+/// sqrt(m) of them, so stopping free planes at m0 leaves about 5 / sqrt(m0) splits per input
+/// triangle on a generic sphere: ~0.46 at 128, while the leaf chains stay at most 128 deep).
+constexpr std::uint32_t kMinFreePlaneList = 128;
+
+/// Above this many fragments a polygon plane that leaves every other fragment on one side (it
+/// would peel off one polygon per level) is not taken while a free plane separates anything.
+constexpr std::uint32_t kMaxChainList = 128;
+
+/// Free-plane medians are taken over at most this many (strided) centroids: an approximate median
+/// balances as well and keeps the cost per node independent of the list size.
+constexpr std::uint32_t kMedianSample = 1024;
+
+std::uint64_t splitmix64(std::uint64_t& state)
+{
+  std::uint64_t z = (state += 0x9e3779b97f4a7c15ull);
+  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
+  z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
+  return z ^ (z >> 31);
+}
+
+/// Key of a child task: derived from the parent's key only, so the random choices of a subtree
+/// do not depend on the order in which subtrees are processed.
+std::uint64_t childKey(std::uint64_t key, bool front)
+{
+  std::uint64_t state = key ^ (front ? 0x5851f42d4c957f2dull : 0x14057b7ef767814full);
+  return splitmix64(state);
+}
+
+struct Rng
+{
+  std::uint64_t state;
+  /// Uniform in [0, n) (multiply-shift; no modulo bias worth caring about for sampling).
+  std::uint32_t below(std::uint32_t n)
+  {
+    return static_cast<std::uint32_t>(((splitmix64(state) >> 32) * n) >> 32);
+  }
+};
+
+enum Side : std::uint8_t
+{
+  On = 0,
+  Front = 1,
+  Back = 2,
+  Straddle = 3
+};
+
+/// A convex planar piece of a normalised input polygon; vertex ids live in Builder::Verts.
+struct Frag
+{
+  std::uint32_t piece;
+  std::uint32_t first;
+  std::uint32_t count;
+};
+
+struct Task
+{
+  std::uint32_t begin;
+  std::uint32_t end;
+  std::uint32_t parent;
+  std::uint32_t depth;
+  std::uint64_t key;
+  bool isFront;      // which child of `parent` this task becomes
+  bool oneSidedRun;  // see Builder::run()
+};
+
+/**
+ * Map from an undirected edge (min id, max id) to the split point made on it, valid for one node.
+ * Open addressing with generation stamps: clearing is O(1), which matters because it happens at
+ * every node that splits anything.
+ */
+class EdgeCache
+{
+public:
+  void clear()
+  {
+    ++Stamp;
+    Used = 0;
+    if (Stamp == 0)
+    {
+      for (Slot& s : Slots)
+      {
+        s.stamp = 0;
+      }
+      Stamp = 1;
+    }
+  }
+
+  std::uint32_t find(std::uint64_t key) const
+  {
+    if (Slots.empty())
+    {
+      return kNone;
+    }
+    const std::size_t mask = Slots.size() - 1;
+    for (std::size_t i = hash(key) & mask;; i = (i + 1) & mask)
+    {
+      const Slot& s = Slots[i];
+      if (s.stamp != Stamp)
+      {
+        return kNone;
+      }
+      if (s.key == key)
+      {
+        return s.value;
+      }
+    }
+  }
+
+  void insert(std::uint64_t key, std::uint32_t value)
+  {
+    if ((Used + 1) * 2 > Slots.size())
+    {
+      grow();
+    }
+    place(key, value);
+    ++Used;
+  }
+
+  std::size_t memoryBytes() const { return Slots.capacity() * sizeof(Slot); }
+
+private:
+  struct Slot
+  {
+    std::uint64_t key;
+    std::uint32_t value;
+    std::uint32_t stamp;
+  };
+
+  static std::size_t hash(std::uint64_t key)
+  {
+    return static_cast<std::size_t>((key * 0x9e3779b97f4a7c15ull) >> 20);
+  }
+
+  void place(std::uint64_t key, std::uint32_t value)
+  {
+    const std::size_t mask = Slots.size() - 1;
+    std::size_t i = hash(key) & mask;
+    while (Slots[i].stamp == Stamp)
+    {
+      i = (i + 1) & mask;
+    }
+    Slots[i] = Slot{ key, value, Stamp };
+  }
+
+  void grow()
+  {
+    std::vector<Slot> old;
+    old.swap(Slots);
+    Slots.assign(std::max<std::size_t>(64, old.size() * 2), Slot{ 0, 0, 0 });
+    const std::uint32_t stamp = Stamp;
+    Stamp = 1;
+    for (const Slot& s : old)
+    {
+      if (s.stamp == stamp)
+      {
+        place(s.key, s.value);
+      }
+    }
+  }
+
+  std::vector<Slot> Slots;
+  std::uint32_t Stamp = 1;
+  std::size_t Used = 0;
+};
+
+double cross2(const glm::dvec2& a, const glm::dvec2& b)
+{
+  return a.x * b.y - a.y * b.x;
+}
+
+/// Orthonormal in-plane basis (u, v) with u x v = n, so a polygon wound counter-clockwise around
+/// its Newell normal stays counter-clockwise in (u, v).
+void planeBasis(const glm::dvec3& n, glm::dvec3& u, glm::dvec3& v)
+{
+  const glm::dvec3 a = glm::abs(n);
+  const glm::dvec3 axis = (a.x <= a.y && a.x <= a.z) ? glm::dvec3(1, 0, 0)
+    : (a.y <= a.z)                                   ? glm::dvec3(0, 1, 0)
+                                                     : glm::dvec3(0, 0, 1);
+  u = glm::normalize(glm::cross(n, axis));
+  v = glm::cross(n, u);
+}
+
+/**
+ * Ear clipping of a simple polygon given counter-clockwise in 2D; appends triangles as triples of
+ * indices into `p`. Degenerate or self-intersecting input does not stall it: when no proper ear
+ * exists it drops a flat vertex, or as a last resort clips the most convex one.
+ */
+void earClip(const std::vector<glm::dvec2>& p, std::vector<std::uint32_t>& ring,
+  std::vector<std::uint32_t>& triangles)
+{
+  const std::size_t m0 = p.size();
+  ring.resize(m0);
+  for (std::size_t i = 0; i < m0; ++i)
+  {
+    ring[i] = static_cast<std::uint32_t>(i);
+  }
+  auto orient = [&p](std::uint32_t a, std::uint32_t b, std::uint32_t c)
+  { return cross2(p[b] - p[a], p[c] - p[a]); };
+  // A vertex within rounding of an ear's edge blocks the ear: clipping it would leave that vertex
+  // as a T-junction on the ear's long edge.
+  double extent = 0.0;
+  for (const glm::dvec2& q : p)
+  {
+    extent = std::max({ extent, std::abs(q.x - p[0].x), std::abs(q.y - p[0].y) });
+  }
+  const double onEdge = -1e-12 * extent * extent;
+  std::size_t start = 0;
+  while (ring.size() > 3)
+  {
+    const std::size_t m = ring.size();
+    std::size_t clip = m;
+    for (std::size_t k = 0; k < m && clip == m; ++k)
+    {
+      const std::size_t j = (start + k) % m;
+      const std::uint32_t a = ring[(j + m - 1) % m];
+      const std::uint32_t b = ring[j];
+      const std::uint32_t c = ring[(j + 1) % m];
+      if (orient(a, b, c) <= 0.0)
+      {
+        continue;
+      }
+      bool empty = true;
+      for (std::uint32_t q : ring)
+      {
+        if (q == a || q == b || q == c || p[q] == p[a] || p[q] == p[b] || p[q] == p[c])
+        {
+          continue;
+        }
+        if (orient(a, b, q) >= onEdge && orient(b, c, q) >= onEdge && orient(c, a, q) >= onEdge)
+        {
+          empty = false;
+          break;
+        }
+      }
+      if (empty)
+      {
+        clip = j;
+      }
+    }
+    bool emit = true;
+    if (clip == m)
+    {
+      // No proper ear: numerically flat or self-intersecting input.
+      double best = -std::numeric_limits<double>::infinity();
+      double flattest = std::numeric_limits<double>::infinity();
+      std::size_t flatIndex = 0;
+      for (std::size_t j = 0; j < m; ++j)
+      {
+        const double o = orient(ring[(j + m - 1) % m], ring[j], ring[(j + 1) % m]);
+        if (o > best)
+        {
+          best = o;
+          clip = j;
+        }
+        if (std::abs(o) < flattest)
+        {
+          flattest = std::abs(o);
+          flatIndex = j;
+        }
+      }
+      if (best <= 0.0)
+      {
+        clip = flatIndex;
+        emit = false;
+      }
+    }
+    if (emit)
+    {
+      triangles.push_back(ring[(clip + m - 1) % m]);
+      triangles.push_back(ring[clip]);
+      triangles.push_back(ring[(clip + 1) % m]);
+    }
+    ring.erase(ring.begin() + static_cast<std::ptrdiff_t>(clip));
+    start = clip == 0 ? 0 : clip - 1;
+  }
+  if (orient(ring[0], ring[1], ring[2]) > 0.0)
+  {
+    triangles.insert(triangles.end(), ring.begin(), ring.end());
+  }
+}
+
+class Builder
+{
+public:
+  Builder(const PolygonMesh& mesh, const BuildConfig& config, const ProgressCallback& progress)
+    : Mesh(mesh)
+    , Config(config)
+    , Progress(progress)
+  {
+  }
+
+  Tree run();
+
+private:
+  double signedDistance(const glm::dvec4& plane, std::uint32_t id) const
+  {
+    const glm::dvec3& p = Local[id];
+    return plane.x * p.x + plane.y * p.y + plane.z * p.z + plane.w;
+  }
+
+  Side classify(const glm::dvec4& plane, const Frag& f) const
+  {
+    bool front = false;
+    bool back = false;
+    const std::uint32_t* ids = Verts.data() + f.first;
+    for (std::uint32_t k = 0; k < f.count; ++k)
+    {
+      const double s = signedDistance(plane, ids[k]);
+      front |= s > Tol;
+      back |= s < -Tol;
+    }
+    return static_cast<Side>((front ? Front : On) | (back ? Back : On));
+  }
+
+  void normalise();
+  bool addIfValid(std::uint32_t source, const std::uint32_t* ids, std::size_t count);
+
+  struct Choice
+  {
+    glm::dvec4 plane{ 0.0 };
+    std::uint32_t piece = kNone; // kNone: free plane
+    glm::dvec4 fallbackPlane{ 0.0 };
+    std::uint32_t fallbackPiece = kNone;
+  };
+  Choice chooseScored(const Task& task, std::uint32_t n);
+  std::uint32_t splitPoint(const glm::dvec4& plane, std::uint32_t a, std::uint32_t b);
+  void split(const Frag& f, const glm::dvec4& plane, Frag& front, Frag& back);
+
+  const PolygonMesh& Mesh;
+  const BuildConfig& Config;
+  const ProgressCallback& Progress;
+  Tree Out;
+  double Tol = 0.0;
+
+  std::vector<glm::dvec3> Local;    // points relative to Out.origin: all classification uses these
+  std::vector<glm::dvec4> PiecePlane;
+  std::vector<std::uint32_t> PieceSource;
+  std::vector<std::uint32_t> PieceCount; // vertices of each piece; pieces are consecutive in Verts
+  std::vector<std::uint32_t> Verts; // vertex arena of all fragments (append-only)
+  std::vector<Frag> Arena;          // fragment lists of pending tasks, used as a stack
+  std::vector<Frag> FrontScratch;
+  std::vector<Frag> OwnScratch;
+  std::vector<std::uint8_t> Codes;
+  std::vector<std::uint32_t> IdScratch;
+  std::vector<std::uint32_t> BackScratch;
+  std::vector<double> DistScratch;
+  std::vector<glm::dvec3> CentroidScratch;
+  std::vector<std::pair<double, std::uint32_t>> AxisScratch;
+  std::vector<std::uint32_t> SampleScratch;
+  EdgeCache Cache;
+
+  // normalisation scratch
+  std::vector<std::uint32_t> PolyIds;
+  std::vector<glm::dvec2> Poly2d;
+  std::vector<std::uint32_t> Ring;
+  std::vector<std::uint32_t> Triangles;
+};
+
+bool Builder::addIfValid(std::uint32_t source, const std::uint32_t* ids, std::size_t count)
+{
+  const glm::dvec3 n = newellNormal(Local.data(), ids, count);
+  const double len = glm::length(n);
+  double maxEdge = 0.0;
+  for (std::size_t k = 0; k < count; ++k)
+  {
+    maxEdge = std::max(maxEdge, glm::length(Local[ids[(k + 1) % count]] - Local[ids[k]]));
+  }
+  // |n| = 2 * area, so this asks whether the polygon is thinner than the tolerance: such a sliver
+  // has no meaningful plane and cannot be classified consistently.
+  if (!(len > Tol * maxEdge) || len == 0.0)
+  {
+    return false;
+  }
+  const glm::dvec3 unit = n / len;
+  glm::dvec3 centroid(0.0);
+  for (std::size_t k = 0; k < count; ++k)
+  {
+    centroid += Local[ids[k]];
+  }
+  centroid /= static_cast<double>(count);
+  PiecePlane.emplace_back(unit, -glm::dot(unit, centroid));
+  PieceSource.push_back(source);
+  PieceCount.push_back(static_cast<std::uint32_t>(count));
+  Verts.insert(Verts.end(), ids, ids + count);
+  return true;
+}
+
+void Builder::normalise()
+{
+  const std::size_t pointCount = Mesh.points.size();
+  const std::size_t polygons = Mesh.polygonCount();
+  BuildStatistics& st = Out.statistics;
+  PiecePlane.reserve(polygons);
+  PieceSource.reserve(polygons);
+  Verts.reserve(Mesh.indices.size());
+  for (std::size_t i = 0; i < polygons; ++i)
+  {
+    const std::uint32_t* ids = Mesh.polygon(i);
+    const std::uint32_t count = Mesh.polygonSize(i);
+    const auto source = static_cast<std::uint32_t>(i);
+    bool valid = true;
+    PolyIds.clear();
+    for (std::uint32_t k = 0; k < count; ++k)
+    {
+      const std::uint32_t id = ids[k];
+      if (id >= pointCount)
+      {
+        valid = false;
+        break;
+      }
+      const glm::dvec3& p = Mesh.points[id];
+      if (!(std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z)))
+      {
+        valid = false;
+        break;
+      }
+      if (PolyIds.empty() || PolyIds.back() != id)
+      {
+        PolyIds.push_back(id);
+      }
+    }
+    if (!valid)
+    {
+      ++st.invalidPolygons;
+      continue;
+    }
+    while (PolyIds.size() > 1 && PolyIds.back() == PolyIds.front())
+    {
+      PolyIds.pop_back();
+    }
+    const std::size_t m = PolyIds.size();
+    if (m < 3)
+    {
+      ++st.degeneratePolygons;
+      continue;
+    }
+    if (m == 3)
+    {
+      if (!addIfValid(source, PolyIds.data(), 3))
+      {
+        ++st.degeneratePolygons;
+      }
+      continue;
+    }
+    const glm::dvec3 n = newellNormal(Local.data(), PolyIds.data(), m);
+    const double len = glm::length(n);
+    double maxEdge = 0.0;
+    glm::dvec3 centroid(0.0);
+    for (std::size_t k = 0; k < m; ++k)
+    {
+      maxEdge = std::max(maxEdge, glm::length(Local[PolyIds[(k + 1) % m]] - Local[PolyIds[k]]));
+      centroid += Local[PolyIds[k]];
+    }
+    if (!(len > Tol * maxEdge) || len == 0.0)
+    {
+      ++st.degeneratePolygons;
+      continue;
+    }
+    centroid /= static_cast<double>(m);
+    const glm::dvec3 unit = n / len;
+    const double d = -glm::dot(unit, centroid);
+    bool planar = true;
+    for (std::size_t k = 0; k < m && planar; ++k)
+    {
+      planar = std::abs(glm::dot(unit, Local[PolyIds[k]]) + d) <= Tol;
+    }
+    glm::dvec3 u;
+    glm::dvec3 v;
+    planeBasis(unit, u, v);
+    Poly2d.resize(m);
+    for (std::size_t k = 0; k < m; ++k)
+    {
+      const glm::dvec3 q = Local[PolyIds[k]] - centroid;
+      Poly2d[k] = glm::dvec2(glm::dot(q, u), glm::dot(q, v));
+    }
+    bool convex = planar;
+    if (convex)
+    {
+      // Left turns everywhere (up to the tolerance) and one full turn in total: the latter rejects
+      // star polygons, whose turns are all left too.
+      double turning = 0.0;
+      for (std::size_t k = 0; k < m && convex; ++k)
+      {
+        const glm::dvec2 e1 = Poly2d[k] - Poly2d[(k + m - 1) % m];
+        const glm::dvec2 e2 = Poly2d[(k + 1) % m] - Poly2d[k];
+        const double c = cross2(e1, e2);
+        convex = c >= -Tol * std::max(glm::length(e1), glm::length(e2));
+        turning += std::atan2(c, glm::dot(e1, e2));
+      }
+      convex = convex && std::abs(turning - kTwoPi) < 1e-6;
+    }
+    if (convex)
+    {
+      addIfValid(source, PolyIds.data(), m);
+      continue;
+    }
+    ++st.triangulatedPolygons;
+    Triangles.clear();
+    earClip(Poly2d, Ring, Triangles);
+    for (std::size_t t = 0; t + 2 < Triangles.size(); t += 3)
+    {
+      const std::uint32_t tri[3] = { PolyIds[Triangles[t]], PolyIds[Triangles[t + 1]],
+        PolyIds[Triangles[t + 2]] };
+      addIfValid(source, tri, 3);
+    }
+  }
+}
+
+std::uint32_t Builder::splitPoint(const glm::dvec4& plane, std::uint32_t a, std::uint32_t b)
+{
+  const std::uint32_t lo = std::min(a, b);
+  const std::uint32_t hi = std::max(a, b);
+  const std::uint64_t key = (static_cast<std::uint64_t>(lo) << 32) | hi;
+  const std::uint32_t cached = Cache.find(key);
+  if (cached != kNone)
+  {
+    return cached;
+  }
+  // Always from the smaller id: both polygons sharing the edge would compute the same bits, and
+  // the cache makes sure they also share the id.
+  const double slo = signedDistance(plane, lo);
+  const double shi = signedDistance(plane, hi);
+  const double t = slo / (slo - shi);
+  const glm::dvec3 localLo = Local[lo];
+  const glm::dvec3 localHi = Local[hi];
+  const glm::dvec3 worldLo = Out.points[lo];
+  const glm::dvec3 worldHi = Out.points[hi];
+  Local.push_back(localLo + (localHi - localLo) * t);
+  Out.points.push_back(worldLo + (worldHi - worldLo) * t);
+  Out.splitPoints.push_back(SplitPoint{ lo, hi, t });
+  const auto id = static_cast<std::uint32_t>(Out.points.size() - 1);
+  Cache.insert(key, id);
+  return id;
+}
+
+void Builder::split(const Frag& f, const glm::dvec4& plane, Frag& front, Frag& back)
+{
+  const std::uint32_t m = f.count;
+  IdScratch.assign(Verts.begin() + f.first, Verts.begin() + f.first + m);
+  DistScratch.resize(m);
+  for (std::uint32_t k = 0; k < m; ++k)
+  {
+    const double s = signedDistance(plane, IdScratch[k]);
+    DistScratch[k] = s > Tol ? 1.0 : (s < -Tol ? -1.0 : 0.0);
+  }
+  BackScratch.clear();
+  front.piece = back.piece = f.piece;
+  front.first = static_cast<std::uint32_t>(Verts.size());
+  for (std::uint32_t k = 0; k < m; ++k)
+  {
+    const std::uint32_t next = k + 1 == m ? 0 : k + 1;
+    const double ck = DistScratch[k];
+    const double cn = DistScratch[next];
+    if (ck >= 0.0)
+    {
+      Verts.push_back(IdScratch[k]);
+    }
+    if (ck <= 0.0)
+    {
+      BackScratch.push_back(IdScratch[k]);
+    }
+    if (ck * cn < 0.0)
+    {
+      const std::uint32_t id = splitPoint(plane, IdScratch[k], IdScratch[next]);
+      Verts.push_back(id);
+      BackScratch.push_back(id);
+    }
+  }
+  front.count = static_cast<std::uint32_t>(Verts.size()) - front.first;
+  back.first = static_cast<std::uint32_t>(Verts.size());
+  back.count = static_cast<std::uint32_t>(BackScratch.size());
+  Verts.insert(Verts.end(), BackScratch.begin(), BackScratch.end());
+}
+
+Builder::Choice Builder::chooseScored(const Task& task, std::uint32_t n)
+{
+  Rng rng{ task.key };
+  const Frag* list = Arena.data() + task.begin;
+  const auto candidates = static_cast<std::uint32_t>(std::max(1, Config.candidates));
+  const auto sampleSize =
+    std::min(n, static_cast<std::uint32_t>(std::max(1, Config.samplePolygons)));
+  constexpr double kInfinity = std::numeric_limits<double>::infinity();
+
+  SampleScratch.resize(sampleSize);
+  for (std::uint32_t j = 0; j < sampleSize; ++j)
+  {
+    SampleScratch[j] =
+      static_cast<std::uint32_t>((static_cast<std::uint64_t>(j) * n) / sampleSize);
+  }
+
+  // Returns +inf as soon as the score provably exceeds `cutoff` (ties are still scored exactly,
+  // so the lower candidate index wins them), and for a free plane that separates nothing.
+  bool oneSided = false;
+  auto score = [&](const glm::dvec4& plane, std::uint32_t piece, double cutoff) -> double
+  {
+    oneSided = false;
+    double splits = 0;
+    double front = 0;
+    double back = 0;
+    double remaining = sampleSize;
+    for (std::uint32_t j : SampleScratch)
+    {
+      remaining -= 1;
+      const Frag& f = list[j];
+      if (f.piece == piece)
+      {
+        continue;
+      }
+      switch (classify(plane, f))
+      {
+        case Front:
+          front += 1;
+          break;
+        case Back:
+          back += 1;
+          break;
+        case Straddle:
+          splits += 1;
+          break;
+        default:
+          if (piece == kNone)
+          {
+            back += 1; // a free plane owns nothing: coplanar fragments go behind it
+          }
+          break;
+      }
+      if (splits * Config.splitWeight + std::max(0.0, std::abs(front - back) - remaining) > cutoff)
+      {
+        return kInfinity;
+      }
+    }
+    if (splits == 0 && (front == 0 || back == 0))
+    {
+      if (piece == kNone)
+      {
+        return kInfinity;
+      }
+      oneSided = true;
+    }
+    return splits * Config.splitWeight + std::abs(front - back);
+  };
+
+  // Free planes first: on big lists one usually wins, and its score then cuts the polygon
+  // candidates' evaluation short.
+  double bestFree = kInfinity;
+  glm::dvec4 freePlane(0.0);
+  if (Config.allowFreePlanes && n > kMinFreePlaneList)
+  {
+    const std::uint32_t medianSample = std::min(n, kMedianSample);
+    CentroidScratch.resize(medianSample);
+    for (std::uint32_t j = 0; j < medianSample; ++j)
+    {
+      const Frag& f =
+        list[static_cast<std::uint32_t>((static_cast<std::uint64_t>(j) * n) / medianSample)];
+      glm::dvec3 c(0.0);
+      for (std::uint32_t k = 0; k < f.count; ++k)
+      {
+        c += Local[Verts[f.first + k]];
+      }
+      CentroidScratch[j] = c / static_cast<double>(f.count);
+    }
+    AxisScratch.resize(medianSample);
+    for (int axis = 0; axis < 3; ++axis)
+    {
+      for (std::uint32_t j = 0; j < medianSample; ++j)
+      {
+        AxisScratch[j] = { CentroidScratch[j][axis], j };
+      }
+      const auto mid = AxisScratch.begin() + medianSample / 2;
+      std::nth_element(AxisScratch.begin(), mid, AxisScratch.end());
+      // Besides the plane through the median centroid, also try the one through the median
+      // fragment's vertex nearest to it: on meshes with shared coordinates (latitude rings, CAD
+      // grids) it passes through vertices instead of cutting the polygons around them.
+      const double median = mid->first;
+      const Frag& medianFrag = list[static_cast<std::uint32_t>(
+        (static_cast<std::uint64_t>(mid->second) * n) / medianSample)];
+      double snapped = Local[Verts[medianFrag.first]][axis];
+      for (std::uint32_t k = 1; k < medianFrag.count; ++k)
+      {
+        const double c = Local[Verts[medianFrag.first + k]][axis];
+        if (std::abs(c - median) < std::abs(snapped - median))
+        {
+          snapped = c;
+        }
+      }
+      for (int variant = 0; variant < 2; ++variant)
+      {
+        if (variant == 1 && snapped == median)
+        {
+          continue;
+        }
+        glm::dvec4 plane(0.0);
+        plane[axis] = 1.0;
+        plane.w = -(variant == 0 ? median : snapped);
+        const double sc = score(plane, kNone, bestFree);
+        if (sc < bestFree)
+        {
+          bestFree = sc;
+          freePlane = plane;
+        }
+      }
+    }
+  }
+
+  Choice choice;
+  double bestPolygon = kInfinity;
+  bool bestOneSided = false;
+  const std::uint32_t polygonCandidates = std::min(candidates, n);
+  for (std::uint32_t c = 0; c < polygonCandidates; ++c)
+  {
+    const std::uint32_t index = n <= candidates ? c : rng.below(n);
+    const std::uint32_t piece = list[index].piece;
+    const glm::dvec4& plane = PiecePlane[piece];
+    const double sc = score(plane, piece, std::min(bestPolygon, bestFree));
+    if (sc < bestPolygon || choice.piece == kNone)
+    {
+      bestPolygon = std::min(bestPolygon, sc);
+      choice.plane = plane;
+      choice.piece = piece;
+      bestOneSided = oneSided && sc < kInfinity;
+    }
+  }
+  choice.fallbackPlane = choice.plane;
+  choice.fallbackPiece = choice.piece;
+
+  // A one-sided polygon plane peels off a single polygon; on a long list that is a chain as deep
+  // as the list, so any separating free plane is preferred there.
+  const bool chainTooLong = bestOneSided && n > kMaxChainList;
+  if (bestFree < kInfinity && (bestFree < bestPolygon || chainTooLong))
+  {
+    choice.plane = freePlane;
+    choice.piece = kNone;
+  }
+  return choice;
+}
+
+Tree Builder::run()
+{
+  const auto startTime = std::chrono::steady_clock::now();
+  BuildStatistics& st = Out.statistics;
+  st.inputPolygons = Mesh.polygonCount();
+
+  const Box bounds = Mesh.bounds();
+  Out.origin = bounds.empty() ? glm::dvec3(0.0) : bounds.center();
+  const double diagonal = bounds.diagonal();
+  Tol = Config.relativeTolerance * (diagonal > 0.0 ? diagonal : 1.0);
+  Out.tolerance = st.tolerance = Tol;
+  Out.points = Mesh.points;
+  Out.inputPointCount = Mesh.points.size();
+  Local.resize(Mesh.points.size());
+  for (std::size_t i = 0; i < Local.size(); ++i)
+  {
+    Local[i] = Mesh.points[i] - Out.origin;
+  }
+
+  normalise();
+  const auto pieces = static_cast<std::uint32_t>(PieceSource.size());
+  Arena.reserve(pieces + pieces / 4);
+  {
+    std::uint32_t first = 0;
+    for (std::uint32_t p = 0; p < pieces; ++p)
+    {
+      const std::uint32_t count = PieceCount[p];
+      Arena.push_back(Frag{ p, first, count });
+      first += count;
+    }
+  }
+
+  Out.nodes.reserve(pieces + pieces / 2);
+  Out.fragments.reserve(pieces + pieces / 4);
+  Out.fragmentVertices.reserve(Verts.size() + Verts.size() / 4);
+
+  std::vector<Task> tasks;
+  if (pieces > 0)
+  {
+    std::uint64_t seedState = Config.seed;
+    tasks.push_back(Task{ 0, pieces, kNone, 1, splitmix64(seedState), false, false });
+  }
+  const bool scored = Config.partition == BuildConfig::Partition::Scored;
+  std::size_t placed = 0;
+  const std::size_t reportStep = std::max<std::size_t>(1, pieces / 100);
+  std::size_t nextReport = reportStep;
+
+  while (!tasks.empty())
+  {
+    const Task task = tasks.back();
+    tasks.pop_back();
+    const std::uint32_t n = task.end - task.begin;
+
+    glm::dvec4 plane;
+    std::uint32_t piece;
+    Choice choice;
+    if (!scored || (task.oneSidedRun && n <= kMinFreePlaneList))
+    {
+      piece = Arena[task.begin].piece;
+      plane = PiecePlane[piece];
+    }
+    else
+    {
+      choice = chooseScored(task, n);
+      piece = choice.piece;
+      plane = choice.plane;
+    }
+
+    // Full classification first, so that a free plane that separates nothing can still be
+    // replaced by a polygon plane before anything is split.
+    std::uint32_t nFront = 0;
+    std::uint32_t nBack = 0;
+    std::uint32_t nSplit = 0;
+    std::uint32_t nOn = 0;
+    Codes.resize(n);
+    for (int attempt = 0; attempt < 2; ++attempt)
+    {
+      nFront = nBack = nSplit = nOn = 0;
+      for (std::uint32_t i = 0; i < n; ++i)
+      {
+        const Frag& f = Arena[task.begin + i];
+        // The partition polygon's own fragments are on its plane by construction; forcing it
+        // guarantees progress even if rounding put a vertex a hair outside the tolerance.
+        const Side side = f.piece == piece ? On : classify(plane, f);
+        Codes[i] = side;
+        nFront += side == Front;
+        nBack += side == Back;
+        nSplit += side == Straddle;
+        nOn += side == On;
+      }
+      if (piece != kNone)
+      {
+        break;
+      }
+      // Free plane: coplanar fragments go behind. Both children must be strictly smaller than
+      // this list, or the build would not terminate.
+      if (nFront + nSplit < n && nBack + nOn + nSplit < n)
+      {
+        break;
+      }
+      piece = choice.fallbackPiece;
+      plane = choice.fallbackPlane;
+    }
+
+    const auto nodeIndex = static_cast<std::uint32_t>(Out.nodes.size());
+    Node node;
+    node.plane = plane;
+    node.firstFragment = static_cast<std::uint32_t>(Out.fragments.size());
+    Out.nodes.push_back(node);
+    if (task.parent != kNone)
+    {
+      (task.isFront ? Out.nodes[task.parent].front : Out.nodes[task.parent].back) = nodeIndex;
+    }
+    else
+    {
+      Out.root = nodeIndex;
+    }
+    st.depth = std::max<std::size_t>(st.depth, task.depth);
+    if (piece == kNone)
+    {
+      ++st.freePlaneNodes;
+    }
+
+    Cache.clear();
+    FrontScratch.clear();
+    OwnScratch.clear();
+    std::uint32_t write = task.begin;
+    for (std::uint32_t i = 0; i < n; ++i)
+    {
+      const Frag f = Arena[task.begin + i];
+      switch (Codes[i])
+      {
+        case On:
+          if (piece == kNone)
+          {
+            Arena[write++] = f;
+          }
+          else
+          {
+            OwnScratch.push_back(f);
+          }
+          break;
+        case Back:
+          Arena[write++] = f;
+          break;
+        case Front:
+          FrontScratch.push_back(f);
+          break;
+        default:
+        {
+          Frag front;
+          Frag back;
+          split(f, plane, front, back);
+          Arena[write++] = back;
+          FrontScratch.push_back(front);
+          ++st.splits;
+          break;
+        }
+      }
+    }
+    const std::uint32_t backEnd = write;
+    Arena.resize(backEnd);
+    Arena.insert(Arena.end(), FrontScratch.begin(), FrontScratch.end());
+    const auto frontEnd = static_cast<std::uint32_t>(Arena.size());
+
+    std::sort(OwnScratch.begin(), OwnScratch.end(),
+      [](const Frag& a, const Frag& b) { return a.piece < b.piece; });
+    for (const Frag& f : OwnScratch)
+    {
+      Out.fragments.push_back(Fragment{ PieceSource[f.piece],
+        static_cast<std::uint32_t>(Out.fragmentVertices.size()), f.count });
+      Out.fragmentVertices.insert(
+        Out.fragmentVertices.end(), Verts.begin() + f.first, Verts.begin() + f.first + f.count);
+    }
+    Out.nodes[nodeIndex].fragmentCount = static_cast<std::uint32_t>(OwnScratch.size());
+
+    // A polygon plane with everything on one side and nothing split means a locally convex (or
+    // concave) patch: its remaining polygons will keep doing that, and free planes have already
+    // lost here, so the child skips scoring and chains. The run ends at the first node where the
+    // one-sidedness fails.
+    const bool oneSided =
+      scored && piece != kNone && nSplit == 0 && (nFront == 0 || nBack == 0);
+    if (backEnd > task.begin)
+    {
+      tasks.push_back(Task{ task.begin, backEnd, nodeIndex, task.depth + 1,
+        childKey(task.key, false), false, oneSided });
+    }
+    if (frontEnd > backEnd)
+    {
+      tasks.push_back(Task{ backEnd, frontEnd, nodeIndex, task.depth + 1,
+        childKey(task.key, true), true, oneSided });
+    }
+
+    placed += OwnScratch.size();
+    if (Progress && placed >= nextReport)
+    {
+      nextReport = placed + reportStep;
+      if (!Progress(std::min(1.0, static_cast<double>(placed) / pieces)))
+      {
+        Tree cancelled;
+        cancelled.statistics.inputPolygons = st.inputPolygons;
+        return cancelled;
+      }
+    }
+  }
+
+  Out.nodes.shrink_to_fit();
+  Out.fragments.shrink_to_fit();
+  Out.fragmentVertices.shrink_to_fit();
+  Out.points.shrink_to_fit();
+  Out.splitPoints.shrink_to_fit();
+  st.nodes = Out.nodes.size();
+  st.fragments = Out.fragments.size();
+  st.memoryBytes = Out.nodes.capacity() * sizeof(Node) +
+    Out.fragments.capacity() * sizeof(Fragment) +
+    Out.fragmentVertices.capacity() * sizeof(std::uint32_t) +
+    Out.points.capacity() * sizeof(glm::dvec3) + Out.splitPoints.capacity() * sizeof(SplitPoint);
+  st.buildSeconds =
+    std::chrono::duration<double>(std::chrono::steady_clock::now() - startTime).count();
+  return std::move(Out);
+}
+
+} // namespace
+
+Tree build(const PolygonMesh& mesh, const BuildConfig& config, const ProgressCallback& progress)
+{
+  return Builder(mesh, config, progress).run();
+}
+
+} // namespace bsp
+} // namespace scenevis

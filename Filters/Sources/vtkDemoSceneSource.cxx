@@ -1,0 +1,189 @@
+#include "vtkDemoSceneSource.h"
+
+#include "vtkCellArray.h"
+#include "vtkCellData.h"
+#include "vtkDoubleArray.h"
+#include "vtkFieldData.h"
+#include "vtkIdTypeArray.h"
+#include "vtkInformation.h"
+#include "vtkInformationVector.h"
+#include "vtkIntArray.h"
+#include "vtkNew.h"
+#include "vtkObjectFactory.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+#include "vtkStringArray.h"
+#include "vtkUnsignedCharArray.h"
+
+#include "scenevis/Scenes.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstring>
+#include <exception>
+
+vtkStandardNewMacro(vtkDemoSceneSource);
+
+namespace
+{
+const char* const SceneNames[] = { "spheres", "cyclic-quads", "triangles", "cad", "building" };
+
+unsigned char ToByte(double v)
+{
+  return static_cast<unsigned char>(std::lround(std::clamp(v, 0.0, 1.0) * 255.0));
+}
+
+void ToPolyData(const scenevis::scenes::Scene& scene, vtkPolyData* output)
+{
+  const scenevis::PolygonMesh& mesh = scene.mesh;
+  vtkNew<vtkDoubleArray> coordinates;
+  coordinates->SetNumberOfComponents(3);
+  coordinates->SetNumberOfTuples(static_cast<vtkIdType>(mesh.points.size()));
+  std::copy_n(&mesh.points[0].x, 3 * mesh.points.size(), coordinates->GetPointer(0));
+  vtkNew<vtkPoints> points;
+  points->SetData(coordinates);
+
+  vtkNew<vtkIdTypeArray> offsets;
+  offsets->SetNumberOfTuples(static_cast<vtkIdType>(mesh.offsets.size()));
+  std::copy(mesh.offsets.begin(), mesh.offsets.end(), offsets->GetPointer(0));
+  vtkNew<vtkIdTypeArray> connectivity;
+  connectivity->SetNumberOfTuples(static_cast<vtkIdType>(mesh.indices.size()));
+  std::copy(mesh.indices.begin(), mesh.indices.end(), connectivity->GetPointer(0));
+  vtkNew<vtkCellArray> polys;
+  polys->SetData(offsets, connectivity);
+
+  output->SetPoints(points);
+  output->SetPolys(polys);
+
+  const vtkIdType numPolys = static_cast<vtkIdType>(mesh.polygonCount());
+  vtkNew<vtkIdTypeArray> partIds;
+  partIds->SetName("PartId");
+  partIds->SetNumberOfTuples(numPolys);
+  vtkNew<vtkUnsignedCharArray> colors;
+  colors->SetName("Colors");
+  colors->SetNumberOfComponents(4);
+  colors->SetNumberOfTuples(numPolys);
+  for (vtkIdType c = 0; c < numPolys; ++c)
+  {
+    const std::uint32_t p = scene.part[static_cast<std::size_t>(c)];
+    const scenevis::scenes::Part& part = scene.parts[p];
+    partIds->SetValue(c, p);
+    colors->SetTypedTuple(c, std::array<unsigned char, 4>{ ToByte(part.colour.r),
+                               ToByte(part.colour.g), ToByte(part.colour.b), ToByte(part.opacity) }
+                               .data());
+  }
+  output->GetCellData()->AddArray(partIds);
+  output->GetCellData()->SetScalars(colors);
+
+  vtkNew<vtkStringArray> names;
+  names->SetName("PartNames");
+  vtkNew<vtkUnsignedCharArray> partColors;
+  partColors->SetName("PartColors");
+  partColors->SetNumberOfComponents(4);
+  for (const scenevis::scenes::Part& part : scene.parts)
+  {
+    names->InsertNextValue(part.name);
+    const unsigned char rgba[4] = { ToByte(part.colour.r), ToByte(part.colour.g),
+      ToByte(part.colour.b), ToByte(part.opacity) };
+    partColors->InsertNextTypedTuple(rgba);
+  }
+  output->GetFieldData()->AddArray(names);
+  output->GetFieldData()->AddArray(partColors);
+}
+} // namespace
+
+//------------------------------------------------------------------------------
+vtkDemoSceneSource::vtkDemoSceneSource()
+{
+  this->SetNumberOfInputPorts(0);
+}
+
+//------------------------------------------------------------------------------
+bool vtkDemoSceneSource::SetSceneByName(const char* name)
+{
+  for (int s = SCENE_SPHERE_GRID; s <= SCENE_BUILDING; ++s)
+  {
+    if (name && std::strcmp(name, SceneNames[s]) == 0)
+    {
+      this->SetScene(s);
+      return true;
+    }
+  }
+  return false;
+}
+
+//------------------------------------------------------------------------------
+const char* vtkDemoSceneSource::GetSceneName(int scene)
+{
+  return scene >= SCENE_SPHERE_GRID && scene <= SCENE_BUILDING ? SceneNames[scene] : "unknown";
+}
+
+//------------------------------------------------------------------------------
+int vtkDemoSceneSource::RequestData(
+  vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
+{
+  vtkPolyData* output = vtkPolyData::GetData(outputVector);
+  namespace scenes = scenevis::scenes;
+  try
+  {
+    switch (this->Scene)
+    {
+      case SCENE_SPHERE_GRID:
+        ToPolyData(scenes::sphereGrid(4, 0.8, 1.0,
+                     scenes::trianglesPerSphereFor(static_cast<std::size_t>(this->TriangleCount))),
+          output);
+        break;
+      case SCENE_CYCLIC_QUADS:
+        ToPolyData(scenes::cyclicQuads(), output);
+        break;
+      case SCENE_INTERPENETRATING_TRIANGLES:
+        ToPolyData(scenes::interpenetratingTriangles(), output);
+        break;
+      case SCENE_CAD_ASSEMBLY:
+      {
+        const auto parts = static_cast<std::size_t>(this->PartCount);
+        const std::size_t perPart =
+          std::max<std::size_t>(1, static_cast<std::size_t>(this->TriangleCount) / parts);
+        ToPolyData(scenes::cadAssembly(parts, perPart, this->Seed,
+                     { this->Origin[0], this->Origin[1], this->Origin[2] }),
+          output);
+        break;
+      }
+      case SCENE_BUILDING:
+      {
+        const scenes::BuildingScene building =
+          scenes::building(this->Floors, this->RoomsX, this->RoomsY, this->Seed);
+        ToPolyData(building, output);
+        vtkNew<vtkIntArray> rooms;
+        rooms->SetName("RoomId");
+        rooms->SetNumberOfTuples(static_cast<vtkIdType>(building.room.size()));
+        std::copy(building.room.begin(), building.room.end(), rooms->GetPointer(0));
+        output->GetCellData()->AddArray(rooms);
+        break;
+      }
+      default:
+        break;
+    }
+  }
+  catch (const std::exception& e)
+  {
+    vtkErrorMacro("Cannot generate the " << GetSceneName(this->Scene) << " scene: " << e.what());
+    output->Initialize();
+  }
+  return 1;
+}
+
+//------------------------------------------------------------------------------
+void vtkDemoSceneSource::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "Scene: " << GetSceneName(this->Scene) << "\n";
+  os << indent << "TriangleCount: " << this->TriangleCount << "\n";
+  os << indent << "PartCount: " << this->PartCount << "\n";
+  os << indent << "Floors: " << this->Floors << ", RoomsX: " << this->RoomsX
+     << ", RoomsY: " << this->RoomsY << "\n";
+  os << indent << "Seed: " << this->Seed << "\n";
+  os << indent << "Origin: " << this->Origin[0] << " " << this->Origin[1] << " " << this->Origin[2]
+     << "\n";
+}

@@ -1,0 +1,90 @@
+/**
+ * @class   vtkDemoSceneSource
+ * @brief   The deterministic SceneVis demo scenes (scenevis/Scenes.h) as polydata.
+ *
+ * One merged mesh per scene, with cell data that keeps the scene's parts apart:
+ * - "PartId" (vtkIdTypeArray): the part of every polygon;
+ * - "Colors" (RGBA unsigned char, set as the active scalars): the part's colour and opacity, so a
+ *   mapper with direct scalars shows translucent parts translucent.
+ * For SCENE_BUILDING, also "RoomId" (int; -1 outside). Part names, colours and opacities are in
+ * the field data arrays "PartNames", "PartColors" (RGBA, one tuple per part).
+ *
+ * Scenes:
+ * - SCENE_SPHERE_GRID: 4x4x4 overlapping translucent spheres (radius 0.8, spacing 1), about
+ *   TriangleCount triangles in all: the standard hard translucency scene (default).
+ * - SCENE_CYCLIC_QUADS: three quads overlapping in a cycle (viewed from +z).
+ * - SCENE_INTERPENETRATING_TRIANGLES: two triangles that pierce each other.
+ * - SCENE_CAD_ASSEMBLY: PartCount closed CAD-like parts, about TriangleCount triangles in all.
+ * - SCENE_BUILDING: Floors x RoomsX x RoomsY rooms with doors, windows, stairs and furniture.
+ *
+ * Points are double precision (the generators work in double; Origin shifts the CAD assembly).
+ */
+
+#ifndef vtkDemoSceneSource_h
+#define vtkDemoSceneSource_h
+
+#include "SceneVisFiltersSourcesModule.h" // For export macro
+#include "vtkPolyDataAlgorithm.h"
+
+class SCENEVISFILTERSSOURCES_EXPORT vtkDemoSceneSource : public vtkPolyDataAlgorithm
+{
+public:
+  static vtkDemoSceneSource* New();
+  vtkTypeMacro(vtkDemoSceneSource, vtkPolyDataAlgorithm);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  enum Scenes
+  {
+    SCENE_SPHERE_GRID = 0,
+    SCENE_CYCLIC_QUADS,
+    SCENE_INTERPENETRATING_TRIANGLES,
+    SCENE_CAD_ASSEMBLY,
+    SCENE_BUILDING
+  };
+
+  vtkSetClampMacro(Scene, int, SCENE_SPHERE_GRID, SCENE_BUILDING);
+  vtkGetMacro(Scene, int);
+  /// Set the scene by name: spheres, cyclic-quads, triangles, cad, building. False if unknown.
+  bool SetSceneByName(const char* name);
+  static const char* GetSceneName(int scene);
+
+  /// Approximate total triangles (spheres, CAD). Default 20,000.
+  vtkSetClampMacro(TriangleCount, vtkIdType, 64, VTK_ID_MAX);
+  vtkGetMacro(TriangleCount, vtkIdType);
+  /// Parts of the CAD assembly. Default 1,000.
+  vtkSetClampMacro(PartCount, vtkIdType, 1, 10000000);
+  vtkGetMacro(PartCount, vtkIdType);
+  /// Building size. Defaults 3 x 4 x 3.
+  vtkSetClampMacro(Floors, int, 1, 1000);
+  vtkGetMacro(Floors, int);
+  vtkSetClampMacro(RoomsX, int, 1, 1000);
+  vtkGetMacro(RoomsX, int);
+  vtkSetClampMacro(RoomsY, int, 1, 1000);
+  vtkGetMacro(RoomsY, int);
+  vtkSetMacro(Seed, unsigned int);
+  vtkGetMacro(Seed, unsigned int);
+  /// Translation of the CAD assembly (to test precision far from the origin).
+  vtkSetVector3Macro(Origin, double);
+  vtkGetVector3Macro(Origin, double);
+
+protected:
+  vtkDemoSceneSource();
+  ~vtkDemoSceneSource() override = default;
+
+  int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+
+  int Scene = SCENE_SPHERE_GRID;
+  vtkIdType TriangleCount = 20000;
+  vtkIdType PartCount = 1000;
+  int Floors = 3;
+  int RoomsX = 4;
+  int RoomsY = 3;
+  unsigned int Seed = 1;
+  double Origin[3] = { 0.0, 0.0, 0.0 };
+
+private:
+  vtkDemoSceneSource(const vtkDemoSceneSource&) = delete;
+  void operator=(const vtkDemoSceneSource&) = delete;
+};
+
+#endif

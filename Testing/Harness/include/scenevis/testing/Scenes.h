@@ -1,0 +1,55 @@
+/**
+ * @file Scenes.h
+ * @brief Small deterministic test scenes shared by tests, tools and examples.
+ */
+#ifndef scenevis_testing_Scenes_h
+#define scenevis_testing_Scenes_h
+
+#include <vtkSmartPointer.h>
+
+class vtkPolyData;
+class vtkRenderer;
+
+namespace scenevis
+{
+namespace testing
+{
+
+/// How translucent geometry is composited.
+enum class Translucency
+{
+  DepthPeeling, ///< VTK's depth peeling (order independent, exact up to the peel count)
+  OrderedAlpha, ///< plain alpha blending in primitive order (EnableOrderedAlphaBlending)
+  VtkDefault    ///< VTK 9.1's default: weighted-average OIT (order independent, approximate)
+};
+
+/// Parameters of MakeSphereGridRenderer(); the defaults are the standard demo scene.
+struct SphereGridOptions
+{
+  int count = 4;       ///< spheres per axis (count^3 spheres)
+  double radius = 0.8; ///< overlapping neighbours at spacing 1
+  double spacing = 1.0;
+  double opacity = 0.3; ///< 1: opaque scene
+  int resolution = 16;  ///< theta and phi resolution of vtkSphereSource
+  Translucency translucency = Translucency::DepthPeeling;
+  int maximumPeels = 16; ///< for DepthPeeling (occlusion ratio 0: peel until done or max)
+};
+
+/**
+ * A renderer with count^3 vtkSphereSource spheres on a regular grid, one actor each, coloured by
+ * grid position, black background, a fixed oblique camera (azimuth 30, elevation 20, reset to the
+ * bounds), default lighting and the requested translucency mode.
+ */
+vtkSmartPointer<vtkRenderer> MakeSphereGridRenderer(
+  const SphereGridOptions& options = SphereGridOptions());
+
+/// An axis-aligned square quad (one 4-point polygon) at depth @p z, from (x0,y0) to (x1,y1).
+vtkSmartPointer<vtkPolyData> MakeQuad(double x0, double y0, double x1, double y1, double z);
+
+/// The polygons of @p a followed by those of @p b (cell order preserved), in one polydata.
+vtkSmartPointer<vtkPolyData> AppendPolygons(vtkPolyData* a, vtkPolyData* b);
+
+} // namespace testing
+} // namespace scenevis
+
+#endif

@@ -1,0 +1,102 @@
+#include "scenevis/testing/Scenes.h"
+
+#include "scenevis/testing/RenderWindow.h"
+
+#include <vtkActor.h>
+#include <vtkAppendPolyData.h>
+#include <vtkCamera.h>
+#include <vtkCellArray.h>
+#include <vtkNew.h>
+#include <vtkPoints.h>
+#include <vtkPolyData.h>
+#include <vtkPolyDataMapper.h>
+#include <vtkProperty.h>
+#include <vtkRenderer.h>
+#include <vtkSphereSource.h>
+
+namespace scenevis
+{
+namespace testing
+{
+
+vtkSmartPointer<vtkRenderer> MakeSphereGridRenderer(const SphereGridOptions& options)
+{
+  auto renderer = vtkSmartPointer<vtkRenderer>::New();
+  renderer->SetBackground(0, 0, 0);
+  const int n = options.count;
+  const double denominator = n > 1 ? double(n - 1) : 1.0;
+  for (int k = 0; k < n; ++k)
+  {
+    for (int j = 0; j < n; ++j)
+    {
+      for (int i = 0; i < n; ++i)
+      {
+        vtkNew<vtkSphereSource> sphere;
+        sphere->SetCenter(i * options.spacing, j * options.spacing, k * options.spacing);
+        sphere->SetRadius(options.radius);
+        sphere->SetThetaResolution(options.resolution);
+        sphere->SetPhiResolution(options.resolution);
+        vtkNew<vtkPolyDataMapper> mapper;
+        mapper->SetInputConnection(sphere->GetOutputPort());
+        mapper->ScalarVisibilityOff();
+        vtkNew<vtkActor> actor;
+        actor->SetMapper(mapper);
+        actor->GetProperty()->SetColor(
+          0.2 + 0.8 * i / denominator, 0.2 + 0.8 * j / denominator, 0.2 + 0.8 * k / denominator);
+        actor->GetProperty()->SetOpacity(options.opacity);
+        renderer->AddActor(actor);
+      }
+    }
+  }
+  switch (options.translucency)
+  {
+    case Translucency::DepthPeeling:
+      renderer->SetUseDepthPeeling(1);
+      renderer->SetMaximumNumberOfPeels(options.maximumPeels);
+      renderer->SetOcclusionRatio(0.0);
+      break;
+    case Translucency::OrderedAlpha:
+      EnableOrderedAlphaBlending(renderer);
+      break;
+    case Translucency::VtkDefault:
+      break;
+  }
+  renderer->ResetCamera();
+  renderer->GetActiveCamera()->Azimuth(30);
+  renderer->GetActiveCamera()->Elevation(20);
+  renderer->GetActiveCamera()->OrthogonalizeViewUp();
+  renderer->ResetCamera();
+  return renderer;
+}
+
+vtkSmartPointer<vtkPolyData> MakeQuad(double x0, double y0, double x1, double y1, double z)
+{
+  vtkNew<vtkPoints> points;
+  points->InsertNextPoint(x0, y0, z);
+  points->InsertNextPoint(x1, y0, z);
+  points->InsertNextPoint(x1, y1, z);
+  points->InsertNextPoint(x0, y1, z);
+  vtkNew<vtkCellArray> polys;
+  const vtkIdType quad[4] = { 0, 1, 2, 3 };
+  polys->InsertNextCell(4, quad);
+  auto result = vtkSmartPointer<vtkPolyData>::New();
+  result->SetPoints(points);
+  result->SetPolys(polys);
+  return result;
+}
+
+vtkSmartPointer<vtkPolyData> AppendPolygons(vtkPolyData* a, vtkPolyData* b)
+{
+  // vtkAppendPolyData keeps the input order of cells within each cell type; the inputs here are
+  // polygons only, so the result is a's cells followed by b's.
+  vtkNew<vtkAppendPolyData> append;
+  append->AddInputData(a);
+  append->AddInputData(b);
+  append->Update();
+  auto result = vtkSmartPointer<vtkPolyData>::New();
+  result->ShallowCopy(append->GetOutput());
+  return result;
+}
+
+} // namespace testing
+} // namespace scenevis
