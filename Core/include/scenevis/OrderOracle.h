@@ -6,16 +6,17 @@
  * Definition. An order of polygons is a correct back-to-front order for a View when, for every pair
  * A, B such that some ray from the viewer passes through the interiors of both, the polygon hit
  * farther along that ray comes first. Pairs that are coplanar over their common rays (within the
- * depth tolerance below) impose no constraint, and neither do pairs that only touch (overlap of
- * projected area below the area tolerance, e.g. neighbours sharing an edge).
+ * depth tolerance below) impose no constraint, and neither do pairs that only touch (an overlap
+ * of projected area or width below the tolerances, e.g. neighbours sharing an edge).
  *
  * Method. Rays are found by projection:
  * - Perspective: the eye may be inside the geometry, so rays go in every direction. The sphere of
- *   directions is covered by the six faces of a cube map around the eye; every polygon is clipped
- * to each face's 90-degree frustum (and to a near plane at a tiny distance in front of the eye) and
- *   projected centrally onto the face. A polygon that passes behind the eye is thereby split among
- *   the faces it is seen through, and a polygon entirely behind one face's frustum is not seen
- *   there: two polygons on opposite sides of the eye share no ray and get no constraint.
+ *   directions is covered by the six faces of a cube map around the eye; every polygon is
+ *   clipped to each face's 90-degree frustum (and to a near plane at a tiny distance in front of
+ *   the eye) and projected centrally onto the face. A polygon that passes behind the eye is
+ *   thereby split among the faces it is seen through, and a polygon entirely behind one face's
+ *   frustum is not seen there: two polygons on opposite sides of the eye share no ray and get no
+ *   constraint.
  * - Parallel: one orthographic projection along the view direction; every polygon is seen (the
  *   viewer is at infinity behind the scene).
  * In each projection the two projected convex polygons are intersected (Sutherland-Hodgman). When
