@@ -1,0 +1,83 @@
+#!/usr/bin/env bash
+# Sanitizer run: a second build with AddressSanitizer + UndefinedBehaviorSanitizer (+ LeakSanitizer,
+# which is part of ASan on Linux) of the tests that do not render, run with leak detection on, and
+# a short libFuzzer run of Core/Fuzz/FuzzBsp on its seed corpus when clang + libFuzzer are there.
+#
+#   bash scripts/sanitize.sh            # what scripts/test.sh (and so CI) runs after the main suite
+#
+# Environment:
+#   SCENEVIS_ASAN_BUILD_DIR   build directory (default <repo>/build-asan)
+#   SCENEVIS_FUZZ_BUILD_DIR   fuzzer build directory (default <repo>/build-fuzz)
+#   SCENEVIS_FUZZ_SECONDS     length of the fuzz run (default 60; 0 skips fuzzing)
+#   SCENEVIS_SANITIZE_CXX     compiler for the ASan build (default: CMake's default, g++ on Debian)
+#
+# Only SceneVis' own code is instrumented (CMake option SCENEVIS_SANITIZE); VTK, GoogleTest and the
+# system libraries are Debian's. Leaks inside VTK/Mesa/MPI libraries are suppressed by
+# Testing/Sanitizers/lsan.supp (see the comments there); any leak through our code fails the run.
+set -euo pipefail
+root=$(cd "$(dirname "$0")/.." && pwd)
+build=${SCENEVIS_ASAN_BUILD_DIR:-$root/build-asan}
+fuzzbuild=${SCENEVIS_FUZZ_BUILD_DIR:-$root/build-fuzz}
+fuzzseconds=${SCENEVIS_FUZZ_SECONDS:-60}
+jobs=$(nproc)
+start=$(date +%s)
+
+werror=OFF
+if [ "${CI:-}" = "true" ]; then werror=ON; fi
+compiler=()
+if [ -n "${SCENEVIS_SANITIZE_CXX:-}" ]; then compiler=(-DCMAKE_CXX_COMPILER="$SCENEVIS_SANITIZE_CXX"); fi
+
+# --- 1. ASan + UBSan build of the non-rendering tests ----------------------------------------------
+mkdir -p "$build"
+cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo "${compiler[@]}" \
+  -DSCENEVIS_SANITIZE=address,undefined -DSCENEVIS_WARNINGS_AS_ERRORS=$werror \
+  -DSCENEVIS_BUILD_BENCHMARKS=OFF -DSCENEVIS_BUILD_EXAMPLES=OFF \
+  >"$build.configure.log" 2>&1 || { cat "$build.configure.log"; exit 1; }
+
+export ASAN_OPTIONS="detect_leaks=1:abort_on_error=0:strict_string_checks=1:detect_stack_use_after_return=1:check_initialization_order=1"
+export LSAN_OPTIONS="suppressions=$root/Testing/Sanitizers/lsan.supp:print_suppressions=0"
+export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
+
+# gtest_discover_tests runs the test binary at build time, so the options above already apply.
+cmake --build "$build" -j"$jobs" --target \
+  scenevis_core_tests SceneVisFiltersSortingCxxTests SceneVisFiltersSourcesCxxTests
+echo "sanitize: asan build done in $(( $(date +%s) - start )) s ($build)"
+
+# The VTK-level tests use the driver's names (SceneVisFiltersSortingCxx-TestX); none of them renders.
+(cd "$build" && ctest --output-on-failure -j"$jobs" --timeout 600 \
+  -R '^(Core\.|SceneVisFiltersSortingCxx-|SceneVisFiltersSourcesCxx-)')
+echo "sanitize: asan/ubsan/lsan tests passed after $(( $(date +%s) - start )) s"
+
+# --- 2. Short fuzz run (optional: needs clang and libclang-rt-14-dev's libFuzzer) ------------------
+if [ "$fuzzseconds" = "0" ]; then
+  echo "sanitize: fuzzing skipped (SCENEVIS_FUZZ_SECONDS=0)"
+  exit 0
+fi
+clangxx=$(command -v clang++ || command -v clang++-14 || true)
+fuzzlib=$(ls /usr/lib/llvm-*/lib/clang/*/lib/linux/libclang_rt.fuzzer-x86_64.a 2>/dev/null | head -n 1 || true)
+if [ -z "$clangxx" ] || [ -z "$fuzzlib" ]; then
+  echo "sanitize: fuzzing skipped (no clang++ or libFuzzer; apt-get install clang libclang-rt-14-dev)"
+  exit 0
+fi
+fuzzstart=$(date +%s)
+mkdir -p "$fuzzbuild"
+clangcc=${clangxx/clang++/clang}
+cmake -S "$root" -B "$fuzzbuild" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+  -DCMAKE_C_COMPILER="$clangcc" -DCMAKE_CXX_COMPILER="$clangxx" \
+  -DSCENEVIS_BUILD_FUZZERS=ON -DSCENEVIS_SANITIZE=address,undefined \
+  -DBUILD_TESTING=OFF -DSCENEVIS_BUILD_BENCHMARKS=OFF -DSCENEVIS_BUILD_EXAMPLES=OFF \
+  >"$fuzzbuild.configure.log" 2>&1 || { cat "$fuzzbuild.configure.log"; exit 1; }
+cmake --build "$fuzzbuild" -j"$jobs" --target scenevis_fuzz_bsp
+# New inputs go to a scratch directory; the committed seed corpus is only read.
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+(cd "$work" && "$fuzzbuild/bin/scenevis_fuzz_bsp" -max_total_time="$fuzzseconds" -timeout=20 \
+  -rss_limit_mb=2048 -print_final_stats=1 "$work" "$root/Core/Fuzz/corpus" 2>"$work/fuzz.log") || {
+  tail -n 80 "$work/fuzz.log"
+  echo "sanitize: the fuzzer failed; reproducer:"; ls -l "$work"/crash-* "$work"/leak-* \
+    "$work"/timeout-* "$work"/oom-* 2>/dev/null || true
+  exit 1
+}
+grep -E '^(#[0-9]+ +DONE|stat::number_of_executed_units|stat::peak_rss_mb)' "$work/fuzz.log" || true
+echo "sanitize: fuzzing ${fuzzseconds} s passed (build+run $(( $(date +%s) - fuzzstart )) s)"
+echo "sanitize: done in $(( $(date +%s) - start )) s"
