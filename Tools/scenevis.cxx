@@ -21,7 +21,9 @@
 #include <vtkPolyData.h>
 #include <vtkAlgorithm.h>
 #include <vtkPolyDataAlgorithm.h>
+#include <vtkPointData.h>
 #include <vtkPolyDataMapper.h>
+#include <vtkPolyDataNormals.h>
 #include <vtkPolyDataReader.h>
 #include <vtkProperty.h>
 #include <vtkRenderWindow.h>
@@ -476,7 +478,16 @@ int Render(const Options& options)
   {
     setenv("SCENEVIS_BACKEND", options.backend.c_str(), 1);
   }
-  const LoadedScene scene = LoadScene(options);
+  LoadedScene scene = LoadScene(options);
+  if (!scene.polydata->GetPointData()->GetNormals())
+  {
+    // Smooth shading; sharp edges (CAD, buildings) stay sharp. The sorters carry normals along.
+    vtkNew<vtkPolyDataNormals> normals;
+    normals->SetInputData(scene.polydata);
+    normals->SetFeatureAngle(50.0);
+    normals->Update();
+    scene.polydata = normals->GetOutput();
+  }
   vtkPolyData* pd = scene.polydata;
   const bool translucent = HasTranslucency(pd);
 
