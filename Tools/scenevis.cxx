@@ -6,6 +6,7 @@
 #include "vtkOrderedTranslucentPass.h"
 
 #include "scenevis/testing/ImageCompare.h"
+#include "scenevis/testing/Models.h"
 #include "scenevis/testing/RenderWindow.h"
 
 #include <vtkActor.h>
@@ -16,22 +17,16 @@
 #include <vtkDepthSortPolyData.h>
 #include <vtkImageData.h>
 #include <vtkNew.h>
-#include <vtkOBJReader.h>
-#include <vtkPLYReader.h>
 #include <vtkPolyData.h>
-#include <vtkAlgorithm.h>
 #include <vtkPolyDataAlgorithm.h>
 #include <vtkPointData.h>
 #include <vtkPolyDataMapper.h>
 #include <vtkPolyDataNormals.h>
-#include <vtkPolyDataReader.h>
 #include <vtkProperty.h>
 #include <vtkRenderWindow.h>
 #include <vtkRenderer.h>
-#include <vtkSTLReader.h>
 #include <vtkSmartPointer.h>
 #include <vtkUnsignedCharArray.h>
-#include <vtkXMLPolyDataReader.h>
 #include <vtkXMLPolyDataWriter.h>
 
 #include <unistd.h>
@@ -66,7 +61,7 @@ Usage:
 Scene (both commands):
   --scene NAME|FILE     embedded demo: spheres (default: 64 overlapping translucent spheres),
                         cyclic-quads, triangles, cad, building; or a model file
-                        (.vtp .vtk .ply .stl .obj)
+                        (.vtp .vtk .ply .stl .obj .glb .gltf)
   --triangles N         approximate triangle count of the spheres/cad demos (default 20000)
   --parts N             parts of the cad demo (default 1000)
   --opacity A           opacity given to a model file's surface (default 0.4)
@@ -263,27 +258,6 @@ double Milliseconds(std::chrono::steady_clock::time_point start)
     .count();
 }
 
-std::string Lower(std::string text)
-{
-  std::transform(text.begin(), text.end(), text.begin(), [](unsigned char c) { return std::tolower(c); });
-  return text;
-}
-
-/// Records the first error a VTK object reports, so a bad file gives one clear line.
-class ErrorCatcher : public vtkCommand
-{
-public:
-  static ErrorCatcher* New() { return new ErrorCatcher; }
-  void Execute(vtkObject*, unsigned long, void* data) override
-  {
-    if (Message.empty() && data)
-    {
-      Message = static_cast<const char*>(data);
-    }
-  }
-  std::string Message;
-};
-
 /// Prints a progress bar on stderr while a filter runs, only when stderr is a terminal.
 class ProgressBar : public vtkCommand
 {
@@ -330,58 +304,18 @@ LoadedScene LoadScene(const Options& options)
     loaded.loadMs = Milliseconds(start);
     return loaded;
   }
-  const std::string name = options.scene;
-  const std::string extension = Lower(name.substr(name.find_last_of('.') + 1));
-  vtkSmartPointer<vtkAlgorithm> reader;
-  if (extension == "vtp")
-  {
-    auto r = vtkSmartPointer<vtkXMLPolyDataReader>::New();
-    r->SetFileName(name.c_str());
-    reader = r;
-  }
-  else if (extension == "vtk")
-  {
-    auto r = vtkSmartPointer<vtkPolyDataReader>::New();
-    r->SetFileName(name.c_str());
-    reader = r;
-  }
-  else if (extension == "ply")
-  {
-    auto r = vtkSmartPointer<vtkPLYReader>::New();
-    r->SetFileName(name.c_str());
-    reader = r;
-  }
-  else if (extension == "stl")
-  {
-    auto r = vtkSmartPointer<vtkSTLReader>::New();
-    r->SetFileName(name.c_str());
-    reader = r;
-  }
-  else if (extension == "obj")
-  {
-    auto r = vtkSmartPointer<vtkOBJReader>::New();
-    r->SetFileName(name.c_str());
-    reader = r;
-  }
-  else
+  const std::string& name = options.scene;
+  if (name.find('.') == std::string::npos)
   {
     throw UsageError("--scene '" + name +
-      "' is neither a demo scene (spheres, cyclic-quads, triangles, cad, building) nor a "
-      "supported file (.vtp .vtk .ply .stl .obj)");
+      "' is neither a demo scene (spheres, cyclic-quads, triangles, cad, building) nor a model "
+      "file (.vtp .vtk .ply .stl .obj .glb .gltf)");
   }
-  if (!std::ifstream(name).good())
+  std::string error;
+  loaded.polydata = scenevis::testing::LoadModel(name, &error);
+  if (!loaded.polydata)
   {
-    throw std::runtime_error("cannot open '" + name + "'");
-  }
-  vtkNew<ErrorCatcher> errors;
-  reader->AddObserver(vtkCommand::ErrorEvent, errors);
-  reader->Update();
-  loaded.polydata = vtkPolyData::SafeDownCast(reader->GetOutputDataObject(0));
-  if (!errors->Message.empty() || !loaded.polydata || loaded.polydata->GetNumberOfCells() == 0)
-  {
-    std::string why = errors->Message.empty() ? "no cells" : errors->Message;
-    why.erase(why.find_last_not_of("\n ") + 1);
-    throw std::runtime_error("cannot read '" + name + "': " + why);
+    throw std::runtime_error(error);
   }
   // A uniform translucent colour, as RGBA cell scalars like the demo scenes.
   const vtkIdType cells = loaded.polydata->GetNumberOfCells();
