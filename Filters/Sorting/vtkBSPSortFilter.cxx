@@ -7,7 +7,6 @@
 #include "vtkIdTypeArray.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
-#include "vtkIdList.h"
 #include "vtkMatrix4x4.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
@@ -16,12 +15,17 @@
 #include "vtkPolyData.h"
 #include "vtkProp3D.h"
 #include "vtkSmartPointer.h"
+#include "vtkSMPTools.h"
+#include "vtkTypeInt32Array.h"
+#include "vtkTypeInt64Array.h"
 #include "vtkWeakPointer.h"
 
 #include "scenevis/BspBuilder.h"
 #include "scenevis/BspTraversal.h"
 
 #include <chrono>
+#include <cstring>
+#include <numeric>
 #include <cmath>
 #include <sstream>
 
@@ -85,6 +89,72 @@ void ToPolygonMesh(vtkPolyData* input, scenevis::PolygonMesh& mesh, std::vector<
       }
       cellOf.push_back(cellId);
     }
+  }
+}
+/// The fragments of `tree` as polygons in `order`, with 32-bit storage when the ids allow.
+template <typename ArrayT>
+vtkSmartPointer<vtkCellArray> EmitPolygonsAs(
+  const bsp::Tree& tree, const std::vector<std::uint32_t>& order)
+{
+  using ValueT = typename ArrayT::ValueType;
+  const std::size_t count = order.size();
+  vtkNew<ArrayT> offsets;
+  offsets->SetNumberOfValues(static_cast<vtkIdType>(count + 1));
+  ValueT* offsetPtr = offsets->GetPointer(0);
+  // Prefix sum of the fragment sizes in output order (serial: it is a dependency chain).
+  offsetPtr[0] = 0;
+  for (std::size_t r = 0; r < count; ++r)
+  {
+    offsetPtr[r + 1] = offsetPtr[r] + static_cast<ValueT>(tree.fragments[order[r]].count);
+  }
+  vtkNew<ArrayT> connectivity;
+  connectivity->SetNumberOfValues(static_cast<vtkIdType>(offsetPtr[count]));
+  ValueT* connPtr = connectivity->GetPointer(0);
+  vtkSMPTools::For(0, static_cast<vtkIdType>(count), [&](vtkIdType begin, vtkIdType end) {
+    for (vtkIdType r = begin; r < end; ++r)
+    {
+      const bsp::Fragment& fragment = tree.fragments[order[static_cast<std::size_t>(r)]];
+      const std::uint32_t* vertices = tree.fragmentVertices.data() + fragment.first;
+      std::copy(vertices, vertices + fragment.count, connPtr + offsetPtr[r]);
+    }
+  });
+  auto polys = vtkSmartPointer<vtkCellArray>::New();
+  polys->SetData(offsets, connectivity);
+  return polys;
+}
+
+vtkSmartPointer<vtkCellArray> EmitPolygons(
+  const bsp::Tree& tree, const std::vector<std::uint32_t>& order)
+{
+  const bool fits32 = tree.points.size() < 0x7fffffffu && tree.fragmentVertices.size() < 0x7fffffffu;
+  return fits32 ? EmitPolygonsAs<vtkTypeInt32Array>(tree, order)
+                : EmitPolygonsAs<vtkTypeInt64Array>(tree, order);
+}
+
+/// target[offset + r] = source[order[r]] for every tuple, on raw memory for numeric arrays.
+void PermuteTuples(vtkAbstractArray* source, const std::vector<std::uint32_t>& order,
+  vtkAbstractArray* target, vtkIdType offset)
+{
+  const int components = source->GetNumberOfComponents();
+  auto* sourceData = vtkDataArray::SafeDownCast(source);
+  auto* targetData = vtkDataArray::SafeDownCast(target);
+  if (sourceData && targetData && sourceData->HasStandardMemoryLayout() &&
+    targetData->HasStandardMemoryLayout())
+  {
+    const int size = sourceData->GetDataTypeSize() * components;
+    const auto* from = static_cast<const unsigned char*>(sourceData->GetVoidPointer(0));
+    auto* to = static_cast<unsigned char*>(targetData->GetVoidPointer(0)) + offset * size;
+    vtkSMPTools::For(0, static_cast<vtkIdType>(order.size()), [&](vtkIdType begin, vtkIdType end) {
+      for (vtkIdType r = begin; r < end; ++r)
+      {
+        std::memcpy(to + r * size, from + static_cast<std::size_t>(order[static_cast<std::size_t>(r)]) * size, size);
+      }
+    });
+    return;
+  }
+  for (std::size_t r = 0; r < order.size(); ++r)
+  {
+    target->SetTuple(offset + static_cast<vtkIdType>(r), order[r], source);
   }
 }
 } // namespace
@@ -387,59 +457,38 @@ int vtkBSPSortFilter::RequestData(vtkInformation* vtkNotUsed(request),
   internal.LastNodesVisited = static_cast<vtkIdType>(updateStats.nodesVisited);
   const std::vector<std::uint32_t>& order = internal.Order->order();
 
-  // Emit the fragments in order.
+  // Emit the fragments in order. This runs on every camera change, so it works on raw arrays
+  // (32-bit cell storage when the ids fit) and in parallel.
   const bsp::Tree& tree = *internal.Tree;
   const vtkIdType numFragments = static_cast<vtkIdType>(order.size());
-  vtkNew<vtkIdTypeArray> offsets;
-  offsets->SetNumberOfTuples(numFragments + 1);
-  vtkNew<vtkIdTypeArray> connectivity;
-  std::size_t totalVertices = 0;
-  for (std::uint32_t f : order)
-  {
-    totalVertices += tree.fragments[f].count;
-  }
-  connectivity->SetNumberOfTuples(static_cast<vtkIdType>(totalVertices));
-  vtkIdType* offsetPtr = offsets->GetPointer(0);
-  vtkIdType* connPtr = connectivity->GetPointer(0);
-  vtkIdType written = 0;
-  for (vtkIdType r = 0; r < numFragments; ++r)
-  {
-    const bsp::Fragment& fragment = tree.fragments[order[static_cast<std::size_t>(r)]];
-    offsetPtr[r] = written;
-    for (std::uint32_t k = 0; k < fragment.count; ++k)
-    {
-      connPtr[written++] = tree.fragmentVertices[fragment.first + k];
-    }
-  }
-  offsetPtr[numFragments] = written;
-  vtkNew<vtkCellArray> polys;
-  polys->SetData(offsets, connectivity);
-
   output->SetPoints(internal.Cache->GetPoints());
   output->GetPointData()->ShallowCopy(internal.Cache->GetPointData());
   output->SetVerts(internal.Cache->GetVerts());
   output->SetLines(internal.Cache->GetLines());
-  output->SetPolys(polys);
+  output->SetPolys(EmitPolygons(tree, order));
 
   // Cell data: pass-through cells keep their data, fragments take their source cell's.
   const vtkIdType passThrough = internal.NumberOfPassThroughCells;
   vtkCellData* inCD = input->GetCellData();
   vtkCellData* outCD = output->GetCellData();
+  vtkCellData* fragmentCD = internal.FragmentCellData;
   outCD->CopyAllocate(inCD, passThrough + numFragments);
-  for (vtkIdType c = 0; c < passThrough; ++c)
+  for (int a = 0; a < fragmentCD->GetNumberOfArrays(); ++a)
   {
-    outCD->CopyData(inCD, c, c);
+    vtkAbstractArray* source = fragmentCD->GetAbstractArray(a);
+    vtkAbstractArray* target = outCD->GetAbstractArray(source->GetName());
+    if (!target || target->GetDataType() != source->GetDataType() ||
+      target->GetNumberOfComponents() != source->GetNumberOfComponents())
+    {
+      continue;
+    }
+    target->SetNumberOfTuples(passThrough + numFragments);
+    for (vtkIdType c = 0; c < passThrough; ++c)
+    {
+      target->SetTuple(c, c, inCD->GetAbstractArray(source->GetName()));
+    }
+    PermuteTuples(source, order, target, passThrough);
   }
-  vtkNew<vtkIdList> source;
-  vtkNew<vtkIdList> destination;
-  source->SetNumberOfIds(numFragments);
-  destination->SetNumberOfIds(numFragments);
-  for (vtkIdType r = 0; r < numFragments; ++r)
-  {
-    source->SetId(r, order[static_cast<std::size_t>(r)]);
-    destination->SetId(r, passThrough + r);
-  }
-  outCD->CopyData(internal.FragmentCellData, source, destination);
 
   if (this->GenerateOrderArrays)
   {
@@ -449,17 +498,18 @@ int vtkBSPSortFilter::RequestData(vtkInformation* vtkNotUsed(request),
     vtkNew<vtkIdTypeArray> ranks;
     ranks->SetName(SortRankArrayName());
     ranks->SetNumberOfTuples(passThrough + numFragments);
-    for (vtkIdType c = 0; c < passThrough; ++c)
-    {
-      originalIds->SetValue(c, c);
-      ranks->SetValue(c, -1);
-    }
-    for (vtkIdType r = 0; r < numFragments; ++r)
-    {
-      originalIds->SetValue(
-        passThrough + r, internal.FragmentOriginalIds->GetValue(order[static_cast<std::size_t>(r)]));
-      ranks->SetValue(passThrough + r, r);
-    }
+    vtkIdType* idPtr = originalIds->GetPointer(0);
+    vtkIdType* rankPtr = ranks->GetPointer(0);
+    std::iota(idPtr, idPtr + passThrough, vtkIdType(0));
+    std::fill(rankPtr, rankPtr + passThrough, vtkIdType(-1));
+    const vtkIdType* fragmentIds = internal.FragmentOriginalIds->GetPointer(0);
+    vtkSMPTools::For(0, numFragments, [&](vtkIdType begin, vtkIdType end) {
+      for (vtkIdType r = begin; r < end; ++r)
+      {
+        idPtr[passThrough + r] = fragmentIds[order[static_cast<std::size_t>(r)]];
+        rankPtr[passThrough + r] = r;
+      }
+    });
     outCD->AddArray(originalIds);
     outCD->AddArray(ranks);
   }
