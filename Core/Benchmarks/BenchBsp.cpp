@@ -1,14 +1,23 @@
-// BSP core benchmarks: build, full order and incremental order of a UV sphere (the convex worst
-// case of a polygon-aligned BSP) at 10k / 100k / 1M triangles. `--benchmark_filter=Smoke` runs a
-// small subset in well under a second.
+// BSP core benchmarks: build, full order and incremental order at 10k / 100k / 1M triangles of
+// three scenes:
+// - "sphere": an axis-aligned UV sphere (the convex worst case of a polygon-aligned BSP; its
+//   latitude rings line up with axis-aligned free planes),
+// - "rotated": the same sphere turned by a generic rotation, so no axis plane runs along a ring,
+// - "grid": scenes::sphereGrid(4) with trianglesPerSphereFor(n), 64 overlapping spheres (the
+//   standard hard translucency scene).
+// Names are BM_<What>/<scene>/<triangles>[/threads:<t>]. `--benchmark_filter=Smoke` runs a small
+// subset in well under a second.
 #include "scenevis/BspBuilder.h"
 #include "scenevis/BspTraversal.h"
+#include "scenevis/Scenes.h"
 
 #include <benchmark/benchmark.h>
 
 #include <cmath>
 #include <map>
 #include <memory>
+#include <string>
+#include <utility>
 
 namespace
 {
@@ -52,64 +61,117 @@ PolygonMesh uvSphere(std::size_t triangles)
   return mesh;
 }
 
+enum class SceneKind
+{
+  Sphere,
+  Rotated,
+  Grid
+};
+
+const char* sceneName(SceneKind kind)
+{
+  return kind == SceneKind::Sphere ? "sphere" : (kind == SceneKind::Rotated ? "rotated" : "grid");
+}
+
+/// Turns every point by a fixed generic rotation (axis (1, 2, 3), 0.7 rad; Rodrigues' formula).
+void rotate(PolygonMesh& mesh)
+{
+  const glm::dvec3 k = glm::normalize(glm::dvec3(1.0, 2.0, 3.0));
+  const double c = std::cos(0.7);
+  const double s = std::sin(0.7);
+  for (glm::dvec3& p : mesh.points)
+  {
+    p = p * c + glm::cross(k, p) * s + k * glm::dot(k, p) * (1.0 - c);
+  }
+}
+
+PolygonMesh makeScene(SceneKind kind, std::size_t triangles)
+{
+  switch (kind)
+  {
+    case SceneKind::Sphere:
+      return uvSphere(triangles);
+    case SceneKind::Rotated:
+    {
+      PolygonMesh mesh = uvSphere(triangles);
+      rotate(mesh);
+      return mesh;
+    }
+    default:
+      return scenes::sphereGrid(4, 0.8, 1.0, scenes::trianglesPerSphereFor(triangles)).mesh;
+  }
+}
+
+/// Orbit radius: three times the scene's bounding radius (3 for the unit sphere).
+double orbitRadius(const PolygonMesh& mesh)
+{
+  return 1.5 * mesh.bounds().diagonal() / std::sqrt(3.0);
+}
+
 struct Fixture
 {
   PolygonMesh mesh;
   bsp::Tree tree;
+  double radius = 3.0;
 };
 
-/// Built once per size and shared by the order benchmarks (building 1M takes about a second).
-const Fixture& fixture(std::size_t triangles)
+/// Built once per scene and size and shared by the order benchmarks.
+const Fixture& fixture(SceneKind kind, std::size_t triangles)
 {
-  static std::map<std::size_t, std::unique_ptr<Fixture>> cache;
-  auto& slot = cache[triangles];
+  static std::map<std::pair<int, std::size_t>, std::unique_ptr<Fixture>> cache;
+  auto& slot = cache[{ static_cast<int>(kind), triangles }];
   if (!slot)
   {
     slot = std::make_unique<Fixture>();
-    slot->mesh = uvSphere(triangles);
+    slot->mesh = makeScene(kind, triangles);
+    slot->radius = orbitRadius(slot->mesh);
     slot->tree = bsp::build(slot->mesh);
   }
   return *slot;
 }
 
-/// Eye on a 20-degree-elevated orbit at 3 radii around the sphere.
-View orbitView(double degrees)
+/// Eye on a 20-degree-elevated orbit of radius `radius` around the origin.
+View orbitView(double degrees, double radius)
 {
   const double a = degrees * 3.14159265358979323846 / 180.0;
   const double e = 20.0 * 3.14159265358979323846 / 180.0;
   return View::perspective(
-    glm::dvec3(std::cos(a) * std::cos(e), std::sin(a) * std::cos(e), std::sin(e)) * 3.0);
+    glm::dvec3(std::cos(a) * std::cos(e), std::sin(a) * std::cos(e), std::sin(e)) * radius);
 }
 
-void buildBenchmark(benchmark::State& state)
+void buildBenchmark(benchmark::State& state, SceneKind kind, std::size_t triangles, int threads)
 {
-  const PolygonMesh mesh = uvSphere(static_cast<std::size_t>(state.range(0)));
+  const PolygonMesh mesh = makeScene(kind, triangles);
+  bsp::BuildConfig config;
+  config.threads = threads;
   bsp::Tree tree;
   for (auto _ : state)
   {
-    tree = bsp::build(mesh);
+    tree = bsp::build(mesh, config);
     benchmark::DoNotOptimize(tree.root);
   }
   bsp::IncrementalOrder incremental(tree, bsp::Direction::BackToFront);
-  incremental.update(orbitView(0.0));
+  incremental.update(orbitView(0.0, orbitRadius(mesh)));
   const double input = static_cast<double>(mesh.polygonCount());
   state.counters["triangles"] = input;
   state.counters["fragments/input"] = static_cast<double>(tree.fragments.size()) / input;
   state.counters["bytes/triangle"] =
     static_cast<double>(tree.statistics.memoryBytes + incremental.memoryBytes()) / input;
+  state.counters["treeBytes/tri"] = static_cast<double>(tree.statistics.memoryBytes) / input;
+  state.counters["incrBytes/tri"] = static_cast<double>(incremental.memoryBytes()) / input;
   state.counters["depth"] = static_cast<double>(tree.statistics.depth);
   state.counters["nodes"] = static_cast<double>(tree.statistics.nodes);
   state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(mesh.polygonCount()));
 }
 
-void orderBenchmark(benchmark::State& state)
+void orderBenchmark(benchmark::State& state, SceneKind kind, std::size_t triangles)
 {
-  const Fixture& f = fixture(static_cast<std::size_t>(state.range(0)));
+  const Fixture& f = fixture(kind, triangles);
   std::vector<std::uint32_t> result;
   double angle = 0.0;
   for (auto _ : state)
   {
-    bsp::order(f.tree, orbitView(angle), bsp::Direction::BackToFront, result);
+    bsp::order(f.tree, orbitView(angle, f.radius), bsp::Direction::BackToFront, result);
     benchmark::DoNotOptimize(result.data());
     angle += 1.0;
   }
@@ -117,19 +179,20 @@ void orderBenchmark(benchmark::State& state)
   state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(f.tree.fragments.size()));
 }
 
-void incrementalBenchmark(benchmark::State& state)
+/// One update per 1-degree orbit step (the first, full, update happens before timing).
+void incrementalBenchmark(benchmark::State& state, SceneKind kind, std::size_t triangles)
 {
-  const Fixture& f = fixture(static_cast<std::size_t>(state.range(0)));
+  const Fixture& f = fixture(kind, triangles);
   bsp::IncrementalOrder incremental(f.tree, bsp::Direction::BackToFront);
   double angle = 0.0;
-  incremental.update(orbitView(angle));
+  incremental.update(orbitView(angle, f.radius));
   double visited = 0;
   double flipped = 0;
   double moved = 0;
   for (auto _ : state)
   {
     angle += 1.0;
-    const auto& s = incremental.update(orbitView(angle));
+    const auto& s = incremental.update(orbitView(angle, f.radius));
     visited += static_cast<double>(s.nodesVisited);
     flipped += static_cast<double>(s.nodesFlipped);
     moved += static_cast<double>(s.fragmentsMoved);
@@ -141,33 +204,55 @@ void incrementalBenchmark(benchmark::State& state)
   state.counters["moved/update"] = moved / n;
 }
 
+/// Registers BM_<what>/<scene>/<triangles>[/threads:<t>] for every combination.
+int registerAll()
+{
+  const SceneKind all[] = { SceneKind::Sphere, SceneKind::Rotated, SceneKind::Grid };
+  // Smoke: tiny, runs in ctest.
+  for (SceneKind kind : { SceneKind::Sphere, SceneKind::Grid })
+  {
+    const std::string suffix = std::string("/") + sceneName(kind) + "/2000";
+    benchmark::RegisterBenchmark(
+      ("BM_Smoke_BspBuild" + suffix).c_str(), buildBenchmark, kind, std::size_t{ 2000 }, 1)
+      ->Unit(benchmark::kMillisecond);
+    benchmark::RegisterBenchmark(
+      ("BM_Smoke_BspOrder" + suffix).c_str(), orderBenchmark, kind, std::size_t{ 2000 })
+      ->Unit(benchmark::kMicrosecond);
+    benchmark::RegisterBenchmark(("BM_Smoke_BspIncremental" + suffix).c_str(),
+      incrementalBenchmark, kind, std::size_t{ 2000 })
+      ->Unit(benchmark::kMicrosecond);
+  }
+  const std::size_t sizes[] = { 10000, 100000, 1000000 };
+  for (SceneKind kind : all)
+  {
+    for (std::size_t n : sizes)
+    {
+      for (int threads : { 1, 2 })
+      {
+        benchmark::RegisterBenchmark((std::string("BM_BspBuild/") + sceneName(kind) + "/" +
+                                       std::to_string(n) + "/threads:" + std::to_string(threads))
+                                       .c_str(),
+          buildBenchmark, kind, n, threads)
+          ->Unit(benchmark::kMillisecond)
+          ->MeasureProcessCPUTime();
+      }
+    }
+  }
+  for (SceneKind kind : all)
+  {
+    for (std::size_t n : sizes)
+    {
+      const std::string suffix = std::string("/") + sceneName(kind) + "/" + std::to_string(n);
+      benchmark::RegisterBenchmark(("BM_BspOrder" + suffix).c_str(), orderBenchmark, kind, n)
+        ->Unit(benchmark::kMillisecond);
+      benchmark::RegisterBenchmark(
+        ("BM_BspIncrementalOrbit1Deg" + suffix).c_str(), incrementalBenchmark, kind, n)
+        ->Unit(benchmark::kMillisecond);
+    }
+  }
+  return 0;
+}
+
+const int registered = registerAll();
+
 } // namespace
-
-BENCHMARK(buildBenchmark)
-  ->Name("BM_Smoke_BspBuild")
-  ->Arg(2000)
-  ->Unit(benchmark::kMillisecond);
-BENCHMARK(orderBenchmark)->Name("BM_Smoke_BspOrder")->Arg(2000)->Unit(benchmark::kMicrosecond);
-BENCHMARK(incrementalBenchmark)
-  ->Name("BM_Smoke_BspIncremental")
-  ->Arg(2000)
-  ->Unit(benchmark::kMicrosecond);
-
-BENCHMARK(buildBenchmark)
-  ->Name("BM_BspBuild")
-  ->Arg(10000)
-  ->Arg(100000)
-  ->Arg(1000000)
-  ->Unit(benchmark::kMillisecond);
-BENCHMARK(orderBenchmark)
-  ->Name("BM_BspOrder")
-  ->Arg(10000)
-  ->Arg(100000)
-  ->Arg(1000000)
-  ->Unit(benchmark::kMillisecond);
-BENCHMARK(incrementalBenchmark)
-  ->Name("BM_BspIncrementalOrbit1Deg")
-  ->Arg(10000)
-  ->Arg(100000)
-  ->Arg(1000000)
-  ->Unit(benchmark::kMillisecond);

@@ -2,6 +2,7 @@
 // precision far from the origin, depth on convex meshes, determinism and cancellation.
 #include "scenevis/BspBuilder.h"
 #include "scenevis/BspTraversal.h"
+#include "scenevis/Scenes.h"
 
 #include <glm/geometric.hpp>
 #include <glm/vec2.hpp>
@@ -535,6 +536,60 @@ TEST(BspBuilder, IsDeterministic)
   const bsp::Tree d = bsp::build(mesh, other);
   expectSameTree(c, d);
   EXPECT_NEAR(totalFragmentArea(c), mesh.area(), 1e-9 * mesh.area());
+}
+
+TEST(BspBuilder, ThreadsGiveTheIdenticalTree)
+{
+  // Large enough that both sides of some node get built concurrently: the worker's subtree is
+  // renumbered on merge, which must reproduce the serial node, fragment and point ids exactly.
+  const PolygonMesh sphere = uvSphere(100000, true);
+  const PolygonMesh grid =
+    scenes::sphereGrid(4, 0.8, 1.0, scenes::trianglesPerSphereFor(60000)).mesh;
+  for (const PolygonMesh* mesh : { &sphere, &grid })
+  {
+    BuildConfig serial;
+    serial.threads = 1;
+    const bsp::Tree a = bsp::build(*mesh, serial);
+    ASSERT_GT(a.splitPoints.size(), 0u) << "the case must exercise split point renumbering";
+    for (int threads : { 2, 3, 0 })
+    {
+      BuildConfig config;
+      config.threads = threads;
+      const bsp::Tree b = bsp::build(*mesh, config);
+      expectSameTree(a, b);
+      ASSERT_EQ(a.splitPoints.size(), b.splitPoints.size());
+      for (std::size_t i = 0; i < a.splitPoints.size(); ++i)
+      {
+        ASSERT_EQ(a.splitPoints[i].a, b.splitPoints[i].a) << "split point " << i;
+        ASSERT_EQ(a.splitPoints[i].b, b.splitPoints[i].b) << "split point " << i;
+        ASSERT_EQ(a.splitPoints[i].t, b.splitPoints[i].t) << "split point " << i;
+      }
+      EXPECT_EQ(a.inputPointCount, b.inputPointCount);
+      EXPECT_EQ(a.statistics.splits, b.statistics.splits);
+      EXPECT_EQ(a.statistics.depth, b.statistics.depth);
+      EXPECT_EQ(a.statistics.freePlaneNodes, b.statistics.freePlaneNodes);
+      EXPECT_EQ(a.statistics.nodes, b.statistics.nodes);
+      EXPECT_EQ(a.statistics.fragments, b.statistics.fragments);
+      EXPECT_EQ(a.statistics.memoryBytes, b.statistics.memoryBytes);
+    }
+  }
+}
+
+TEST(BspBuilder, ParallelBuildCanBeCancelled)
+{
+  const PolygonMesh mesh = uvSphere(100000, true);
+  BuildConfig config;
+  config.threads = 2;
+  int calls = 0;
+  const bsp::Tree cancelled = bsp::build(mesh, config,
+    [&calls](double f)
+    {
+      ++calls;
+      return f < 0.2;
+    });
+  EXPECT_TRUE(cancelled.empty());
+  EXPECT_TRUE(cancelled.nodes.empty());
+  EXPECT_LT(calls, 50);
 }
 
 TEST(BspBuilder, ProgressIsReportedAndCanCancel)

@@ -3,6 +3,7 @@
 #include "scenevis/BspBuilder.h"
 #include "scenevis/BspTraversal.h"
 #include "scenevis/OrderOracle.h"
+#include "scenevis/Scenes.h"
 
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>
@@ -289,6 +290,41 @@ TEST(BspTraversal, IncrementalMatchesFullOrderOnOrbits)
     path.push_back(View::perspective(orbit(0, 3.0)));
     expectIncrementalMatchesFull(tree, path);
   }
+}
+
+TEST(BspTraversal, IncrementalMatchesFullOrderOnTheSphereGrid)
+{
+  // Overlapping spheres: many splits, so chains are short and most units have two children whose
+  // ranges move when a chain node above them flips.
+  const PolygonMesh mesh = scenes::sphereGrid(3, 0.8, 1.0, 200).mesh;
+  const bsp::Tree tree = bsp::build(mesh);
+  Random random{ 4242 };
+  std::vector<View> path;
+  for (int step = 0; step < 200; ++step)
+  {
+    path.push_back(View::perspective(orbit(step * 1.5, 4.0)));
+  }
+  for (int step = 0; step < 100; ++step)
+  {
+    path.push_back(View::perspective(orbit(step * 3.0, 0.9 + 0.3 * std::sin(step * 0.2))));
+  }
+  for (int step = 0; step < 60; ++step)
+  {
+    const double kind = random.uniform();
+    if (kind < 0.4)
+    {
+      path.push_back(View::perspective(random.vector() * 3.0));
+    }
+    else if (kind < 0.7)
+    {
+      path.push_back(View::parallel(random.vector() + glm::dvec3(0, 1e-3, 0)));
+    }
+    else
+    {
+      path.push_back(View::perspective(pointOnSomePlane(tree, random)));
+    }
+  }
+  expectIncrementalMatchesFull(tree, path);
 }
 
 TEST(BspTraversal, IncrementalCompactsAnchorsOnLongPaths)

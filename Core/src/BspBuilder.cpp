@@ -4,9 +4,13 @@
 #include <glm/vec2.hpp>
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
+#include <exception>
 #include <limits>
+#include <memory>
+#include <thread>
 #include <utility>
 
 namespace scenevis
@@ -32,6 +36,10 @@ constexpr std::uint32_t kMaxChainList = 128;
 /// Free-plane medians are taken over at most this many (strided) centroids: an approximate median
 /// balances as well and keeps the cost per node independent of the list size.
 constexpr std::uint32_t kMedianSample = 1024;
+
+/// With BuildConfig::threads > 1, a node whose two sides both have at least this many fragments
+/// hands its back side to a worker thread (one worker at a time; the front side stays here).
+constexpr std::uint32_t kMinParallelList = 16384;
 
 std::uint64_t splitmix64(std::uint64_t& state)
 {
@@ -315,6 +323,13 @@ public:
   Tree run();
 
 private:
+  /// Processes one task (one node): picks its plane, splits its list, pushes its children.
+  void step(const Task& task, std::vector<Task>& tasks);
+  /// Builds the subtree of `task` (a list in this builder's Arena) in a worker builder.
+  void fork(const Task& task);
+  /// Waits for the worker and appends its subtree as if it had been built here, in order.
+  void join();
+  bool parallel() const { return Threads > 1; }
   double signedDistance(const glm::dvec4& plane, std::uint32_t id) const
   {
     const glm::dvec3& p = Local[id];
@@ -358,6 +373,22 @@ private:
   std::vector<glm::dvec3> Local;    // points relative to Out.origin: all classification uses these
   std::vector<glm::dvec4> PiecePlane;
   std::vector<std::uint32_t> PieceSource;
+  const glm::dvec4* Planes = nullptr;      // PiecePlane, shared read-only with the worker
+  const std::uint32_t* Sources = nullptr;  // PieceSource, likewise
+  bool Scored = true;
+  std::size_t Placed = 0;
+
+  // Parallel build (see fork / join). A worker builds the back subtree of node ForkNode with
+  // point ids numbered as if it started at ForkPoints; join() renumbers and appends it.
+  unsigned Threads = 1;
+  std::atomic<bool>* Cancel = nullptr;
+  std::unique_ptr<Builder> Worker;
+  std::thread WorkerThread;
+  std::exception_ptr WorkerError;
+  std::atomic<bool> CancelFlag{ false };
+  std::uint32_t ForkNode = kNone;
+  std::size_t ForkPoints = 0;
+  std::size_t ForkStack = 0;
   std::vector<std::uint32_t> PieceCount; // vertices of each piece; pieces are consecutive in Verts
   std::vector<std::uint32_t> Verts; // vertex arena of all fragments (append-only)
   std::vector<Frag> Arena;          // fragment lists of pending tasks, used as a stack
@@ -369,7 +400,9 @@ private:
   std::vector<double> DistScratch;
   std::vector<glm::dvec3> CentroidScratch;
   std::vector<std::pair<double, std::uint32_t>> AxisScratch;
-  std::vector<std::uint32_t> SampleScratch;
+  std::vector<std::uint32_t> SamplePiece;
+  std::vector<std::uint32_t> SampleEnd;
+  std::vector<glm::dvec3> SamplePoints;
   EdgeCache Cache;
 
   // normalisation scratch
@@ -604,12 +637,35 @@ Builder::Choice Builder::chooseScored(const Task& task, std::uint32_t n)
     std::min(n, static_cast<std::uint32_t>(std::max(1, Config.samplePolygons)));
   constexpr double kInfinity = std::numeric_limits<double>::infinity();
 
-  SampleScratch.resize(sampleSize);
+  // The sample's vertices, gathered once: every candidate plane is scored against them, and
+  // streaming through one small array beats chasing Verts -> Local for each of them.
+  SamplePiece.resize(sampleSize);
+  SampleEnd.resize(sampleSize);
+  SamplePoints.clear();
   for (std::uint32_t j = 0; j < sampleSize; ++j)
   {
-    SampleScratch[j] =
-      static_cast<std::uint32_t>((static_cast<std::uint64_t>(j) * n) / sampleSize);
+    const Frag& f = list[(static_cast<std::uint64_t>(j) * n) / sampleSize];
+    SamplePiece[j] = f.piece;
+    for (std::uint32_t k = 0; k < f.count; ++k)
+    {
+      SamplePoints.push_back(Local[Verts[f.first + k]]);
+    }
+    SampleEnd[j] = static_cast<std::uint32_t>(SamplePoints.size());
   }
+  const glm::dvec3* samplePoints = SamplePoints.data();
+  auto classifySample = [&](const glm::dvec4& plane, std::uint32_t j) -> Side
+  {
+    bool front = false;
+    bool back = false;
+    for (std::uint32_t k = j == 0 ? 0 : SampleEnd[j - 1]; k < SampleEnd[j]; ++k)
+    {
+      const glm::dvec3& p = samplePoints[k];
+      const double sd = plane.x * p.x + plane.y * p.y + plane.z * p.z + plane.w;
+      front |= sd > Tol;
+      back |= sd < -Tol;
+    }
+    return static_cast<Side>((front ? Front : On) | (back ? Back : On));
+  };
 
   // Returns +inf as soon as the score provably exceeds `cutoff` (ties are still scored exactly,
   // so the lower candidate index wins them), and for a free plane that separates nothing.
@@ -621,15 +677,14 @@ Builder::Choice Builder::chooseScored(const Task& task, std::uint32_t n)
     double front = 0;
     double back = 0;
     double remaining = sampleSize;
-    for (std::uint32_t j : SampleScratch)
+    for (std::uint32_t j = 0; j < sampleSize; ++j)
     {
       remaining -= 1;
-      const Frag& f = list[j];
-      if (f.piece == piece)
+      if (SamplePiece[j] == piece)
       {
         continue;
       }
-      switch (classify(plane, f))
+      switch (classifySample(plane, j))
       {
         case Front:
           front += 1;
@@ -733,7 +788,7 @@ Builder::Choice Builder::chooseScored(const Task& task, std::uint32_t n)
   {
     const std::uint32_t index = n <= candidates ? c : rng.below(n);
     const std::uint32_t piece = list[index].piece;
-    const glm::dvec4& plane = PiecePlane[piece];
+    const glm::dvec4& plane = Planes[piece];
     const double sc = score(plane, piece, std::min(bestPolygon, bestFree));
     if (sc < bestPolygon || choice.piece == kNone)
     {
@@ -793,174 +848,66 @@ Tree Builder::run()
   Out.fragments.reserve(pieces + pieces / 4);
   Out.fragmentVertices.reserve(Verts.size() + Verts.size() / 4);
 
+  Planes = PiecePlane.data();
+  Sources = PieceSource.data();
+  Scored = Config.partition == BuildConfig::Partition::Scored;
+  Threads = Config.threads > 0 ? static_cast<unsigned>(Config.threads)
+                               : std::max(1u, std::thread::hardware_concurrency());
+  Cancel = &CancelFlag;
   std::vector<Task> tasks;
   if (pieces > 0)
   {
     std::uint64_t seedState = Config.seed;
     tasks.push_back(Task{ 0, pieces, kNone, 1, splitmix64(seedState), false, false });
   }
-  const bool scored = Config.partition == BuildConfig::Partition::Scored;
-  std::size_t placed = 0;
   const std::size_t reportStep = std::max<std::size_t>(1, pieces / 100);
   std::size_t nextReport = reportStep;
-
-  while (!tasks.empty())
+  bool cancelled = false;
+  try
   {
-    const Task task = tasks.back();
-    tasks.pop_back();
-    const std::uint32_t n = task.end - task.begin;
-
-    glm::dvec4 plane;
-    std::uint32_t piece;
-    Choice choice;
-    if (!scored || (task.oneSidedRun && n <= kMinFreePlaneList))
+    for (;;)
     {
-      piece = Arena[task.begin].piece;
-      plane = PiecePlane[piece];
-    }
-    else
-    {
-      choice = chooseScored(task, n);
-      piece = choice.piece;
-      plane = choice.plane;
-    }
-
-    // Full classification first, so that a free plane that separates nothing can still be
-    // replaced by a polygon plane before anything is split.
-    std::uint32_t nFront = 0;
-    std::uint32_t nBack = 0;
-    std::uint32_t nSplit = 0;
-    std::uint32_t nOn = 0;
-    Codes.resize(n);
-    for (int attempt = 0; attempt < 2; ++attempt)
-    {
-      nFront = nBack = nSplit = nOn = 0;
-      for (std::uint32_t i = 0; i < n; ++i)
+      if (Worker && tasks.size() == ForkStack)
       {
-        const Frag& f = Arena[task.begin + i];
-        // The partition polygon's own fragments are on its plane by construction; forcing it
-        // guarantees progress even if rounding put a vertex a hair outside the tolerance.
-        const Side side = f.piece == piece ? On : classify(plane, f);
-        Codes[i] = side;
-        nFront += side == Front;
-        nBack += side == Back;
-        nSplit += side == Straddle;
-        nOn += side == On;
+        join(); // everything the serial build does before the worker's subtree is done
       }
-      if (piece != kNone)
+      if (tasks.empty())
       {
         break;
       }
-      // Free plane: coplanar fragments go behind. Both children must be strictly smaller than
-      // this list, or the build would not terminate.
-      if (nFront + nSplit < n && nBack + nOn + nSplit < n)
+      const Task task = tasks.back();
+      tasks.pop_back();
+      step(task, tasks);
+      if (Progress && Placed >= nextReport)
       {
-        break;
-      }
-      piece = choice.fallbackPiece;
-      plane = choice.fallbackPlane;
-    }
-
-    const auto nodeIndex = static_cast<std::uint32_t>(Out.nodes.size());
-    Node node;
-    node.plane = plane;
-    node.firstFragment = static_cast<std::uint32_t>(Out.fragments.size());
-    Out.nodes.push_back(node);
-    if (task.parent != kNone)
-    {
-      (task.isFront ? Out.nodes[task.parent].front : Out.nodes[task.parent].back) = nodeIndex;
-    }
-    else
-    {
-      Out.root = nodeIndex;
-    }
-    st.depth = std::max<std::size_t>(st.depth, task.depth);
-    if (piece == kNone)
-    {
-      ++st.freePlaneNodes;
-    }
-
-    Cache.clear();
-    FrontScratch.clear();
-    OwnScratch.clear();
-    std::uint32_t write = task.begin;
-    for (std::uint32_t i = 0; i < n; ++i)
-    {
-      const Frag f = Arena[task.begin + i];
-      switch (Codes[i])
-      {
-        case On:
-          if (piece == kNone)
-          {
-            Arena[write++] = f;
-          }
-          else
-          {
-            OwnScratch.push_back(f);
-          }
-          break;
-        case Back:
-          Arena[write++] = f;
-          break;
-        case Front:
-          FrontScratch.push_back(f);
-          break;
-        default:
+        nextReport = Placed + reportStep;
+        if (!Progress(std::min(1.0, static_cast<double>(Placed) / pieces)))
         {
-          Frag front;
-          Frag back;
-          split(f, plane, front, back);
-          Arena[write++] = back;
-          FrontScratch.push_back(front);
-          ++st.splits;
+          cancelled = true;
           break;
         }
       }
     }
-    const std::uint32_t backEnd = write;
-    Arena.resize(backEnd);
-    Arena.insert(Arena.end(), FrontScratch.begin(), FrontScratch.end());
-    const auto frontEnd = static_cast<std::uint32_t>(Arena.size());
-
-    std::sort(OwnScratch.begin(), OwnScratch.end(),
-      [](const Frag& a, const Frag& b) { return a.piece < b.piece; });
-    for (const Frag& f : OwnScratch)
+  }
+  catch (...)
+  {
+    CancelFlag = true;
+    if (WorkerThread.joinable())
     {
-      Out.fragments.push_back(Fragment{ PieceSource[f.piece],
-        static_cast<std::uint32_t>(Out.fragmentVertices.size()), f.count });
-      Out.fragmentVertices.insert(
-        Out.fragmentVertices.end(), Verts.begin() + f.first, Verts.begin() + f.first + f.count);
+      WorkerThread.join();
     }
-    Out.nodes[nodeIndex].fragmentCount = static_cast<std::uint32_t>(OwnScratch.size());
-
-    // A polygon plane with everything on one side and nothing split means a locally convex (or
-    // concave) patch: its remaining polygons will keep doing that, and free planes have already
-    // lost here, so the child skips scoring and chains. The run ends at the first node where the
-    // one-sidedness fails.
-    const bool oneSided =
-      scored && piece != kNone && nSplit == 0 && (nFront == 0 || nBack == 0);
-    if (backEnd > task.begin)
+    throw;
+  }
+  if (cancelled)
+  {
+    CancelFlag = true;
+    if (WorkerThread.joinable())
     {
-      tasks.push_back(Task{ task.begin, backEnd, nodeIndex, task.depth + 1,
-        childKey(task.key, false), false, oneSided });
+      WorkerThread.join();
     }
-    if (frontEnd > backEnd)
-    {
-      tasks.push_back(Task{ backEnd, frontEnd, nodeIndex, task.depth + 1,
-        childKey(task.key, true), true, oneSided });
-    }
-
-    placed += OwnScratch.size();
-    if (Progress && placed >= nextReport)
-    {
-      nextReport = placed + reportStep;
-      if (!Progress(std::min(1.0, static_cast<double>(placed) / pieces)))
-      {
-        Tree cancelled;
-        cancelled.statistics.inputPolygons = st.inputPolygons;
-        return cancelled;
-      }
-    }
+    Tree empty;
+    empty.statistics.inputPolygons = st.inputPolygons;
+    return empty;
   }
 
   Out.nodes.shrink_to_fit();
@@ -977,6 +924,266 @@ Tree Builder::run()
   st.buildSeconds =
     std::chrono::duration<double>(std::chrono::steady_clock::now() - startTime).count();
   return std::move(Out);
+}
+
+void Builder::step(const Task& task, std::vector<Task>& tasks)
+{
+  BuildStatistics& st = Out.statistics;
+  const std::uint32_t n = task.end - task.begin;
+
+  glm::dvec4 plane;
+  std::uint32_t piece;
+  Choice choice;
+  if (!Scored || (task.oneSidedRun && n <= kMinFreePlaneList))
+  {
+    piece = Arena[task.begin].piece;
+    plane = Planes[piece];
+  }
+  else
+  {
+    choice = chooseScored(task, n);
+    piece = choice.piece;
+    plane = choice.plane;
+  }
+
+  // Full classification first, so that a free plane that separates nothing can still be
+  // replaced by a polygon plane before anything is split.
+  std::uint32_t nFront = 0;
+  std::uint32_t nBack = 0;
+  std::uint32_t nSplit = 0;
+  std::uint32_t nOn = 0;
+  Codes.resize(n);
+  for (int attempt = 0; attempt < 2; ++attempt)
+  {
+    nFront = nBack = nSplit = nOn = 0;
+    for (std::uint32_t i = 0; i < n; ++i)
+    {
+      const Frag& f = Arena[task.begin + i];
+      // The partition polygon's own fragments are on its plane by construction; forcing it
+      // guarantees progress even if rounding put a vertex a hair outside the tolerance.
+      const Side side = f.piece == piece ? On : classify(plane, f);
+      Codes[i] = side;
+      nFront += side == Front;
+      nBack += side == Back;
+      nSplit += side == Straddle;
+      nOn += side == On;
+    }
+    if (piece != kNone)
+    {
+      break;
+    }
+    // Free plane: coplanar fragments go behind. Both children must be strictly smaller than
+    // this list, or the build would not terminate.
+    if (nFront + nSplit < n && nBack + nOn + nSplit < n)
+    {
+      break;
+    }
+    piece = choice.fallbackPiece;
+    plane = choice.fallbackPlane;
+  }
+
+  const auto nodeIndex = static_cast<std::uint32_t>(Out.nodes.size());
+  Node node;
+  node.plane = plane;
+  node.firstFragment = static_cast<std::uint32_t>(Out.fragments.size());
+  Out.nodes.push_back(node);
+  if (task.parent != kNone)
+  {
+    (task.isFront ? Out.nodes[task.parent].front : Out.nodes[task.parent].back) = nodeIndex;
+  }
+  else
+  {
+    Out.root = nodeIndex;
+  }
+  st.depth = std::max<std::size_t>(st.depth, task.depth);
+  if (piece == kNone)
+  {
+    ++st.freePlaneNodes;
+  }
+
+  Cache.clear();
+  FrontScratch.clear();
+  OwnScratch.clear();
+  std::uint32_t write = task.begin;
+  for (std::uint32_t i = 0; i < n; ++i)
+  {
+    const Frag f = Arena[task.begin + i];
+    switch (Codes[i])
+    {
+      case On:
+        if (piece == kNone)
+        {
+          Arena[write++] = f;
+        }
+        else
+        {
+          OwnScratch.push_back(f);
+        }
+        break;
+      case Back:
+        Arena[write++] = f;
+        break;
+      case Front:
+        FrontScratch.push_back(f);
+        break;
+      default:
+      {
+        Frag front;
+        Frag back;
+        split(f, plane, front, back);
+        Arena[write++] = back;
+        FrontScratch.push_back(front);
+        ++st.splits;
+        break;
+      }
+    }
+  }
+  const std::uint32_t backEnd = write;
+  Arena.resize(backEnd);
+  Arena.insert(Arena.end(), FrontScratch.begin(), FrontScratch.end());
+  const auto frontEnd = static_cast<std::uint32_t>(Arena.size());
+
+  std::sort(OwnScratch.begin(), OwnScratch.end(),
+    [](const Frag& a, const Frag& b) { return a.piece < b.piece; });
+  for (const Frag& f : OwnScratch)
+  {
+    Out.fragments.push_back(Fragment{ Sources[f.piece],
+      static_cast<std::uint32_t>(Out.fragmentVertices.size()), f.count });
+    Out.fragmentVertices.insert(
+      Out.fragmentVertices.end(), Verts.begin() + f.first, Verts.begin() + f.first + f.count);
+  }
+  Out.nodes[nodeIndex].fragmentCount = static_cast<std::uint32_t>(OwnScratch.size());
+
+  // A polygon plane with everything on one side and nothing split means a locally convex (or
+  // concave) patch: its remaining polygons will keep doing that, and free planes have already
+  // lost here, so the child skips scoring and chains. The run ends at the first node where the
+  // one-sidedness fails.
+  const bool oneSided =
+    Scored && piece != kNone && nSplit == 0 && (nFront == 0 || nBack == 0);
+  const Task backTask{ task.begin, backEnd, nodeIndex, task.depth + 1,
+    childKey(task.key, false), false, oneSided };
+  if (parallel() && !Worker && backEnd - task.begin >= kMinParallelList &&
+    frontEnd - backEnd >= kMinParallelList)
+  {
+    // The serial build would do the whole front subtree, then this back subtree: the worker
+    // builds the latter meanwhile, and join() appends it once the stack is back to this size.
+    ForkStack = tasks.size();
+    fork(backTask);
+  }
+  else if (backEnd > task.begin)
+  {
+    tasks.push_back(backTask);
+  }
+  if (frontEnd > backEnd)
+  {
+    tasks.push_back(Task{ backEnd, frontEnd, nodeIndex, task.depth + 1,
+      childKey(task.key, true), true, oneSided });
+  }
+  Placed += OwnScratch.size();
+}
+
+void Builder::fork(const Task& task)
+{
+  ForkNode = task.parent;
+  ForkPoints = Out.points.size();
+  static const ProgressCallback noProgress; // the worker never reports; join() counts its work
+  Worker = std::make_unique<Builder>(Mesh, Config, noProgress);
+  Builder& w = *Worker;
+  w.Out.origin = Out.origin;
+  w.Out.tolerance = Out.tolerance;
+  w.Out.inputPointCount = Out.inputPointCount;
+  w.Tol = Tol;
+  w.Planes = Planes;
+  w.Sources = Sources;
+  w.Scored = Scored;
+  w.Cancel = Cancel;
+  // Copies: this builder keeps appending to its own arrays while the worker runs.
+  w.Local = Local;
+  w.Out.points = Out.points;
+  const std::uint32_t n = task.end - task.begin;
+  w.Arena.reserve(n + n / 4);
+  w.Verts.reserve(static_cast<std::size_t>(n) * 4);
+  for (std::uint32_t i = task.begin; i < task.end; ++i)
+  {
+    Frag f = Arena[i];
+    const auto first = static_cast<std::uint32_t>(w.Verts.size());
+    w.Verts.insert(w.Verts.end(), Verts.begin() + f.first, Verts.begin() + f.first + f.count);
+    f.first = first;
+    w.Arena.push_back(f);
+  }
+  w.Out.nodes.reserve(n + n / 2);
+  w.Out.fragments.reserve(n + n / 4);
+  Task root = task;
+  root.begin = 0;
+  root.end = n;
+  root.parent = kNone;
+  WorkerThread = std::thread(
+    [&w, root]()
+    {
+      try
+      {
+        std::vector<Task> tasks{ root };
+        while (!tasks.empty() && !w.Cancel->load(std::memory_order_relaxed))
+        {
+          const Task t = tasks.back();
+          tasks.pop_back();
+          w.step(t, tasks);
+        }
+      }
+      catch (...)
+      {
+        w.WorkerError = std::current_exception();
+      }
+    });
+}
+
+void Builder::join()
+{
+  WorkerThread.join();
+  std::unique_ptr<Builder> worker = std::move(Worker);
+  if (worker->WorkerError)
+  {
+    std::rethrow_exception(worker->WorkerError);
+  }
+  Tree& w = worker->Out;
+  // Point ids: the worker numbered its split points from ForkPoints on; here they follow the
+  // ones made since the fork, exactly where the serial build would have made them.
+  const std::size_t shift = Out.points.size() - ForkPoints;
+  const auto fork = static_cast<std::uint32_t>(ForkPoints);
+  auto remap = [fork, shift](std::uint32_t id)
+  { return id >= fork ? static_cast<std::uint32_t>(id + shift) : id; };
+  const auto nodeOffset = static_cast<std::uint32_t>(Out.nodes.size());
+  const auto fragmentOffset = static_cast<std::uint32_t>(Out.fragments.size());
+  const auto vertexOffset = static_cast<std::uint32_t>(Out.fragmentVertices.size());
+  (ForkNode != kNone ? Out.nodes[ForkNode].back : Out.root) = nodeOffset + w.root;
+  for (Node node : w.nodes)
+  {
+    node.front = node.front != kNone ? node.front + nodeOffset : kNone;
+    node.back = node.back != kNone ? node.back + nodeOffset : kNone;
+    node.firstFragment += fragmentOffset;
+    Out.nodes.push_back(node);
+  }
+  for (Fragment f : w.fragments)
+  {
+    f.first += vertexOffset;
+    Out.fragments.push_back(f);
+  }
+  Out.fragmentVertices.reserve(Out.fragmentVertices.size() + w.fragmentVertices.size());
+  for (std::uint32_t id : w.fragmentVertices)
+  {
+    Out.fragmentVertices.push_back(remap(id));
+  }
+  Out.points.insert(Out.points.end(), w.points.begin() + ForkPoints, w.points.end());
+  Local.insert(Local.end(), worker->Local.begin() + ForkPoints, worker->Local.end());
+  for (SplitPoint sp : w.splitPoints)
+  {
+    Out.splitPoints.push_back(SplitPoint{ remap(sp.a), remap(sp.b), sp.t });
+  }
+  BuildStatistics& st = Out.statistics;
+  st.depth = std::max(st.depth, w.statistics.depth);
+  st.freePlaneNodes += w.statistics.freePlaneNodes;
+  st.splits += w.statistics.splits;
+  Placed += worker->Placed;
 }
 
 } // namespace

@@ -44,6 +44,10 @@ struct BuildConfig
   std::uint64_t seed = 1;
   /// Plane tolerance relative to the diagonal of the input bounds.
   double relativeTolerance = 1e-10;
+  /// Worker threads for the build: once a node's two sides are both large, they are built
+  /// concurrently. The result (every array of the Tree) is identical for any value; 1 builds on
+  /// the calling thread only, 0 means std::thread::hardware_concurrency().
+  int threads = 1;
 };
 
 /// Called now and then with the fraction of polygons placed; return false to cancel the build

@@ -41,7 +41,8 @@ void order(const Tree& tree, const View& view, Direction direction,
  * visiting every node, each subtree keeps a safe ball in normalised homogeneous eye space: the eye
  * it was last checked at and the distance to the nearest plane within it. A new eye inside the ball
  * cannot have crossed any plane of that subtree, which is skipped whole. Small camera steps
- * therefore visit only the few subtrees whose planes pass close to the eye.
+ * therefore visit only the few subtrees whose planes pass close to the eye. Runs of single-child
+ * nodes (the leaf chains on convex patches) share one ball and are re-checked as one block.
  *
  * The result after update(view) is identical to order(tree, view, direction, ...).
  */
@@ -67,30 +68,48 @@ public:
   std::size_t memoryBytes() const;
 
 private:
-  // Implementation detail; see BspTraversal.cpp.
-  struct NodeState
+  // Implementation detail; see BspTraversal.cpp. The tree is regrouped into "units": a unit is a
+  // run of nodes n1..nk where n1..n(k-1) each have exactly one child, the next node (the leaf
+  // chains a polygon-aligned BSP grows on convex patches), and the tail nk has any children, each
+  // the first node of another unit. A unit is tested as a block: one safe ball for its subtree,
+  // and when that fails its k planes are evaluated in one tight loop over the SoA arrays below.
+  struct Unit
   {
-    std::uint32_t offset; // start of this subtree's range, relative to its parent's range start
-    std::uint32_t size;   // fragments in this subtree
-    std::uint32_t anchor; // bit 31: viewer in front at the last check; low bits: Anchors index
-    float radius;         // safe distance around the anchor (rounded down)
+    std::uint32_t firstNode;  // into the per-node arrays; a unit's nodes are consecutive
+    std::uint32_t nodeCount;  // >= 1; the last one is the tail
+    std::uint32_t size;       // fragments in the unit's subtree
+    std::uint32_t tailStart;  // start of the tail's range, relative to the unit's range start
+    std::uint32_t front;      // unit of the tail's front child, or kNone
+    std::uint32_t back;       // unit of the tail's back child, or kNone
+    std::uint32_t anchor;     // Anchors index of the eye the safe ball is centred on
+    float radius;             // safe distance around the anchor (rounded down)
   };
   struct Frame
   {
-    std::uint32_t node;
+    std::uint32_t unit;
     std::uint32_t start;
     std::uint32_t parentFrame;
     bool expanded;
     double radius;
   };
   void walk(const View& view, bool full);
+  void layout(Unit& unit, std::uint32_t start, bool full, bool tailFlipped,
+    std::uint32_t oldTailStart);
 
   const Tree* TreePtr;
   Direction Dir;
   std::vector<std::uint32_t> Order;
   UpdateStatistics Last;
-  std::vector<NodeState> States;
-  std::vector<glm::dvec4> Anchors; // normalised eyes referred to by NodeState::anchor
+  std::vector<Unit> Units;
+  // Per node, in unit order (structure of arrays: the plane loop streams through them).
+  std::vector<double> PlaneX, PlaneY, PlaneZ, PlaneW; // the tree's planes, bit for bit
+  std::vector<double> InvNorm;  // distance in normalised eye space = |side value| * InvNorm / |E|
+  std::vector<std::uint32_t> OwnFirst;
+  std::vector<std::uint32_t> OwnCount;
+  std::vector<std::uint8_t> Side;      // 1: viewer in front at the last evaluation
+  std::vector<std::uint8_t> ChildMask; // non-tail nodes: child goes first iff (Side ^ ChildMask)
+  std::vector<std::uint32_t> MoveScratch; // children's ranges while a unit is re-laid out
+  std::vector<glm::dvec4> Anchors; // normalised eyes referred to by Unit::anchor
   std::vector<Frame> Stack;
   double Scale = 1.0; // eye coordinates are divided by this (the bounds diagonal)
   bool Initialized = false;
