@@ -1,0 +1,196 @@
+// vtkBSPSortedPolyDataMapper on the 4x4x4 translucent sphere grid (one merged mesh, RGBA cell
+// colours), from several cameras incl. parallel projection:
+//  (a) same image as vtkBSPSortFilter + vtkPolyDataMapper (same exact order, near-identical);
+//  (b) within 0.5/255 mean error of dual depth peeling with 100 peels;
+//  (c) camera unchanged -> no re-sort, no index upload; camera moved -> no vertex buffer rebuild;
+//  (d) an opaque actor builds no tree at all.
+#include "vtkBSPSortFilter.h"
+#include "vtkBSPSortedPolyDataMapper.h"
+#include "vtkDemoSceneSource.h"
+#include "vtkOrderedTranslucentPass.h"
+
+#include "scenevis/testing/ImageCompare.h"
+#include "scenevis/testing/RenderWindow.h"
+#include "scenevis/testing/StrictVtkOutput.h"
+
+#include <vtkActor.h>
+#include <vtkCamera.h>
+#include <vtkImageData.h>
+#include <vtkNew.h>
+#include <vtkPolyDataMapper.h>
+#include <vtkProperty.h>
+#include <vtkRenderWindow.h>
+#include <vtkRenderer.h>
+#include <vtkRendererCollection.h>
+#include <vtkSphereSource.h>
+
+#include <cstdlib>
+#include <iostream>
+#include <string>
+
+namespace
+{
+namespace st = scenevis::testing;
+
+vtkSmartPointer<vtkImageData> RenderWith(vtkRenderWindow* window, vtkRenderer* renderer)
+{
+  window->GetRenderers()->RemoveAllItems();
+  window->AddRenderer(renderer);
+  renderer->ResetCameraClippingRange();
+  return st::CaptureImage(window);
+}
+
+bool Check(bool ok, const std::string& what)
+{
+  std::cout << (ok ? "ok   " : "FAIL ") << what << "\n";
+  return ok;
+}
+} // namespace
+
+int TestBSPSortedPolyDataMapper(int, char*[])
+{
+  st::StrictVtkOutput vtkOutput;
+  bool ok = true;
+  vtkSmartPointer<vtkRenderWindow> window = st::MakeRenderWindow(320, 320);
+
+  vtkNew<vtkDemoSceneSource> source;
+  source->SetScene(vtkDemoSceneSource::SCENE_SPHERE_GRID);
+  source->SetTriangleCount(20000);
+  source->Update();
+
+  vtkNew<vtkCamera> camera;
+
+  // (A) the new mapper.
+  vtkNew<vtkBSPSortedPolyDataMapper> sortedMapper;
+  sortedMapper->SetInputConnection(source->GetOutputPort());
+  vtkNew<vtkActor> sortedActor;
+  sortedActor->SetMapper(sortedMapper);
+  vtkNew<vtkRenderer> sortedRenderer;
+  sortedRenderer->AddActor(sortedActor);
+  vtkNew<vtkOrderedTranslucentPass> sortedPass;
+  sortedRenderer->SetPass(sortedPass);
+  sortedRenderer->SetActiveCamera(camera);
+
+  // (B) vtkBSPSortFilter + plain mapper, ordered alpha blending.
+  vtkNew<vtkBSPSortFilter> filter;
+  filter->SetInputConnection(source->GetOutputPort());
+  filter->SetCamera(camera);
+  vtkNew<vtkPolyDataMapper> filterMapper;
+  filterMapper->SetInputConnection(filter->GetOutputPort());
+  vtkNew<vtkActor> filterActor;
+  filterActor->SetMapper(filterMapper);
+  vtkNew<vtkRenderer> filterRenderer;
+  filterRenderer->AddActor(filterActor);
+  vtkNew<vtkOrderedTranslucentPass> filterPass;
+  filterRenderer->SetPass(filterPass);
+  filterRenderer->SetActiveCamera(camera);
+
+  // (C) dual depth peeling with 100 peels on the unsorted input.
+  vtkNew<vtkPolyDataMapper> peelMapper;
+  peelMapper->SetInputConnection(source->GetOutputPort());
+  vtkNew<vtkActor> peelActor;
+  peelActor->SetMapper(peelMapper);
+  vtkNew<vtkRenderer> peelRenderer;
+  peelRenderer->AddActor(peelActor);
+  peelRenderer->SetUseDepthPeeling(1);
+  peelRenderer->SetMaximumNumberOfPeels(100);
+  peelRenderer->SetOcclusionRatio(0.0);
+  peelRenderer->SetActiveCamera(camera);
+
+  sortedRenderer->ResetCamera();
+  struct ViewSpec
+  {
+    double azimuth, elevation;
+    bool parallel;
+  };
+  const ViewSpec views[] = { { 30, 20, false }, { 125, -35, false }, { 200, 60, false },
+    { 75, 10, true } };
+  int v = 0;
+  for (const ViewSpec& spec : views)
+  {
+    camera->SetPosition(0, 0, 1);
+    camera->SetFocalPoint(0, 0, 0);
+    camera->SetViewUp(0, 1, 0);
+    camera->SetParallelProjection(spec.parallel);
+    sortedRenderer->ResetCamera();
+    camera->Azimuth(spec.azimuth);
+    camera->Elevation(spec.elevation);
+    camera->OrthogonalizeViewUp();
+    sortedRenderer->ResetCamera();
+
+    auto sorted = RenderWith(window, sortedRenderer);
+    auto filtered = RenderWith(window, filterRenderer);
+    auto peeled = RenderWith(window, peelRenderer);
+    const std::string tag = "view " + std::to_string(v) + (spec.parallel ? " (parallel)" : "");
+    st::WritePng(sorted, st::TemporaryDirectory() + "/TestBSPSortedPolyDataMapper_" +
+        std::to_string(v) + "_mapper.png");
+    st::WritePng(filtered, st::TemporaryDirectory() + "/TestBSPSortedPolyDataMapper_" +
+        std::to_string(v) + "_filter.png");
+    st::WritePng(peeled, st::TemporaryDirectory() + "/TestBSPSortedPolyDataMapper_" +
+        std::to_string(v) + "_peel100.png");
+
+    st::ImageThresholds same; // same order: near-identical
+    same.maxMeanAbsError = 0.1;
+    same.maxCoveredBadFraction = 0.001;
+    std::string why;
+    const auto vsFilter = st::CompareImages(sorted, filtered);
+    ok &= Check(st::WithinThresholds(vsFilter, same, &why),
+      tag + " mapper vs BSP filter: " + vsFilter.Summary() + " " + why);
+    st::ImageThresholds peel;
+    peel.maxMeanAbsError = 0.5;
+    peel.maxCoveredBadFraction = 0.01;
+    const auto vsPeel = st::CompareImages(sorted, peeled);
+    ok &= Check(st::WithinThresholds(vsPeel, peel, &why),
+      tag + " mapper vs 100-peel DDP: " + vsPeel.Summary() + " " + why);
+    ++v;
+  }
+  ok &= Check(sortedMapper->GetNumberOfTreeBuilds() == 1, "one tree build for all views");
+  ok &= Check(sortedMapper->GetNumberOfVertexBufferBuilds() == 1,
+    "vertex buffers built once for all views (builds: " +
+      std::to_string(sortedMapper->GetNumberOfVertexBufferBuilds()) + ")");
+  ok &= Check(sortedMapper->GetNumberOfFragments() > 0, "fragments: " +
+      std::to_string(sortedMapper->GetNumberOfFragments()));
+
+  // (c) Camera unchanged: nothing re-sorted, nothing uploaded.
+  RenderWith(window, sortedRenderer);
+  const vtkIdType uploads = sortedMapper->GetNumberOfIndexUploads();
+  const vtkIdType updates = sortedMapper->GetNumberOfOrderUpdates();
+  RenderWith(window, sortedRenderer);
+  window->Render();
+  ok &= Check(sortedMapper->GetNumberOfIndexUploads() == uploads, "no upload, camera unchanged");
+  ok &= Check(sortedMapper->GetNumberOfOrderUpdates() == updates, "no re-sort, camera unchanged");
+  // Camera moved a lot: re-sorted and re-uploaded, vertex buffers untouched.
+  camera->Azimuth(90);
+  window->Render();
+  ok &= Check(sortedMapper->GetNumberOfOrderUpdates() == updates + 1, "re-sort after a move");
+  ok &= Check(sortedMapper->GetNumberOfIndexUploads() == uploads + 1, "one upload after a move");
+  ok &= Check(sortedMapper->GetNumberOfVertexBufferBuilds() == 1, "still one vertex buffer build");
+  // A new input rebuilds the tree.
+  source->SetTriangleCount(10000);
+  window->Render();
+  ok &= Check(sortedMapper->GetNumberOfTreeBuilds() == 2, "tree rebuilt for a new input");
+
+  // (d) An opaque actor is never sorted and builds no tree.
+  vtkNew<vtkSphereSource> sphere;
+  vtkNew<vtkBSPSortedPolyDataMapper> opaqueMapper;
+  opaqueMapper->SetInputConnection(sphere->GetOutputPort());
+  vtkNew<vtkActor> opaqueActor;
+  opaqueActor->SetMapper(opaqueMapper);
+  vtkNew<vtkRenderer> opaqueRenderer;
+  opaqueRenderer->AddActor(opaqueActor);
+  opaqueRenderer->SetPass(sortedPass);
+  auto opaqueImage = RenderWith(window, opaqueRenderer);
+  ok &= Check(st::CoveredFraction(opaqueImage) > 0.05, "opaque actor drawn");
+  ok &= Check(opaqueMapper->GetNumberOfTreeBuilds() == 0 &&
+      opaqueMapper->GetNumberOfIndexUploads() == 0,
+    "opaque actor: no tree, no sorting");
+  // ... until it becomes translucent.
+  opaqueActor->GetProperty()->SetOpacity(0.5);
+  RenderWith(window, opaqueRenderer);
+  ok &= Check(opaqueMapper->GetNumberOfTreeBuilds() == 1 &&
+      opaqueMapper->GetNumberOfIndexUploads() == 1,
+    "translucent actor: tree built, order uploaded");
+
+  window->GetRenderers()->RemoveAllItems();
+  return vtkOutput.ExitCode(ok ? EXIT_SUCCESS : EXIT_FAILURE);
+}

@@ -1,0 +1,769 @@
+#include "vtkBSPSortedPolyDataMapper.h"
+
+#include "vtkBSPFragmentSet.h"
+
+#include "vtkActor.h"
+#include "vtkCamera.h"
+#include "vtkCellArray.h"
+#include "vtkCellData.h"
+#include "vtkCommand.h"
+#include "vtkDataArray.h"
+#include "vtkExecutive.h"
+#include "vtkIdTypeArray.h"
+#include "vtkMatrix4x4.h"
+#include "vtkNew.h"
+#include "vtkObjectFactory.h"
+#include "vtkOpenGLIndexBufferObject.h"
+#include "vtkOpenGLRenderWindow.h"
+#include "vtkOpenGLVertexBufferObjectGroup.h"
+#include "vtkPointData.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+#include "vtkProperty.h"
+#include "vtkRenderWindow.h"
+#include "vtkRenderer.h"
+#include "vtkStateStorage.h"
+#include "vtkUnsignedCharArray.h"
+#include "vtk_glew.h"
+
+#include "scenevis/BspBuilder.h"
+#include "scenevis/BspTraversal.h"
+
+#include <chrono>
+#include <cmath>
+#include <cstdint>
+
+vtkStandardNewMacro(vtkBSPSortedPolyDataMapper);
+
+namespace
+{
+namespace bsp = scenevis::bsp;
+
+double SecondsSince(std::chrono::steady_clock::time_point start)
+{
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+bool IsFinite(const double v[3])
+{
+  return std::isfinite(v[0]) && std::isfinite(v[1]) && std::isfinite(v[2]);
+}
+
+/// Whether drawing @p input with the mapper's colour settings needs per-fragment vertices
+/// (cell scalars, or cell normals without point normals).
+bool NeedsCellExpansion(vtkMapper* mapper, vtkPolyData* input)
+{
+  if (mapper->GetScalarVisibility())
+  {
+    int cellFlag = 0;
+    vtkAbstractArray* scalars = vtkAbstractMapper::GetAbstractScalars(input,
+      mapper->GetScalarMode(), mapper->GetArrayAccessMode(), mapper->GetArrayId(),
+      mapper->GetArrayName(), cellFlag);
+    if (scalars && cellFlag == 1)
+    {
+      return true;
+    }
+  }
+  return input->GetCellData()->GetNormals() != nullptr &&
+    input->GetPointData()->GetNormals() == nullptr;
+}
+
+/// The scalar mode that finds, in the expanded point data, what `mode` found in the cell data.
+int ExpandedScalarMode(int mode)
+{
+  switch (mode)
+  {
+    case VTK_SCALAR_MODE_USE_CELL_DATA:
+      return VTK_SCALAR_MODE_USE_POINT_DATA;
+    case VTK_SCALAR_MODE_USE_CELL_FIELD_DATA:
+      return VTK_SCALAR_MODE_USE_POINT_FIELD_DATA;
+    default:
+      return mode;
+  }
+}
+} // namespace
+
+//------------------------------------------------------------------------------
+void vtkBSPFragmentSetUtilities::AppendPolygons(vtkPolyData* input, vtkMatrix4x4* matrix,
+  scenevis::PolygonMesh& mesh, std::vector<vtkIdType>& cellOf)
+{
+  const std::uint32_t base = static_cast<std::uint32_t>(mesh.points.size());
+  const vtkIdType numPoints = input->GetNumberOfPoints();
+  mesh.points.reserve(mesh.points.size() + static_cast<std::size_t>(numPoints));
+  for (vtkIdType i = 0; i < numPoints; ++i)
+  {
+    double p[4] = { 0.0, 0.0, 0.0, 1.0 };
+    input->GetPoint(i, p);
+    if (matrix)
+    {
+      matrix->MultiplyPoint(p, p);
+      if (p[3] != 0.0 && p[3] != 1.0)
+      {
+        p[0] /= p[3];
+        p[1] /= p[3];
+        p[2] /= p[3];
+      }
+    }
+    mesh.points.emplace_back(p[0], p[1], p[2]);
+  }
+  // Cell ids follow VTK's order: verts, lines, polys, strips.
+  const vtkIdType firstPoly = input->GetNumberOfVerts() + input->GetNumberOfLines();
+  std::vector<std::uint32_t> ids;
+  vtkIdType npts = 0;
+  const vtkIdType* pts = nullptr;
+  vtkCellArray* polys = input->GetPolys();
+  vtkIdType cellId = firstPoly;
+  for (polys->InitTraversal(); polys->GetNextCell(npts, pts); ++cellId)
+  {
+    ids.resize(static_cast<std::size_t>(npts));
+    for (vtkIdType k = 0; k < npts; ++k)
+    {
+      ids[static_cast<std::size_t>(k)] = base + static_cast<std::uint32_t>(pts[k]);
+    }
+    mesh.addPolygon(ids.data(), ids.size());
+    cellOf.push_back(cellId);
+  }
+  vtkCellArray* strips = input->GetStrips();
+  for (strips->InitTraversal(); strips->GetNextCell(npts, pts); ++cellId)
+  {
+    for (vtkIdType k = 0; k + 2 < npts; ++k)
+    {
+      // Alternate the winding so every triangle of the strip faces the same way.
+      const std::uint32_t a = base + static_cast<std::uint32_t>(pts[k]);
+      const std::uint32_t b = base + static_cast<std::uint32_t>(pts[k + 1]);
+      const std::uint32_t c = base + static_cast<std::uint32_t>(pts[k + 2]);
+      if (k % 2 == 0)
+      {
+        mesh.addPolygon({ a, b, c });
+      }
+      else
+      {
+        mesh.addPolygon({ b, a, c });
+      }
+      cellOf.push_back(cellId);
+    }
+  }
+}
+
+//------------------------------------------------------------------------------
+struct vtkBSPSortedPolyDataMapper::Internals
+{
+  // Where the fragments come from: our own tree (standalone) or vtkBSPTranslucentPass.
+  bool External = false;
+  std::shared_ptr<const vtkBSPFragmentSet> Fragments;
+
+  // Standalone tree and its order.
+  std::unique_ptr<bsp::Tree> Tree;
+  std::unique_ptr<bsp::IncrementalOrder> Order;
+  vtkPolyData* TreeInput = nullptr; // compared only, never dereferenced
+  vtkMTimeType TreeInputMTime = 0;
+  bool HaveView = false;
+  scenevis::View LastView;
+
+  // Geometry drawn (built once per fragment set).
+  vtkSmartPointer<vtkPolyData> RenderData;
+  const vtkBSPFragmentSet* RenderDataFor = nullptr;
+  bool RenderDataExpanded = false;
+  vtkMTimeType RenderDataMapperMTime = 0;
+  std::vector<unsigned int> TriIndices;     // fan triangles of every fragment, fragment id order
+  std::vector<std::uint32_t> TriOffsets{ 0 }; // fragment f: TriIndices[TriOffsets[f]..[f+1])
+
+  // Order in the index buffer.
+  std::vector<std::uint32_t> UploadedOrder; // fragment ids as in the IBO (valid if IBOHasOrder)
+  bool IBOHasOrder = false;
+  std::vector<std::uint32_t> PendingOrder; // external order to upload
+  bool PendingDirty = false;
+  std::vector<unsigned int> Scratch;
+  vtkIdType DrawFirst = -1;
+  vtkIdType DrawCount = -1;
+
+  // State of the current render (set in UpdateCameraShiftScale).
+  bool Expanded = false;
+  bool Sortable = false;
+  int SavedScalarMode = VTK_SCALAR_MODE_DEFAULT;
+
+  // Instrumentation.
+  vtkIdType IndexUploads = 0;
+  vtkIdType OrderUpdates = 0;
+  vtkIdType TreeBuilds = 0;
+  vtkIdType VertexBufferBuilds = 0;
+  double LastBuildTime = 0.0;
+  double LastOrderTime = 0.0;
+
+  void Upload(vtkOpenGLIndexBufferObject* ibo, const std::vector<std::uint32_t>& order)
+  {
+    std::size_t total = 0;
+    for (std::uint32_t f : order)
+    {
+      total += this->TriOffsets[f + 1] - this->TriOffsets[f];
+    }
+    this->Scratch.resize(total);
+    unsigned int* out = this->Scratch.data();
+    for (std::uint32_t f : order)
+    {
+      const unsigned int* first = this->TriIndices.data() + this->TriOffsets[f];
+      const unsigned int* last = this->TriIndices.data() + this->TriOffsets[f + 1];
+      out = std::copy(first, last, out);
+    }
+    if (total > 0)
+    {
+      ibo->Upload(this->Scratch, vtkOpenGLBufferObject::ElementArrayBuffer);
+    }
+    ibo->IndexCount = total;
+    this->UploadedOrder = order;
+    this->IBOHasOrder = true;
+    ++this->IndexUploads;
+  }
+
+  void BuildRenderData(vtkMapper* mapper, bool expand);
+};
+
+//------------------------------------------------------------------------------
+void vtkBSPSortedPolyDataMapper::Internals::BuildRenderData(vtkMapper* mapper, bool expand)
+{
+  const vtkBSPFragmentSet& set = *this->Fragments;
+  vtkPolyData* input = set.Input;
+  const vtkIdType numIn = input->GetNumberOfPoints();
+  const vtkIdType numOut = numIn + static_cast<vtkIdType>(set.Splits.size());
+
+  // Positions and point data over input + split points.
+  vtkNew<vtkPoints> points;
+  points->SetDataType(input->GetPoints() ? input->GetPoints()->GetDataType() : VTK_FLOAT);
+  points->SetNumberOfPoints(numOut);
+  for (vtkIdType i = 0; i < numIn; ++i)
+  {
+    points->SetPoint(i, input->GetPoint(i));
+  }
+  for (std::size_t s = 0; s < set.Splits.size(); ++s)
+  {
+    const vtkBSPFragmentSet::Split& split = set.Splits[s];
+    double a[3], b[3];
+    points->GetPoint(split.a, a);
+    points->GetPoint(split.b, b);
+    points->SetPoint(numIn + static_cast<vtkIdType>(s), a[0] + (b[0] - a[0]) * split.t,
+      a[1] + (b[1] - a[1]) * split.t, a[2] + (b[2] - a[2]) * split.t);
+  }
+  vtkNew<vtkPointData> pointData;
+  pointData->DeepCopy(input->GetPointData());
+  for (int a = 0; a < pointData->GetNumberOfArrays(); ++a)
+  {
+    vtkAbstractArray* array = pointData->GetAbstractArray(a);
+    array->Resize(numOut);
+    array->SetNumberOfTuples(numOut);
+    for (std::size_t s = 0; s < set.Splits.size(); ++s)
+    {
+      const vtkBSPFragmentSet::Split& split = set.Splits[s];
+      array->InterpolateTuple(
+        numIn + static_cast<vtkIdType>(s), split.a, array, split.b, array, split.t);
+    }
+  }
+  if (vtkDataArray* normals = pointData->GetNormals())
+  {
+    for (vtkIdType i = numIn; i < numOut; ++i)
+    {
+      double n[3];
+      normals->GetTuple(i, n);
+      const double length = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+      if (length > 0.0)
+      {
+        normals->SetTuple3(i, n[0] / length, n[1] / length, n[2] / length);
+      }
+    }
+  }
+
+  // Fan triangles of every fragment.
+  const std::size_t fragmentCount = set.FragmentCount();
+  this->TriOffsets.assign(fragmentCount + 1, 0);
+  for (std::size_t f = 0; f < fragmentCount; ++f)
+  {
+    const std::uint32_t n = set.Offsets[f + 1] - set.Offsets[f];
+    this->TriOffsets[f + 1] = this->TriOffsets[f] + 3 * (n - 2);
+  }
+  this->TriIndices.resize(this->TriOffsets.back());
+  auto result = vtkSmartPointer<vtkPolyData>::New();
+  if (!expand)
+  {
+    for (std::size_t f = 0; f < fragmentCount; ++f)
+    {
+      const std::uint32_t* v = set.Vertices.data() + set.Offsets[f];
+      const std::uint32_t n = set.Offsets[f + 1] - set.Offsets[f];
+      unsigned int* out = this->TriIndices.data() + this->TriOffsets[f];
+      for (std::uint32_t k = 1; k + 1 < n; ++k)
+      {
+        *out++ = v[0];
+        *out++ = v[k];
+        *out++ = v[k + 1];
+      }
+    }
+    result->SetPoints(points);
+    result->GetPointData()->ShallowCopy(pointData);
+    result->SetVerts(input->GetVerts());
+    result->SetLines(input->GetLines());
+  }
+  else
+  {
+    // Every fragment gets its own vertices, carrying its cell's values as point values.
+    const vtkIdType numExpanded = static_cast<vtkIdType>(set.Vertices.size());
+    vtkNew<vtkPoints> expandedPoints;
+    expandedPoints->SetDataType(points->GetDataType());
+    expandedPoints->SetNumberOfPoints(numExpanded);
+    std::vector<vtkIdType> sourcePoint(static_cast<std::size_t>(numExpanded));
+    std::vector<vtkIdType> sourceCell(static_cast<std::size_t>(numExpanded));
+    for (std::size_t f = 0; f < fragmentCount; ++f)
+    {
+      const std::uint32_t first = set.Offsets[f];
+      const std::uint32_t n = set.Offsets[f + 1] - first;
+      unsigned int* out = this->TriIndices.data() + this->TriOffsets[f];
+      for (std::uint32_t k = 0; k < n; ++k)
+      {
+        sourcePoint[first + k] = set.Vertices[first + k];
+        sourceCell[first + k] = set.Cells[f];
+        expandedPoints->SetPoint(first + k, points->GetPoint(set.Vertices[first + k]));
+      }
+      for (std::uint32_t k = 1; k + 1 < n; ++k)
+      {
+        *out++ = first;
+        *out++ = first + k;
+        *out++ = first + k + 1;
+      }
+    }
+    auto gather = [numExpanded](vtkAbstractArray* source, const std::vector<vtkIdType>& from) {
+      vtkAbstractArray* array = source->NewInstance();
+      if (!array)
+      {
+        return vtkSmartPointer<vtkAbstractArray>();
+      }
+      array->SetName(source->GetName());
+      array->SetNumberOfComponents(source->GetNumberOfComponents());
+      array->SetNumberOfTuples(numExpanded);
+      for (vtkIdType i = 0; i < numExpanded; ++i)
+      {
+        array->SetTuple(i, from[static_cast<std::size_t>(i)], source);
+      }
+      if (auto* data = vtkDataArray::SafeDownCast(source))
+      {
+        if (data->GetLookupTable())
+        {
+          vtkDataArray::SafeDownCast(array)->SetLookupTable(data->GetLookupTable());
+        }
+      }
+      return vtkSmartPointer<vtkAbstractArray>::Take(array);
+    };
+    // Point data = the cell arrays in cell-data order (so array ids keep meaning), the cell
+    // scalars as active scalars, then point normals / texture coordinates if the input has them.
+    vtkPointData* outPD = result->GetPointData();
+    vtkCellData* inCD = input->GetCellData();
+    int cellFlag = 0;
+    vtkAbstractArray* cellScalars = vtkAbstractMapper::GetAbstractScalars(input,
+      mapper->GetScalarMode(), mapper->GetArrayAccessMode(), mapper->GetArrayId(),
+      mapper->GetArrayName(), cellFlag);
+    for (int a = 0; a < inCD->GetNumberOfArrays(); ++a)
+    {
+      vtkAbstractArray* source = inCD->GetAbstractArray(a);
+      auto copy = gather(source, sourceCell);
+      if (!copy)
+      {
+        continue;
+      }
+      const int index = outPD->AddArray(copy);
+      if (source == cellScalars && cellFlag == 1)
+      {
+        outPD->SetActiveAttribute(index, vtkDataSetAttributes::SCALARS);
+      }
+      if (source == inCD->GetNormals() && !pointData->GetNormals())
+      {
+        outPD->SetActiveAttribute(index, vtkDataSetAttributes::NORMALS);
+      }
+    }
+    if (vtkDataArray* normals = pointData->GetNormals())
+    {
+      auto copy = gather(normals, sourcePoint);
+      const int index = copy ? outPD->AddArray(copy) : -1;
+      if (index >= 0)
+      {
+        outPD->SetActiveAttribute(index, vtkDataSetAttributes::NORMALS);
+      }
+    }
+    if (vtkDataArray* tcoords = pointData->GetTCoords())
+    {
+      auto copy = gather(tcoords, sourcePoint);
+      const int index = copy ? outPD->AddArray(copy) : -1;
+      if (index >= 0)
+      {
+        outPD->SetActiveAttribute(index, vtkDataSetAttributes::TCOORDS);
+      }
+    }
+    result->SetPoints(expandedPoints);
+  }
+  vtkNew<vtkIdTypeArray> offsets;
+  const vtkIdType numTriangles = static_cast<vtkIdType>(this->TriIndices.size() / 3);
+  offsets->SetNumberOfTuples(numTriangles + 1);
+  for (vtkIdType t = 0; t <= numTriangles; ++t)
+  {
+    offsets->SetValue(t, 3 * t);
+  }
+  vtkNew<vtkIdTypeArray> connectivity;
+  connectivity->SetNumberOfTuples(static_cast<vtkIdType>(this->TriIndices.size()));
+  std::copy(this->TriIndices.begin(), this->TriIndices.end(), connectivity->GetPointer(0));
+  vtkNew<vtkCellArray> polys;
+  polys->SetData(offsets, connectivity);
+  result->SetPolys(polys);
+
+  this->RenderData = result;
+  this->RenderDataFor = this->Fragments.get();
+  this->RenderDataExpanded = expand;
+  this->IBOHasOrder = false;
+}
+
+//------------------------------------------------------------------------------
+vtkBSPSortedPolyDataMapper::vtkBSPSortedPolyDataMapper()
+  : Internal(new Internals)
+{
+}
+
+//------------------------------------------------------------------------------
+vtkBSPSortedPolyDataMapper::~vtkBSPSortedPolyDataMapper() = default;
+
+//------------------------------------------------------------------------------
+vtkIdType vtkBSPSortedPolyDataMapper::GetNumberOfIndexUploads() const
+{
+  return this->Internal->IndexUploads;
+}
+
+vtkIdType vtkBSPSortedPolyDataMapper::GetNumberOfOrderUpdates() const
+{
+  return this->Internal->OrderUpdates;
+}
+
+vtkIdType vtkBSPSortedPolyDataMapper::GetNumberOfTreeBuilds() const
+{
+  return this->Internal->TreeBuilds;
+}
+
+vtkIdType vtkBSPSortedPolyDataMapper::GetNumberOfVertexBufferBuilds() const
+{
+  return this->Internal->VertexBufferBuilds;
+}
+
+vtkIdType vtkBSPSortedPolyDataMapper::GetNumberOfFragments() const
+{
+  return this->Internal->Fragments
+    ? static_cast<vtkIdType>(this->Internal->Fragments->FragmentCount())
+    : 0;
+}
+
+vtkIdType vtkBSPSortedPolyDataMapper::GetNumberOfFragmentTriangles() const
+{
+  return static_cast<vtkIdType>(this->Internal->TriOffsets.back() / 3);
+}
+
+double vtkBSPSortedPolyDataMapper::GetLastBuildTime() const
+{
+  return this->Internal->LastBuildTime;
+}
+
+double vtkBSPSortedPolyDataMapper::GetLastOrderTime() const
+{
+  return this->Internal->LastOrderTime;
+}
+
+void vtkBSPSortedPolyDataMapper::GetFragmentOrder(std::vector<vtkIdType>& cellIds) const
+{
+  cellIds.clear();
+  const Internals& internal = *this->Internal;
+  if (!internal.Fragments || !internal.IBOHasOrder)
+  {
+    return;
+  }
+  cellIds.reserve(internal.UploadedOrder.size());
+  for (std::uint32_t f : internal.UploadedOrder)
+  {
+    cellIds.push_back(internal.Fragments->Cells[f]);
+  }
+}
+
+//------------------------------------------------------------------------------
+void vtkBSPSortedPolyDataMapper::SetExternalFragments(
+  std::shared_ptr<const vtkBSPFragmentSet> fragments)
+{
+  Internals& internal = *this->Internal;
+  internal.External = true;
+  internal.Tree.reset();
+  internal.Order.reset();
+  internal.Fragments = std::move(fragments);
+  internal.PendingOrder.clear();
+  internal.PendingDirty = true;
+  internal.IBOHasOrder = false;
+}
+
+void vtkBSPSortedPolyDataMapper::SetExternalOrder(const std::vector<std::uint32_t>& order)
+{
+  Internals& internal = *this->Internal;
+  if (!internal.IBOHasOrder || order != internal.UploadedOrder)
+  {
+    internal.PendingOrder = order;
+    internal.PendingDirty = true;
+  }
+}
+
+void vtkBSPSortedPolyDataMapper::SetDrawRange(vtkIdType firstIndex, vtkIdType indexCount)
+{
+  this->Internal->DrawFirst = firstIndex;
+  this->Internal->DrawCount = indexCount;
+}
+
+//------------------------------------------------------------------------------
+vtkUnsignedCharArray* vtkBSPSortedPolyDataMapper::MapScalars(double alpha)
+{
+  // The superclass maps the scalars of GetInput(); ours are those of the geometry drawn.
+  int cellFlag = 0;
+  return this->MapScalars(this->CurrentInput ? this->CurrentInput : this->GetInput(), alpha,
+    cellFlag);
+}
+
+//------------------------------------------------------------------------------
+void vtkBSPSortedPolyDataMapper::BuildBufferObjects(vtkRenderer* ren, vtkActor* act)
+{
+  ++this->Internal->VertexBufferBuilds;
+  this->Superclass::BuildBufferObjects(ren, act);
+}
+
+//------------------------------------------------------------------------------
+void vtkBSPSortedPolyDataMapper::BuildIBO(vtkRenderer* ren, vtkActor* act, vtkPolyData* poly)
+{
+  vtkStateStorage before;
+  before = this->IBOBuildState;
+  this->Superclass::BuildIBO(ren, act, poly);
+  if (before != this->IBOBuildState)
+  {
+    // The superclass wrote the triangles in fragment order: our order must be uploaded again.
+    this->Internal->IBOHasOrder = false;
+  }
+}
+
+//------------------------------------------------------------------------------
+void vtkBSPSortedPolyDataMapper::ReleaseGraphicsResources(vtkWindow* window)
+{
+  this->Internal->IBOHasOrder = false;
+  this->Superclass::ReleaseGraphicsResources(window);
+}
+
+//------------------------------------------------------------------------------
+void vtkBSPSortedPolyDataMapper::UpdateCameraShiftScale(vtkRenderer* ren, vtkActor* actor)
+{
+  // vtkOpenGLPolyDataMapper::RenderPiece has updated the pipeline and set CurrentInput to the
+  // input; this is the first hook it calls after that. Swap in the fragment geometry here, so
+  // that everything that follows (buffer objects, shaders, draw) works on it.
+  vtkPolyData* input = this->CurrentInput;
+  Internals& internal = *this->Internal;
+  const bool translucent = actor->IsRenderingTranslucentPolygonalGeometry() && !ren->GetSelector();
+  vtkProperty* property = actor->GetProperty();
+  const bool sortable = translucent && property->GetRepresentation() == VTK_SURFACE &&
+    !property->GetEdgeVisibility();
+
+  // Standalone: (re)build the tree once the actor is drawn translucent, and when the input changes.
+  if (!internal.External && (sortable || internal.Tree) &&
+    (!internal.Tree || internal.TreeInput != input || internal.TreeInputMTime != input->GetMTime()))
+  {
+    const auto start = std::chrono::steady_clock::now();
+    internal.Order.reset();
+    internal.Tree.reset();
+    internal.HaveView = false;
+    scenevis::PolygonMesh mesh;
+    std::vector<vtkIdType> cellOf;
+    vtkBSPFragmentSetUtilities::AppendPolygons(input, nullptr, mesh, cellOf);
+    auto tree = std::make_unique<bsp::Tree>(bsp::build(mesh));
+    auto fragments = std::make_shared<vtkBSPFragmentSet>();
+    fragments->Input = input;
+    fragments->Splits.reserve(tree->splitPoints.size());
+    for (const bsp::SplitPoint& split : tree->splitPoints)
+    {
+      fragments->Splits.push_back({ split.a, split.b, split.t });
+    }
+    fragments->Offsets.reserve(tree->fragments.size() + 1);
+    fragments->Vertices.reserve(tree->fragmentVertices.size());
+    fragments->Cells.reserve(tree->fragments.size());
+    for (const bsp::Fragment& fragment : tree->fragments)
+    {
+      fragments->Vertices.insert(fragments->Vertices.end(),
+        tree->fragmentVertices.begin() + fragment.first,
+        tree->fragmentVertices.begin() + fragment.first + fragment.count);
+      fragments->Offsets.push_back(static_cast<std::uint32_t>(fragments->Vertices.size()));
+      fragments->Cells.push_back(cellOf[fragment.source]);
+    }
+    const std::size_t removed =
+      tree->statistics.invalidPolygons + tree->statistics.degeneratePolygons;
+    if (removed > 0)
+    {
+      vtkWarningMacro("Removed " << removed
+                                 << " polygon(s) with non-finite points, invalid point ids, fewer "
+                                    "than 3 distinct points or zero area.");
+    }
+    internal.Tree = std::move(tree);
+    internal.Fragments = std::move(fragments);
+    internal.TreeInput = input;
+    internal.TreeInputMTime = input->GetMTime();
+    internal.LastBuildTime = SecondsSince(start);
+    ++internal.TreeBuilds;
+  }
+
+  // The geometry drawn: the fragments (built once per fragment set) or, before any translucent
+  // render, the input itself.
+  vtkPolyData* drawn = input;
+  bool expanded = false;
+  if (internal.Fragments && internal.Fragments->FragmentCount() > 0)
+  {
+    const bool expand = NeedsCellExpansion(this, internal.Fragments->Input);
+    if (!internal.RenderData || internal.RenderDataFor != internal.Fragments.get() ||
+      internal.RenderDataExpanded != expand ||
+      (expand && internal.RenderDataMapperMTime != this->GetMTime()))
+    {
+      internal.BuildRenderData(this, expand);
+      internal.RenderDataMapperMTime = this->GetMTime();
+    }
+    drawn = internal.RenderData;
+    expanded = internal.RenderDataExpanded;
+  }
+  this->CurrentInput = drawn;
+  internal.Expanded = expanded;
+  internal.Sortable = sortable;
+  this->Superclass::UpdateCameraShiftScale(ren, actor);
+}
+
+//------------------------------------------------------------------------------
+void vtkBSPSortedPolyDataMapper::RenderPieceStart(vtkRenderer* ren, vtkActor* actor)
+{
+  Internals& internal = *this->Internal;
+  // Cell scalars became point scalars: look for them there (without touching the MTime); restored
+  // in RenderPieceFinish.
+  internal.SavedScalarMode = this->ScalarMode;
+  if (internal.Expanded)
+  {
+    this->ScalarMode = ExpandedScalarMode(this->ScalarMode);
+  }
+  this->Superclass::RenderPieceStart(ren, actor);
+  const bool sortable = internal.Sortable;
+
+  // Re-order the index buffer (only what the scene calls for).
+  vtkOpenGLIndexBufferObject* ibo = this->Primitives[PrimitiveTris].IBO;
+  if (internal.External)
+  {
+    if (internal.PendingDirty || !internal.IBOHasOrder)
+    {
+      const auto start = std::chrono::steady_clock::now();
+      if (internal.PendingDirty)
+      {
+        internal.Upload(ibo, internal.PendingOrder);
+      }
+      else
+      {
+        internal.Upload(ibo, internal.UploadedOrder);
+      }
+      internal.PendingDirty = false;
+      internal.LastOrderTime = SecondsSince(start);
+    }
+  }
+  else if (sortable && internal.Tree && !internal.Tree->empty())
+  {
+    vtkCamera* camera = ren->GetActiveCamera();
+    double position[3], focal[3];
+    camera->GetPosition(position);
+    camera->GetFocalPoint(focal);
+    double eye[4] = { position[0], position[1], position[2], 1.0 };
+    double direction[4] = { focal[0] - position[0], focal[1] - position[1],
+      focal[2] - position[2], 0.0 };
+    vtkNew<vtkMatrix4x4> inverse;
+    vtkMatrix4x4::Invert(actor->GetMatrix(), inverse);
+    inverse->MultiplyPoint(eye, eye);
+    inverse->MultiplyPoint(direction, direction);
+    if (eye[3] != 0.0)
+    {
+      for (int i = 0; i < 3; ++i)
+      {
+        eye[i] /= eye[3];
+      }
+    }
+    const bool parallel = camera->GetParallelProjection() != 0;
+    const double length = std::sqrt(direction[0] * direction[0] +
+      direction[1] * direction[1] + direction[2] * direction[2]);
+    if (IsFinite(eye) && IsFinite(direction) && length > 0.0)
+    {
+      const scenevis::View view = parallel
+        ? scenevis::View::parallel({ direction[0], direction[1], direction[2] })
+        : scenevis::View::perspective({ eye[0], eye[1], eye[2] });
+      const bool moved = !internal.HaveView || view.eye != internal.LastView.eye;
+      if (moved || !internal.IBOHasOrder)
+      {
+        const auto start = std::chrono::steady_clock::now();
+        bool changed = !internal.IBOHasOrder;
+        if (!internal.Order)
+        {
+          internal.Order =
+            std::make_unique<bsp::IncrementalOrder>(*internal.Tree, bsp::Direction::BackToFront);
+          changed = true;
+        }
+        if (moved)
+        {
+          const auto& stats = internal.Order->update(view);
+          ++internal.OrderUpdates;
+          changed = changed || stats.nodesFlipped > 0 || stats.fragmentsMoved > 0 ||
+            internal.UploadedOrder.empty();
+          internal.HaveView = true;
+          internal.LastView = view;
+        }
+        if (changed)
+        {
+          internal.Upload(ibo, internal.Order->order());
+        }
+        internal.LastOrderTime = SecondsSince(start);
+      }
+    }
+  }
+
+}
+
+//------------------------------------------------------------------------------
+void vtkBSPSortedPolyDataMapper::RenderPieceFinish(vtkRenderer* ren, vtkActor* actor)
+{
+  this->Superclass::RenderPieceFinish(ren, actor);
+  this->ScalarMode = this->Internal->SavedScalarMode;
+}
+
+//------------------------------------------------------------------------------
+void vtkBSPSortedPolyDataMapper::RenderPieceDraw(vtkRenderer* ren, vtkActor* actor)
+{
+  Internals& internal = *this->Internal;
+  if (internal.DrawCount < 0)
+  {
+    this->Superclass::RenderPieceDraw(ren, actor);
+    return;
+  }
+  // A run of vtkBSPTranslucentPass: only index range [DrawFirst, DrawFirst + DrawCount) of the
+  // triangles (surface representation, no edges: the pass only sends such actors).
+  if (internal.DrawCount == 0)
+  {
+    return;
+  }
+  vtkOpenGLHelper& tris = this->Primitives[PrimitiveTris];
+  this->DrawingVertices = false;
+  this->DrawingSelection = false;
+  this->UpdateShaders(tris, ren, actor);
+  const int numVerts = this->VBOs->GetNumberOfTuples("vertexMC");
+  tris.IBO->Bind();
+  glDrawRangeElements(GL_TRIANGLES, 0, static_cast<GLuint>(numVerts - 1),
+    static_cast<GLsizei>(internal.DrawCount), GL_UNSIGNED_INT,
+    reinterpret_cast<const GLvoid*>(
+      static_cast<std::uintptr_t>(internal.DrawFirst) * sizeof(GLuint)));
+  tris.IBO->Release();
+}
+
+//------------------------------------------------------------------------------
+void vtkBSPSortedPolyDataMapper::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "NumberOfFragments: " << this->GetNumberOfFragments() << "\n";
+  os << indent << "NumberOfIndexUploads: " << this->GetNumberOfIndexUploads() << "\n";
+  os << indent << "NumberOfOrderUpdates: " << this->GetNumberOfOrderUpdates() << "\n";
+  os << indent << "NumberOfTreeBuilds: " << this->GetNumberOfTreeBuilds() << "\n";
+  os << indent << "NumberOfVertexBufferBuilds: " << this->GetNumberOfVertexBufferBuilds() << "\n";
+}

@@ -1,0 +1,126 @@
+/**
+ * @class   vtkBSPSortedPolyDataMapper
+ * @brief   A polydata mapper that draws translucent polygons in exact back-to-front order by
+ *          rewriting only its triangle index buffer when the camera moves.
+ *
+ * vtkBSPSortFilter + vtkPolyDataMapper re-orders polydata on the CPU: every camera move makes a
+ * new polydata, and VTK then rebuilds and re-uploads every vertex buffer. This mapper instead
+ *
+ * 1. builds a polygon-aligned BSP tree of its input once (again only when the input's MTime
+ *    changes), splitting polygons that straddle partition planes;
+ * 2. builds the vertex buffers ONCE from the fragment geometry: the input's points followed by the
+ *    split points, with all point data interpolated (normals re-normalised, scalars/colours,
+ *    texture coordinates, ...), and the fragments fan-triangulated;
+ * 3. per frame, only when the camera (taken into the actor's data coordinates through the actor's
+ *    matrix; perspective or parallel) has moved, brings the BSP order up to date incrementally
+ *    (scenevis::bsp::IncrementalOrder) and re-uploads the triangle index buffer in that order.
+ *    Camera unchanged: nothing is re-sorted and nothing is uploaded.
+ *
+ * Only translucent rendering needs an order: while its actor is opaque the mapper does not sort,
+ * and an actor that has never been rendered translucent does not even build the tree (it is drawn
+ * exactly like by vtkOpenGLPolyDataMapper).
+ *
+ * To see the order on screen, translucent geometry must be alpha blended in primitive order: set
+ * a vtkOrderedTranslucentPass on the renderer (VTK 9.1's default weighted OIT ignores order).
+ *
+ * Data handled:
+ * - point data: all arrays interpolated at split points (normals re-normalised);
+ * - cell data: when the mapper colours by cell scalars, or the input has cell normals and no
+ *   point normals, each fragment gets its own copies of its vertices and the cell's values become
+ *   per-vertex values (so the order can change without gl_PrimitiveID-indexed cell textures);
+ *   verts and lines are then not drawn. Otherwise cell data are not needed for drawing and dropped.
+ * - verts and lines: drawn unsorted (as by the superclass); triangle strips are sorted as their
+ *   triangles; concave/non-planar polygons are triangulated by the BSP builder.
+ *
+ * Limits: sorting applies to the surface representation without edge visibility (edges and
+ * wireframe/points representations are drawn in fragment order); hardware picking reports
+ * fragment-triangle ids rather than input cell ids.
+ *
+ * Instrumentation (for tests and benchmarks): GetNumberOfIndexUploads(),
+ * GetNumberOfOrderUpdates(), GetNumberOfTreeBuilds(), GetNumberOfVertexBufferBuilds().
+ *
+ * @sa vtkBSPSortFilter vtkOrderedTranslucentPass vtkBSPTranslucentPass
+ */
+
+#ifndef vtkBSPSortedPolyDataMapper_h
+#define vtkBSPSortedPolyDataMapper_h
+
+#include "SceneVisRenderingTranslucencyModule.h" // For export macro
+#include "vtkOpenGLPolyDataMapper.h"
+
+#include <cstdint> // For std::uint32_t
+#include <memory>  // For std::unique_ptr, std::shared_ptr
+#include <vector>  // For std::vector
+
+struct vtkBSPFragmentSet;
+
+class SCENEVISRENDERINGTRANSLUCENCY_EXPORT vtkBSPSortedPolyDataMapper
+  : public vtkOpenGLPolyDataMapper
+{
+public:
+  static vtkBSPSortedPolyDataMapper* New();
+  vtkTypeMacro(vtkBSPSortedPolyDataMapper, vtkOpenGLPolyDataMapper);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  void RenderPieceStart(vtkRenderer* ren, vtkActor* act) override;
+  void RenderPieceDraw(vtkRenderer* ren, vtkActor* act) override;
+  void RenderPieceFinish(vtkRenderer* ren, vtkActor* act) override;
+  void ReleaseGraphicsResources(vtkWindow*) override;
+
+  /// Maps the scalars of the geometry drawn (the fragments) rather than those of the input.
+  using vtkOpenGLPolyDataMapper::MapScalars;
+  vtkUnsignedCharArray* MapScalars(double alpha) override;
+
+  ///@{
+  /**
+   * Counters since construction: index buffer uploads made for a new order, incremental order
+   * updates (camera moved), BSP trees built, and vertex buffer (re)builds.
+   */
+  vtkIdType GetNumberOfIndexUploads() const;
+  vtkIdType GetNumberOfOrderUpdates() const;
+  vtkIdType GetNumberOfTreeBuilds() const;
+  vtkIdType GetNumberOfVertexBufferBuilds() const;
+  ///@}
+
+  ///@{
+  /**
+   * Size of the fragment geometry (0 before the first translucent render).
+   */
+  vtkIdType GetNumberOfFragments() const;
+  vtkIdType GetNumberOfFragmentTriangles() const;
+  ///@}
+
+  /// Seconds of the last tree build and of the last order update + index upload.
+  double GetLastBuildTime() const;
+  double GetLastOrderTime() const;
+
+  /**
+   * The current drawing order as input cell ids of the fragments (one entry per fragment, in
+   * drawing order). Empty before the first sorted render.
+   */
+  void GetFragmentOrder(std::vector<vtkIdType>& cellIds) const;
+
+protected:
+  vtkBSPSortedPolyDataMapper();
+  ~vtkBSPSortedPolyDataMapper() override;
+
+  void UpdateCameraShiftScale(vtkRenderer* ren, vtkActor* act) override;
+  void BuildBufferObjects(vtkRenderer* ren, vtkActor* act) override;
+  void BuildIBO(vtkRenderer* ren, vtkActor* act, vtkPolyData* poly) override;
+  // Used by vtkBSPTranslucentPass: the fragments come from its world-space tree, the order of this
+  // actor's fragments is given, and RenderPiece draws only index range [first, first + count).
+  friend class vtkBSPTranslucentPass;
+  void SetExternalFragments(std::shared_ptr<const vtkBSPFragmentSet> fragments);
+  /// Local fragment ids in drawing order; uploads the index buffer if it differs from the last.
+  void SetExternalOrder(const std::vector<std::uint32_t>& order);
+  void SetDrawRange(vtkIdType firstIndex, vtkIdType indexCount);
+
+private:
+  vtkBSPSortedPolyDataMapper(const vtkBSPSortedPolyDataMapper&) = delete;
+  void operator=(const vtkBSPSortedPolyDataMapper&) = delete;
+
+  struct Internals;
+  std::unique_ptr<Internals> Internal;
+};
+
+#endif
