@@ -1,5 +1,7 @@
 #include "vtkBSPSortFilter.h"
 
+#include "vtkBSPSortUtilities.h"
+
 #include "vtkCamera.h"
 #include "vtkCellArray.h"
 #include "vtkCellData.h"
@@ -41,56 +43,6 @@ double SecondsSince(std::chrono::steady_clock::time_point start)
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-bool IsFinite(const double v[3])
-{
-  return std::isfinite(v[0]) && std::isfinite(v[1]) && std::isfinite(v[2]);
-}
-
-/// The core's input: the polygons of `input` (strips as their triangles), and for each core
-/// polygon the input cell id it came from.
-void ToPolygonMesh(vtkPolyData* input, scenevis::PolygonMesh& mesh, std::vector<vtkIdType>& cellOf)
-{
-  const vtkIdType numPoints = input->GetNumberOfPoints();
-  mesh.points.resize(static_cast<std::size_t>(numPoints));
-  for (vtkIdType i = 0; i < numPoints; ++i)
-  {
-    double p[3];
-    input->GetPoint(i, p);
-    mesh.points[static_cast<std::size_t>(i)] = { p[0], p[1], p[2] };
-  }
-  // Cell ids follow VTK's order: verts, lines, polys, strips.
-  const vtkIdType firstPoly = input->GetNumberOfVerts() + input->GetNumberOfLines();
-  std::vector<std::uint32_t> ids;
-  vtkIdType npts = 0;
-  const vtkIdType* pts = nullptr;
-  vtkCellArray* polys = input->GetPolys();
-  vtkIdType cellId = firstPoly;
-  for (polys->InitTraversal(); polys->GetNextCell(npts, pts); ++cellId)
-  {
-    ids.assign(pts, pts + npts);
-    mesh.addPolygon(ids.data(), ids.size());
-    cellOf.push_back(cellId);
-  }
-  vtkCellArray* strips = input->GetStrips();
-  for (strips->InitTraversal(); strips->GetNextCell(npts, pts); ++cellId)
-  {
-    for (vtkIdType k = 0; k + 2 < npts; ++k)
-    {
-      // Alternate the winding so every triangle of the strip faces the same way.
-      if (k % 2 == 0)
-      {
-        mesh.addPolygon({ static_cast<std::uint32_t>(pts[k]), static_cast<std::uint32_t>(pts[k + 1]),
-          static_cast<std::uint32_t>(pts[k + 2]) });
-      }
-      else
-      {
-        mesh.addPolygon({ static_cast<std::uint32_t>(pts[k + 1]), static_cast<std::uint32_t>(pts[k]),
-          static_cast<std::uint32_t>(pts[k + 2]) });
-      }
-      cellOf.push_back(cellId);
-    }
-  }
-}
 /// The fragments of `tree` as polygons in `order`, with 32-bit storage when the ids allow.
 template <typename ArrayT>
 vtkSmartPointer<vtkCellArray> EmitPolygonsAs(
@@ -287,39 +239,15 @@ int vtkBSPSortFilter::RequestData(vtkInformation* vtkNotUsed(request),
   }
 
   // The view, in the input's coordinates.
-  double position[3], focal[3];
-  this->Camera->GetPosition(position);
-  this->Camera->GetFocalPoint(focal);
-  double eye[4] = { position[0], position[1], position[2], 1.0 };
-  double direction[4] = { focal[0] - position[0], focal[1] - position[1], focal[2] - position[2],
-    0.0 };
-  if (vtkProp3D* prop = internal.Prop3D)
-  {
-    vtkNew<vtkMatrix4x4> inverse;
-    vtkMatrix4x4::Invert(prop->GetMatrix(), inverse);
-    inverse->MultiplyPoint(eye, eye);
-    inverse->MultiplyPoint(direction, direction);
-    if (eye[3] != 0.0)
-    {
-      for (int i = 0; i < 3; ++i)
-      {
-        eye[i] /= eye[3];
-      }
-    }
-  }
-  const bool parallel = this->Camera->GetParallelProjection() != 0;
-  const double directionLength =
-    std::sqrt(direction[0] * direction[0] + direction[1] * direction[1] + direction[2] * direction[2]);
-  if (!IsFinite(eye) || !IsFinite(direction) || (parallel && !(directionLength > 0.0)))
+  scenevis::View view;
+  vtkProp3D* prop = internal.Prop3D;
+  if (!vtkBSPSortUtilities::ViewFromCamera(this->Camera, prop ? prop->GetMatrix() : nullptr, view))
   {
     vtkErrorMacro("The camera has a non-finite position or no view direction: passing the input "
                   "through unsorted.");
     output->ShallowCopy(input);
     return 1;
   }
-  const scenevis::View view = parallel
-    ? scenevis::View::parallel({ direction[0], direction[1], direction[2] })
-    : scenevis::View::perspective({ eye[0], eye[1], eye[2] });
 
   // Rebuild only when the input or the partition settings changed.
   bsp::BuildConfig config;
@@ -342,7 +270,7 @@ int vtkBSPSortFilter::RequestData(vtkInformation* vtkNotUsed(request),
     internal.Tree.reset();
     internal.CellOfSource.clear();
     scenevis::PolygonMesh mesh;
-    ToPolygonMesh(input, mesh, internal.CellOfSource);
+    vtkBSPSortUtilities::AppendPolygons(input, nullptr, mesh, internal.CellOfSource);
 
     if (mesh.polygonCount() == 0)
     {
@@ -377,45 +305,11 @@ int vtkBSPSortFilter::RequestData(vtkInformation* vtkNotUsed(request),
     }
 
     // View-independent part of the output: points and interpolated point data.
-    const vtkIdType numIn = input->GetNumberOfPoints();
-    const vtkIdType numOut = static_cast<vtkIdType>(tree->points.size());
-    vtkNew<vtkPoints> points;
-    points->SetDataType(input->GetPoints() ? input->GetPoints()->GetDataType() : VTK_FLOAT);
-    points->SetNumberOfPoints(numOut);
-    for (vtkIdType i = 0; i < numOut; ++i)
-    {
-      const glm::dvec3& p = tree->points[static_cast<std::size_t>(i)];
-      points->SetPoint(i, p.x, p.y, p.z);
-    }
     internal.Cache = vtkSmartPointer<vtkPolyData>::New();
+    vtkNew<vtkPoints> points;
+    vtkBSPSortUtilities::InterpolateSplitPoints(input, tree->splitPoints.data(),
+      tree->splitPoints.size(), points, internal.Cache->GetPointData());
     internal.Cache->SetPoints(points);
-    vtkPointData* outPD = internal.Cache->GetPointData();
-    outPD->DeepCopy(input->GetPointData());
-    for (int a = 0; a < outPD->GetNumberOfArrays(); ++a)
-    {
-      vtkAbstractArray* array = outPD->GetAbstractArray(a);
-      array->Resize(numOut);
-      array->SetNumberOfTuples(numOut);
-      for (std::size_t s = 0; s < tree->splitPoints.size(); ++s)
-      {
-        const bsp::SplitPoint& split = tree->splitPoints[s];
-        array->InterpolateTuple(numIn + static_cast<vtkIdType>(s), split.a, array, split.b, array,
-          split.t);
-      }
-    }
-    if (vtkDataArray* normals = outPD->GetNormals())
-    {
-      for (vtkIdType i = numIn; i < numOut; ++i)
-      {
-        double n[3];
-        normals->GetTuple(i, n);
-        const double length = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-        if (length > 0.0)
-        {
-          normals->SetTuple3(i, n[0] / length, n[1] / length, n[2] / length);
-        }
-      }
-    }
     internal.Cache->SetVerts(input->GetVerts());
     internal.Cache->SetLines(input->GetLines());
 

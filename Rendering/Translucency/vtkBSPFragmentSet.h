@@ -17,26 +17,17 @@
 #include "vtkPolyData.h"
 #include "vtkSmartPointer.h"
 
-#include "scenevis/PolygonMesh.h" // private header: the module links SceneVis::Core privately
+#include "scenevis/BspTree.h" // For scenevis::bsp::SplitPoint
 
 #include <cstdint>
 #include <vector>
 
-class vtkMatrix4x4;
-
 struct vtkBSPFragmentSet
 {
-  struct Split
-  {
-    std::uint32_t a;
-    std::uint32_t b;
-    double t;
-  };
-
   /// The polydata the point and cell ids refer to.
   vtkSmartPointer<vtkPolyData> Input;
   /// Split points, in creation order (point id = Input->GetNumberOfPoints() + index).
-  std::vector<Split> Splits;
+  std::vector<scenevis::bsp::SplitPoint> Splits;
   /// Fragment f uses Vertices[Offsets[f] .. Offsets[f+1]) (convex, >= 3 vertices).
   std::vector<std::uint32_t> Offsets{ 0 };
   std::vector<std::uint32_t> Vertices;
@@ -45,17 +36,6 @@ struct vtkBSPFragmentSet
 
   std::size_t FragmentCount() const { return this->Offsets.size() - 1; }
 };
-
-namespace vtkBSPFragmentSetUtilities
-{
-/**
- * Appends the polygons of @p input (polys, then strips as their triangles) to @p mesh, with the
- * points transformed by @p matrix (nullptr: unchanged), and for each appended polygon the input
- * cell id it came from to @p cellOf. Point ids are offset by the mesh's point count.
- */
-void AppendPolygons(vtkPolyData* input, vtkMatrix4x4* matrix, scenevis::PolygonMesh& mesh,
-  std::vector<vtkIdType>& cellOf);
-}
 
 #endif
 // VTK-HeaderTest-Exclude: vtkBSPFragmentSet.h

@@ -1,5 +1,7 @@
 #include "vtkBSPSortedPolyDataMapper.h"
 
+#include "vtkBSPSortUtilities.h"
+
 #include "vtkBSPFragmentSet.h"
 
 #include "vtkActor.h"
@@ -44,11 +46,6 @@ double SecondsSince(std::chrono::steady_clock::time_point start)
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-bool IsFinite(const double v[3])
-{
-  return std::isfinite(v[0]) && std::isfinite(v[1]) && std::isfinite(v[2]);
-}
-
 /// Whether drawing @p input with the mapper's colour settings needs per-fragment vertices
 /// (cell scalars, or cell normals without point normals).
 bool NeedsCellExpansion(vtkMapper* mapper, vtkPolyData* input)
@@ -82,68 +79,6 @@ int ExpandedScalarMode(int mode)
   }
 }
 } // namespace
-
-//------------------------------------------------------------------------------
-void vtkBSPFragmentSetUtilities::AppendPolygons(vtkPolyData* input, vtkMatrix4x4* matrix,
-  scenevis::PolygonMesh& mesh, std::vector<vtkIdType>& cellOf)
-{
-  const std::uint32_t base = static_cast<std::uint32_t>(mesh.points.size());
-  const vtkIdType numPoints = input->GetNumberOfPoints();
-  mesh.points.reserve(mesh.points.size() + static_cast<std::size_t>(numPoints));
-  for (vtkIdType i = 0; i < numPoints; ++i)
-  {
-    double p[4] = { 0.0, 0.0, 0.0, 1.0 };
-    input->GetPoint(i, p);
-    if (matrix)
-    {
-      matrix->MultiplyPoint(p, p);
-      if (p[3] != 0.0 && p[3] != 1.0)
-      {
-        p[0] /= p[3];
-        p[1] /= p[3];
-        p[2] /= p[3];
-      }
-    }
-    mesh.points.emplace_back(p[0], p[1], p[2]);
-  }
-  // Cell ids follow VTK's order: verts, lines, polys, strips.
-  const vtkIdType firstPoly = input->GetNumberOfVerts() + input->GetNumberOfLines();
-  std::vector<std::uint32_t> ids;
-  vtkIdType npts = 0;
-  const vtkIdType* pts = nullptr;
-  vtkCellArray* polys = input->GetPolys();
-  vtkIdType cellId = firstPoly;
-  for (polys->InitTraversal(); polys->GetNextCell(npts, pts); ++cellId)
-  {
-    ids.resize(static_cast<std::size_t>(npts));
-    for (vtkIdType k = 0; k < npts; ++k)
-    {
-      ids[static_cast<std::size_t>(k)] = base + static_cast<std::uint32_t>(pts[k]);
-    }
-    mesh.addPolygon(ids.data(), ids.size());
-    cellOf.push_back(cellId);
-  }
-  vtkCellArray* strips = input->GetStrips();
-  for (strips->InitTraversal(); strips->GetNextCell(npts, pts); ++cellId)
-  {
-    for (vtkIdType k = 0; k + 2 < npts; ++k)
-    {
-      // Alternate the winding so every triangle of the strip faces the same way.
-      const std::uint32_t a = base + static_cast<std::uint32_t>(pts[k]);
-      const std::uint32_t b = base + static_cast<std::uint32_t>(pts[k + 1]);
-      const std::uint32_t c = base + static_cast<std::uint32_t>(pts[k + 2]);
-      if (k % 2 == 0)
-      {
-        mesh.addPolygon({ a, b, c });
-      }
-      else
-      {
-        mesh.addPolygon({ b, a, c });
-      }
-      cellOf.push_back(cellId);
-    }
-  }
-}
 
 //------------------------------------------------------------------------------
 struct vtkBSPSortedPolyDataMapper::Internals
@@ -223,53 +158,12 @@ void vtkBSPSortedPolyDataMapper::Internals::BuildRenderData(vtkMapper* mapper, b
 {
   const vtkBSPFragmentSet& set = *this->Fragments;
   vtkPolyData* input = set.Input;
-  const vtkIdType numIn = input->GetNumberOfPoints();
-  const vtkIdType numOut = numIn + static_cast<vtkIdType>(set.Splits.size());
 
   // Positions and point data over input + split points.
   vtkNew<vtkPoints> points;
-  points->SetDataType(input->GetPoints() ? input->GetPoints()->GetDataType() : VTK_FLOAT);
-  points->SetNumberOfPoints(numOut);
-  for (vtkIdType i = 0; i < numIn; ++i)
-  {
-    points->SetPoint(i, input->GetPoint(i));
-  }
-  for (std::size_t s = 0; s < set.Splits.size(); ++s)
-  {
-    const vtkBSPFragmentSet::Split& split = set.Splits[s];
-    double a[3], b[3];
-    points->GetPoint(split.a, a);
-    points->GetPoint(split.b, b);
-    points->SetPoint(numIn + static_cast<vtkIdType>(s), a[0] + (b[0] - a[0]) * split.t,
-      a[1] + (b[1] - a[1]) * split.t, a[2] + (b[2] - a[2]) * split.t);
-  }
   vtkNew<vtkPointData> pointData;
-  pointData->DeepCopy(input->GetPointData());
-  for (int a = 0; a < pointData->GetNumberOfArrays(); ++a)
-  {
-    vtkAbstractArray* array = pointData->GetAbstractArray(a);
-    array->Resize(numOut);
-    array->SetNumberOfTuples(numOut);
-    for (std::size_t s = 0; s < set.Splits.size(); ++s)
-    {
-      const vtkBSPFragmentSet::Split& split = set.Splits[s];
-      array->InterpolateTuple(
-        numIn + static_cast<vtkIdType>(s), split.a, array, split.b, array, split.t);
-    }
-  }
-  if (vtkDataArray* normals = pointData->GetNormals())
-  {
-    for (vtkIdType i = numIn; i < numOut; ++i)
-    {
-      double n[3];
-      normals->GetTuple(i, n);
-      const double length = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-      if (length > 0.0)
-      {
-        normals->SetTuple3(i, n[0] / length, n[1] / length, n[2] / length);
-      }
-    }
-  }
+  vtkBSPSortUtilities::InterpolateSplitPoints(
+    input, set.Splits.data(), set.Splits.size(), points, pointData);
 
   // Fan triangles of every fragment.
   const std::size_t fragmentCount = set.FragmentCount();
@@ -571,15 +465,11 @@ void vtkBSPSortedPolyDataMapper::UpdateCameraShiftScale(vtkRenderer* ren, vtkAct
     internal.HaveView = false;
     scenevis::PolygonMesh mesh;
     std::vector<vtkIdType> cellOf;
-    vtkBSPFragmentSetUtilities::AppendPolygons(input, nullptr, mesh, cellOf);
+    vtkBSPSortUtilities::AppendPolygons(input, nullptr, mesh, cellOf);
     auto tree = std::make_unique<bsp::Tree>(bsp::build(mesh));
     auto fragments = std::make_shared<vtkBSPFragmentSet>();
     fragments->Input = input;
-    fragments->Splits.reserve(tree->splitPoints.size());
-    for (const bsp::SplitPoint& split : tree->splitPoints)
-    {
-      fragments->Splits.push_back({ split.a, split.b, split.t });
-    }
+    fragments->Splits = tree->splitPoints;
     fragments->Offsets.reserve(tree->fragments.size() + 1);
     fragments->Vertices.reserve(tree->fragmentVertices.size());
     fragments->Cells.reserve(tree->fragments.size());
@@ -665,32 +555,9 @@ void vtkBSPSortedPolyDataMapper::RenderPieceStart(vtkRenderer* ren, vtkActor* ac
   }
   else if (sortable && internal.Tree && !internal.Tree->empty())
   {
-    vtkCamera* camera = ren->GetActiveCamera();
-    double position[3], focal[3];
-    camera->GetPosition(position);
-    camera->GetFocalPoint(focal);
-    double eye[4] = { position[0], position[1], position[2], 1.0 };
-    double direction[4] = { focal[0] - position[0], focal[1] - position[1],
-      focal[2] - position[2], 0.0 };
-    vtkNew<vtkMatrix4x4> inverse;
-    vtkMatrix4x4::Invert(actor->GetMatrix(), inverse);
-    inverse->MultiplyPoint(eye, eye);
-    inverse->MultiplyPoint(direction, direction);
-    if (eye[3] != 0.0)
+    scenevis::View view;
+    if (vtkBSPSortUtilities::ViewFromCamera(ren->GetActiveCamera(), actor->GetMatrix(), view))
     {
-      for (int i = 0; i < 3; ++i)
-      {
-        eye[i] /= eye[3];
-      }
-    }
-    const bool parallel = camera->GetParallelProjection() != 0;
-    const double length = std::sqrt(direction[0] * direction[0] +
-      direction[1] * direction[1] + direction[2] * direction[2]);
-    if (IsFinite(eye) && IsFinite(direction) && length > 0.0)
-    {
-      const scenevis::View view = parallel
-        ? scenevis::View::parallel({ direction[0], direction[1], direction[2] })
-        : scenevis::View::perspective({ eye[0], eye[1], eye[2] });
       const bool moved = !internal.HaveView || view.eye != internal.LastView.eye;
       if (moved || !internal.IBOHasOrder)
       {

@@ -1,5 +1,7 @@
 #include "vtkBSPTranslucentPass.h"
 
+#include "vtkBSPSortUtilities.h"
+
 #include "vtkBSPFragmentSet.h"
 #include "vtkBSPSortedPolyDataMapper.h"
 
@@ -169,7 +171,7 @@ void vtkBSPTranslucentPass::Internals::Build()
   for (Entry& entry : this->Entries)
   {
     matrix->DeepCopy(entry.Matrix.data());
-    vtkBSPFragmentSetUtilities::AppendPolygons(entry.Input, matrix, mesh, cellOf);
+    vtkBSPSortUtilities::AppendPolygons(entry.Input, matrix, mesh, cellOf);
     pointStart.push_back(static_cast<std::uint32_t>(mesh.points.size()));
     polygonStart.push_back(static_cast<std::uint32_t>(mesh.polygonCount()));
   }

@@ -1,0 +1,160 @@
+#include "vtkBSPSortUtilities.h"
+
+#include "vtkAbstractArray.h"
+#include "vtkCamera.h"
+#include "vtkCellArray.h"
+#include "vtkDataArray.h"
+#include "vtkMatrix4x4.h"
+#include "vtkNew.h"
+#include "vtkPointData.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+
+#include <cmath>
+#include <cstdint>
+
+namespace
+{
+bool IsFinite(const double v[3])
+{
+  return std::isfinite(v[0]) && std::isfinite(v[1]) && std::isfinite(v[2]);
+}
+} // namespace
+
+//------------------------------------------------------------------------------
+void vtkBSPSortUtilities::AppendPolygons(vtkPolyData* input, vtkMatrix4x4* matrix,
+  scenevis::PolygonMesh& mesh, std::vector<vtkIdType>& cellOf)
+{
+  const auto base = static_cast<std::uint32_t>(mesh.points.size());
+  const vtkIdType numPoints = input->GetNumberOfPoints();
+  mesh.points.reserve(mesh.points.size() + static_cast<std::size_t>(numPoints));
+  for (vtkIdType i = 0; i < numPoints; ++i)
+  {
+    double p[4] = { 0.0, 0.0, 0.0, 1.0 };
+    input->GetPoint(i, p);
+    if (matrix)
+    {
+      matrix->MultiplyPoint(p, p);
+      if (p[3] != 0.0 && p[3] != 1.0)
+      {
+        p[0] /= p[3];
+        p[1] /= p[3];
+        p[2] /= p[3];
+      }
+    }
+    mesh.points.emplace_back(p[0], p[1], p[2]);
+  }
+  // Cell ids follow VTK's order: verts, lines, polys, strips.
+  vtkIdType cellId = input->GetNumberOfVerts() + input->GetNumberOfLines();
+  std::vector<std::uint32_t> ids;
+  vtkIdType npts = 0;
+  const vtkIdType* pts = nullptr;
+  vtkCellArray* polys = input->GetPolys();
+  for (polys->InitTraversal(); polys->GetNextCell(npts, pts); ++cellId)
+  {
+    ids.resize(static_cast<std::size_t>(npts));
+    for (vtkIdType k = 0; k < npts; ++k)
+    {
+      ids[static_cast<std::size_t>(k)] = base + static_cast<std::uint32_t>(pts[k]);
+    }
+    mesh.addPolygon(ids.data(), ids.size());
+    cellOf.push_back(cellId);
+  }
+  vtkCellArray* strips = input->GetStrips();
+  for (strips->InitTraversal(); strips->GetNextCell(npts, pts); ++cellId)
+  {
+    for (vtkIdType k = 0; k + 2 < npts; ++k)
+    {
+      // Every other triangle of a strip is wound the other way: swap so all face the same way.
+      const std::uint32_t a = base + static_cast<std::uint32_t>(pts[k]);
+      const std::uint32_t b = base + static_cast<std::uint32_t>(pts[k + 1]);
+      const std::uint32_t c = base + static_cast<std::uint32_t>(pts[k + 2]);
+      if (k % 2 == 0)
+      {
+        mesh.addPolygon({ a, b, c });
+      }
+      else
+      {
+        mesh.addPolygon({ b, a, c });
+      }
+      cellOf.push_back(cellId);
+    }
+  }
+}
+
+//------------------------------------------------------------------------------
+void vtkBSPSortUtilities::InterpolateSplitPoints(vtkPolyData* input,
+  const scenevis::bsp::SplitPoint* splits, std::size_t count, vtkPoints* points,
+  vtkPointData* pointData)
+{
+  const vtkIdType numIn = input->GetNumberOfPoints();
+  const vtkIdType numOut = numIn + static_cast<vtkIdType>(count);
+  points->SetDataType(input->GetPoints() ? input->GetPoints()->GetDataType() : VTK_FLOAT);
+  points->SetNumberOfPoints(numOut);
+  for (vtkIdType i = 0; i < numIn; ++i)
+  {
+    points->SetPoint(i, input->GetPoint(i));
+  }
+  // Positions go through the same interpolation as every other per-point array.
+  pointData->DeepCopy(input->GetPointData());
+  for (int a = -1; a < pointData->GetNumberOfArrays(); ++a)
+  {
+    vtkAbstractArray* array = a < 0 ? points->GetData() : pointData->GetAbstractArray(a);
+    array->Resize(numOut);
+    array->SetNumberOfTuples(numOut);
+    for (std::size_t s = 0; s < count; ++s)
+    {
+      array->InterpolateTuple(
+        numIn + static_cast<vtkIdType>(s), splits[s].a, array, splits[s].b, array, splits[s].t);
+    }
+  }
+  if (vtkDataArray* normals = pointData->GetNormals())
+  {
+    for (vtkIdType i = numIn; i < numOut; ++i)
+    {
+      double n[3];
+      normals->GetTuple(i, n);
+      const double length = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+      if (length > 0.0)
+      {
+        normals->SetTuple3(i, n[0] / length, n[1] / length, n[2] / length);
+      }
+    }
+  }
+}
+
+//------------------------------------------------------------------------------
+bool vtkBSPSortUtilities::ViewFromCamera(
+  vtkCamera* camera, vtkMatrix4x4* propMatrix, scenevis::View& view)
+{
+  double position[3], focal[3];
+  camera->GetPosition(position);
+  camera->GetFocalPoint(focal);
+  double eye[4] = { position[0], position[1], position[2], 1.0 };
+  double direction[4] = { focal[0] - position[0], focal[1] - position[1], focal[2] - position[2],
+    0.0 };
+  if (propMatrix)
+  {
+    vtkNew<vtkMatrix4x4> inverse;
+    vtkMatrix4x4::Invert(propMatrix, inverse);
+    inverse->MultiplyPoint(eye, eye);
+    inverse->MultiplyPoint(direction, direction);
+    if (eye[3] != 0.0)
+    {
+      for (int i = 0; i < 3; ++i)
+      {
+        eye[i] /= eye[3];
+      }
+    }
+  }
+  const double length =
+    std::sqrt(direction[0] * direction[0] + direction[1] * direction[1] + direction[2] * direction[2]);
+  const bool parallel = camera->GetParallelProjection() != 0;
+  if (!IsFinite(eye) || !IsFinite(direction) || (parallel && !(length > 0.0)))
+  {
+    return false;
+  }
+  view = parallel ? scenevis::View::parallel({ direction[0], direction[1], direction[2] })
+                  : scenevis::View::perspective({ eye[0], eye[1], eye[2] });
+  return true;
+}
