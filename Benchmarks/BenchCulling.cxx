@@ -39,9 +39,11 @@ struct PropScene
   double radius;
 };
 
+// Released by main() before exit: the OSMesa window must go before static destruction.
+std::map<std::size_t, std::unique_ptr<PropScene>> cache;
+
 PropScene& scene(std::size_t n)
 {
-  static std::map<std::size_t, std::unique_ptr<PropScene>> cache;
   auto& s = cache[n];
   if (!s)
   {
@@ -162,4 +164,15 @@ BENCHMARK(BM_OctreeCuller_Manual_100k)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Smoke_VtkFrustumCoverageCuller_1k)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_Smoke_OctreeCuller_1k)->Unit(benchmark::kMicrosecond);
 
-BENCHMARK_MAIN();
+int main(int argc, char** argv)
+{
+  benchmark::Initialize(&argc, argv);
+  if (benchmark::ReportUnrecognizedArguments(argc, argv))
+  {
+    return 1;
+  }
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  cache.clear();
+  return 0;
+}

@@ -1,0 +1,221 @@
+// Specification: bad input to vtkOctreeCuller gives correct output or a clear VTK warning, never
+// a crash: props with empty / NaN bounds, 2D props, unusable cameras, a zero-size viewport, and
+// props added, removed and moved between frames (all three update modes).
+#include "vtkOctreeCuller.h"
+
+#include "scenevis/testing/RenderWindow.h"
+#include "scenevis/testing/StrictVtkOutput.h"
+
+#include <vtkActor.h>
+#include <vtkActor2D.h>
+#include <vtkCamera.h>
+#include <vtkCubeSource.h>
+#include <vtkCullerCollection.h>
+#include <vtkFrustumCoverageCuller.h>
+#include <vtkNew.h>
+#include <vtkPolyData.h>
+#include <vtkPolyDataMapper.h>
+#include <vtkPolyDataMapper2D.h>
+#include <vtkRenderWindow.h>
+#include <vtkRenderer.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <iostream>
+#include <limits>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace
+{
+namespace st = scenevis::testing;
+
+bool Check(bool ok, const std::string& what)
+{
+  std::cout << (ok ? "ok   " : "FAIL ") << what << "\n";
+  return ok;
+}
+
+vtkSmartPointer<vtkActor> Cube(double x, double y, double z)
+{
+  vtkNew<vtkCubeSource> cube;
+  cube->SetCenter(x, y, z);
+  vtkNew<vtkPolyDataMapper> mapper;
+  mapper->SetInputConnection(cube->GetOutputPort());
+  vtkNew<vtkActor> actor;
+  actor->SetMapper(mapper);
+  return actor;
+}
+
+/// Cull a copy of @p props; returns the drawn ones (the list's first listLength entries).
+std::vector<vtkProp*> Run(vtkOctreeCuller* culler, vtkRenderer* ren, std::vector<vtkProp*> props,
+  double* total = nullptr)
+{
+  int length = static_cast<int>(props.size());
+  int initialized = 0;
+  const double t = culler->Cull(ren, props.data(), length, initialized);
+  if (total)
+  {
+    *total = t;
+  }
+  if (initialized != 1 || length < 0 || length > static_cast<int>(props.size()))
+  {
+    std::cout << "FAIL contract: initialized " << initialized << ", length " << length << "\n";
+    return {};
+  }
+  return std::vector<vtkProp*>(props.begin(), props.begin() + length);
+}
+
+bool Has(const std::vector<vtkProp*>& v, vtkProp* p)
+{
+  return std::find(v.begin(), v.end(), p) != v.end();
+}
+} // namespace
+
+int TestOctreeCullerBadInput(int, char*[])
+{
+  st::StrictVtkOutput vtkOutput;
+  vtkOutput.ExpectWarning("non-finite bounds");
+  vtkOutput.ExpectWarning("camera is not usable");
+  vtkOutput.ExpectWarning("viewport has zero size");
+  bool ok = true;
+  vtkSmartPointer<vtkRenderWindow> window = st::MakeRenderWindow(200, 150);
+  vtkNew<vtkRenderer> ren;
+  window->AddRenderer(ren);
+  ren->GetCullers()->RemoveAllItems();
+  vtkNew<vtkOctreeCuller> culler;
+  ren->AddCuller(culler);
+
+  vtkSmartPointer<vtkActor> visible = Cube(0, 0, 0);
+  vtkSmartPointer<vtkActor> behind = Cube(0, 0, 50); // behind the camera
+  // Empty polydata: uninitialized bounds.
+  vtkNew<vtkPolyDataMapper> emptyMapper;
+  vtkNew<vtkPolyData> emptyData;
+  emptyMapper->SetInputData(emptyData);
+  vtkNew<vtkActor> empty;
+  empty->SetMapper(emptyMapper);
+  // NaN bounds through a NaN position.
+  vtkSmartPointer<vtkActor> nanActor = Cube(0, 0, 0);
+  nanActor->SetPosition(std::nan(""), 0, 0);
+  // A 2D prop (no bounds) and an actor without mapper.
+  vtkNew<vtkActor2D> flat;
+  vtkNew<vtkPolyDataMapper2D> flatMapper;
+  flatMapper->SetInputData(emptyData);
+  flat->SetMapper(flatMapper);
+  vtkNew<vtkActor> noMapper;
+  for (vtkProp* p : std::vector<vtkProp*>{ visible, behind, empty, nanActor, flat, noMapper })
+  {
+    ren->AddViewProp(p);
+  }
+  vtkCamera* cam = ren->GetActiveCamera();
+  cam->SetPosition(0, 0, 10);
+  cam->SetFocalPoint(0, 0, 0);
+  cam->SetClippingRange(1, 100);
+
+  std::vector<vtkProp*> all{ visible, behind, empty, nanActor, flat, noMapper };
+  double total = 0;
+  std::vector<vtkProp*> drawn = Run(culler, ren, all, &total);
+  ok &= Check(drawn.size() == 5 && !Has(drawn, behind),
+    "props with empty/NaN/no bounds and 2D props are kept; the one behind is culled");
+  ok &= Check(total > 0, "total render time > 0 while props remain");
+
+  // Rendering with it installed works.
+  window->Render();
+  ok &= Check(culler->GetNumberOfPropsDrawn() == 5, "render: 5 drawn");
+
+  // Camera with a NaN position: warning, nothing culled.
+  cam->SetPosition(std::nan(""), 0, 10);
+  drawn = Run(culler, ren, all);
+  ok &= Check(drawn.size() == all.size() && culler->GetCullingSkipped(), "NaN camera: all kept");
+  cam->SetPosition(0, 0, 10);
+  // Zero view angle (VTK clamps it to a tiny angle): no crash, the far cube is culled.
+  cam->SetViewAngle(0.0);
+  drawn = Run(culler, ren, all);
+  ok &= Check(!Has(drawn, behind), "zero view angle: no crash");
+  cam->SetViewAngle(30.0);
+  // Parallel projection with zero scale: no crash.
+  cam->ParallelProjectionOn();
+  cam->SetParallelScale(0.0);
+  drawn = Run(culler, ren, all);
+  ok &= Check(drawn.size() >= 4, "zero parallel scale: no crash, unbounded props kept");
+  cam->ParallelProjectionOff();
+
+  // Zero-size viewport: warning, nothing culled.
+  ren->SetViewport(0.5, 0.5, 0.5, 0.5);
+  drawn = Run(culler, ren, all);
+  ok &= Check(drawn.size() == all.size(), "zero-size viewport: all kept");
+  ren->SetViewport(0, 0, 1, 1);
+
+  // Empty list and null list.
+  int zero = 0, init = 0;
+  ok &= Check(culler->Cull(ren, nullptr, zero, init) == 0.0 && zero == 0, "empty list");
+
+  // Moves between frames, per update mode.
+  for (int mode = vtkOctreeCuller::UPDATE_BOUNDS_EVERY_FRAME;
+       mode <= vtkOctreeCuller::UPDATE_MANUAL; ++mode)
+  {
+    culler->SetUpdateMode(mode);
+    std::vector<vtkProp*> two{ visible, behind };
+    drawn = Run(culler, ren, two);
+    ok &= Check(!Has(drawn, behind), "mode " + std::to_string(mode) + ": behind culled");
+    behind->SetPosition(0, 0, -50); // now in front (cube centre at z = 0)
+    if (mode == vtkOctreeCuller::UPDATE_MANUAL)
+    {
+      drawn = Run(culler, ren, two);
+      ok &= Check(!Has(drawn, behind), "manual mode: not seen before InvalidateProp()");
+      culler->InvalidateProp(behind);
+    }
+    drawn = Run(culler, ren, two);
+    ok &= Check(Has(drawn, behind), "mode " + std::to_string(mode) + ": moved prop is drawn");
+    behind->SetPosition(0, 0, 0);
+    culler->InvalidateProp(behind);
+    Run(culler, ren, two);
+  }
+  culler->SetUpdateMode(vtkOctreeCuller::UPDATE_BOUNDS_EVERY_FRAME);
+
+  // Added and removed props between frames; the same prop twice.
+  const vtkIdType rebuilds = culler->GetNumberOfRebuilds();
+  vtkSmartPointer<vtkActor> added = Cube(1, 1, 0);
+  drawn = Run(culler, ren, { visible, added, behind, visible });
+  ok &= Check(Has(drawn, added) && culler->GetNumberOfRebuilds() == rebuilds + 1,
+    "added prop: rebuilt once and drawn");
+  drawn = Run(culler, ren, { added });
+  ok &= Check(drawn.size() == 1 && culler->GetNumberOfRebuilds() == rebuilds + 1,
+    "removed props: subset mapped without a rebuild");
+  added = nullptr; // deleted while the culler may still know it
+  drawn = Run(culler, ren, { visible, Cube(2, 0, 0) });
+  ok &= Check(drawn.size() == 2, "a deleted prop and a new one: no crash");
+
+  // Front-to-back sorting of the drawn props; 2D props first.
+  {
+    vtkSmartPointer<vtkActor> nearCube = Cube(0, 0, 5), midCube = Cube(0, 0, 0),
+                              farCube = Cube(0, 0, -5);
+    culler->SetSortingStyle(VTK_CULLER_SORT_FRONT_TO_BACK);
+    drawn = Run(culler, ren, { farCube, flat, nearCube, midCube });
+    ok &= Check(drawn.size() == 4 && drawn[0] == flat.GetPointer() && drawn[1] == nearCube &&
+        drawn[2] == midCube && drawn[3] == farCube,
+      "front-to-back: 2D prop first, then near, mid, far");
+    culler->SetSortingStyle(VTK_CULLER_SORT_BACK_TO_FRONT);
+    drawn = Run(culler, ren, { farCube, flat, nearCube, midCube });
+    ok &= Check(drawn.size() == 4 && drawn[0] == farCube && drawn[2] == nearCube,
+      "back-to-front: far first");
+    culler->SetSortingStyle(VTK_CULLER_SORT_NONE);
+  }
+
+  // After vtkFrustumCoverageCuller (default install + ours): still correct.
+  vtkNew<vtkRenderer> both;
+  window->AddRenderer(both);
+  both->AddCuller(culler);
+  both->AddActor(visible);
+  both->AddActor(Cube(0, 0, 50));
+  both->GetActiveCamera()->SetPosition(0, 0, 10);
+  both->GetActiveCamera()->SetFocalPoint(0, 0, 0);
+  window->Render();
+  ok &= Check(culler->GetNumberOfPropsDrawn() == 1, "after vtkFrustumCoverageCuller: 1 drawn");
+  std::ostringstream os;
+  culler->Print(os);
+  ok &= Check(os.str().find("NumberOfRebuilds") != std::string::npos, "PrintSelf");
+  return vtkOutput.ExitCode(ok ? EXIT_SUCCESS : EXIT_FAILURE);
+}
