@@ -1,0 +1,207 @@
+#pragma once
+/**
+ * @file PortalTraversal.h
+ * @brief Per-frame cells-and-portals visibility: which rooms, and which boxes in them, can be seen.
+ *
+ * The view is clipped through the portals the eye can see (Luebke & Georges 1995), with an
+ * explicit work list (no recursion, no depth limit). A "region" is the set of view rays that may
+ * reach a room through one chain of portals. Two narrowing modes:
+ *
+ * - ScreenRectangles (Luebke-Georges): a region is an axis-aligned rectangle in normalised device
+ *   coordinates. Crossing a portal intersects it with the screen bounding rectangle of the portal
+ *   (clipped at the eye plane and the far plane). Cheap; loose for oblique portals.
+ * - ExactFrustum: a region is a convex cone from the eye: the rectangle plus one plane through the
+ *   eye and each edge of the portal polygon after clipping it by the current region. Tighter.
+ *
+ * Guarantee (both modes): every view ray that reaches a room's geometry through portals lies in a
+ * region of that room, so culling objects with boxVisible() never removes a visible object
+ * (assumptions in PortalGraph.h). Details that keep it so:
+ * - The work list follows every portal from every region, whatever the path (no "visited" stop):
+ *   a room reached twice by different paths gets the union of its regions, and cycles terminate
+ *   because a region contained in one the room already has is not expanded again (a ray crosses a
+ *   portal plane only once, so walking back adds nothing new and is absorbed this way).
+ * - A room with more than maxRegionsPerRoom regions has them merged into their bounding rectangle
+ *   (bigger, so still conservative), which bounds the work per frame.
+ * - Portals are clipped at the eye plane, not the near plane: a ray may cross a doorway before the
+ *   near plane and still show what is behind it. A portal closer to the eye than the near-plane
+ *   corners (the eye stands in it) makes both its rooms start rooms with the whole frustum; a
+ *   portal whose plane passes through the eye (seen edge-on) or that is not planar passes the
+ *   region on un-narrowed.
+ * - Fallback to frustum-only culling (every room visible, boxes tested against the view frustum):
+ *   eye in no room (OutsidePolicy), a leaky room reached, a parallel projection (its rays start on
+ *   the whole near rectangle, which may span many rooms), or an invalid view matrix.
+ *
+ * Tolerances: planes are compared with a slack of 10x PortalGraph::tolerance() and rectangles are
+ * grown by 1e-9 in NDC, always in the direction that keeps more.
+ */
+
+#include "scenevis/Frustum.h"
+#include "scenevis/PortalGraph.h"
+
+#include <glm/mat4x4.hpp>
+#include <glm/vec3.hpp>
+#include <glm/vec4.hpp>
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+namespace scenevis
+{
+namespace portals
+{
+
+class PortalPvs;
+
+enum class NarrowingMode
+{
+  ScreenRectangles, ///< Luebke-Georges screen-space rectangles.
+  ExactFrustum      ///< Planes through the eye and the clipped portal's edges.
+};
+
+/// The camera of a frame.
+struct PortalView
+{
+  /// Clip-from-world matrix, OpenGL conventions (see Frustum.h).
+  glm::dmat4 clipFromWorld{ 1.0 };
+  /// The eye (camera position).
+  glm::dvec3 eye{ 0.0 };
+  bool parallel = false;
+
+  /// From VTK's row-major composite projection matrix (vtkMatrix4x4::GetData()).
+  static PortalView fromRowMajor(const double m[16], const glm::dvec3& eye, bool parallel);
+};
+
+struct TraversalOptions
+{
+  NarrowingMode mode = NarrowingMode::ExactFrustum;
+  OutsidePolicy outside = OutsidePolicy::ExteriorPortals;
+  /// Regions kept per room before they are merged into their bounding rectangle.
+  std::size_t maxRegionsPerRoom = 8;
+  /// Distance below which the eye "stands in" a portal; < 0: the distance from the eye to the
+  /// near-plane corners of the view (what the near plane can reach).
+  double nearDistance = -1.0;
+};
+
+/// Why a frame fell back to frustum-only culling.
+enum class Fallback
+{
+  None,
+  EyeInNoRoom,
+  LeakyRoom,
+  ParallelProjection,
+  InvalidView
+};
+
+/// Per-frame statistics.
+struct FrameStats
+{
+  std::size_t startRooms = 0;       ///< Nodes the traversal started from.
+  std::size_t roomsVisited = 0;     ///< Nodes with at least one region (incl. the outside).
+  std::size_t regionsExpanded = 0;  ///< Work-list entries processed.
+  std::size_t portalsTested = 0;    ///< Portal crossings attempted.
+  std::size_t portalsTraversed = 0; ///< Crossings that produced a new region.
+  std::size_t regionsSubsumed = 0;  ///< New regions contained in an existing one (not expanded).
+  std::size_t regionsMerged = 0;    ///< Merges into a bounding rectangle.
+  Fallback fallback = Fallback::None;
+  // Filled by cullObjects():
+  std::size_t objectsDrawn = 0;
+  std::size_t objectsTotal = 0;
+  std::uint64_t trianglesDrawn = 0;
+  std::uint64_t trianglesTotal = 0;
+};
+
+/// Something to cull: a box in a room (node id of the graph; -1: in no room, frustum only).
+struct PortalObject
+{
+  std::int32_t node = -1;
+  Box bounds;
+  std::uint64_t triangles = 0;
+};
+
+/**
+ * The traversal and its result for one frame. Keep one instance and call run() every frame: it
+ * reuses its buffers (no allocation in steady state).
+ */
+class PortalTraversal
+{
+public:
+  /// Traverse @p graph for @p view. The graph must outlive the queries of this frame.
+  void run(const PortalGraph& graph, const PortalView& view, const TraversalOptions& options);
+
+  /// PVS mode: the union of the PVS of the eye's rooms, each room with the whole frustum.
+  void runPvs(const PortalGraph& graph,
+    const PortalPvs& pvs,
+    const PortalView& view,
+    const TraversalOptions& options);
+
+  /// Frustum-only: every node visible, boxes tested against the view frustum.
+  void runFrustumOnly(const PortalGraph& graph, const PortalView& view);
+
+  /// Whether node @p node (room, or the outside node) may be seen at all.
+  bool nodeVisible(std::int32_t node) const;
+
+  /// Whether a box in node @p node may be seen (node < 0 or unknown: frustum test only).
+  bool boxVisible(std::int32_t node, const Box& box) const;
+
+  /// Nodes that may be seen, in the order they were first reached.
+  const std::vector<std::int32_t>& visibleNodes() const { return this->Visible; }
+
+  /// Cull @p objects: visible[i] = 1 if object i may be seen; fills the object counts of stats().
+  void cullObjects(const std::vector<PortalObject>& objects, std::vector<std::uint8_t>& visible);
+
+  const FrameStats& stats() const { return this->Stats; }
+  const culling::Frustum& frustum() const { return this->ViewFrustum; }
+  /// The rectangles (xmin, ymin, xmax, ymax in NDC) of a node's regions, for drawing/debugging.
+  std::vector<glm::dvec4> regionRectangles(std::int32_t node) const;
+
+private:
+  struct Region
+  {
+    glm::dvec4 rect;               ///< xmin, ymin, xmax, ymax (NDC)
+    std::uint32_t firstPlane = 0;  ///< Into Planes: 4 rectangle planes, then edge planes.
+    std::uint32_t planeCount = 0;
+    std::uint32_t firstVertex = 0; ///< Into Vertices: the clipped portal (exact mode).
+    std::uint32_t vertexCount = 0;
+    std::uint32_t edgePlanes = 0;
+  };
+  struct Work
+  {
+    std::int32_t node;
+    std::uint32_t region;
+    std::uint32_t generation; ///< Stale when the node's regions were merged since.
+  };
+
+  bool begin(const PortalGraph& graph, const PortalView& view, const TraversalOptions& options);
+  void fallBack(Fallback why);
+  std::uint32_t addRegion(const glm::dvec4& rect);
+  bool attach(std::int32_t node, std::uint32_t region, bool checkSubsumed);
+  bool subsumed(const Region& inner, const Region& outer) const;
+  void crossPortal(const GraphPortal& portal, std::int32_t to, std::uint32_t from);
+  glm::dvec4 rectPlane(int side, double value) const;
+  void startRegion(std::int32_t node, bool expand);
+
+  const PortalGraph* Graph = nullptr;
+  TraversalOptions Options;
+  PortalView View;
+  culling::Frustum ViewFrustum;
+  glm::dvec4 Rows[4]{}; ///< Rows of clipFromWorld.
+  glm::dvec4 FrontPlane{ 0.0 };
+  double PlaneSlack = 0.0;
+  double NearDistance = 0.0;
+  bool FrustumOnly = false;
+  FrameStats Stats;
+
+  std::vector<Region> Regions;
+  std::vector<glm::dvec4> Planes;
+  std::vector<glm::dvec3> Vertices;
+  /// Per node: its region ids (a node's list is rebuilt when merged).
+  std::vector<std::vector<std::uint32_t>> NodeRegions;
+  std::vector<std::uint32_t> NodeGeneration;
+  std::vector<std::int32_t> Visible;
+  std::vector<Work> Stack;
+  std::vector<glm::dvec3> ClipA, ClipB;
+};
+
+} // namespace portals
+} // namespace scenevis

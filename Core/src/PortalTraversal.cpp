@@ -1,0 +1,550 @@
+#include "scenevis/PortalTraversal.h"
+
+#include "scenevis/PortalGeometry.h"
+#include "scenevis/PortalPvs.h"
+
+#include <glm/geometric.hpp>
+#include <glm/matrix.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace scenevis
+{
+namespace portals
+{
+
+namespace
+{
+/// Rectangles grow by this much (NDC) whenever they are computed: float noise never shrinks them.
+constexpr double kRectSlack = 1e-9;
+
+glm::dvec4 normalizedPlane(const glm::dvec4& p)
+{
+  const double len = glm::length(glm::dvec3(p));
+  return len > 0.0 ? p / len : p;
+}
+} // namespace
+
+PortalView PortalView::fromRowMajor(const double m[16], const glm::dvec3& eye, bool parallel)
+{
+  PortalView v;
+  for (int r = 0; r < 4; ++r)
+  {
+    for (int c = 0; c < 4; ++c)
+    {
+      v.clipFromWorld[c][r] = m[4 * r + c];
+    }
+  }
+  v.eye = eye;
+  v.parallel = parallel;
+  return v;
+}
+
+glm::dvec4 PortalTraversal::rectPlane(int side, double value) const
+{
+  // x_ndc >= v  <=>  row0 . P - v * row3 . P >= 0 (w > 0); likewise for the other sides.
+  switch (side)
+  {
+    case 0:
+      return normalizedPlane(this->Rows[0] - value * this->Rows[3]);
+    case 1:
+      return normalizedPlane(value * this->Rows[3] - this->Rows[0]);
+    case 2:
+      return normalizedPlane(this->Rows[1] - value * this->Rows[3]);
+    default:
+      return normalizedPlane(value * this->Rows[3] - this->Rows[1]);
+  }
+}
+
+std::uint32_t PortalTraversal::addRegion(const glm::dvec4& rect)
+{
+  Region r;
+  r.rect = rect;
+  r.firstPlane = static_cast<std::uint32_t>(this->Planes.size());
+  this->Planes.push_back(this->rectPlane(0, rect.x));
+  this->Planes.push_back(this->rectPlane(1, rect.z));
+  this->Planes.push_back(this->rectPlane(2, rect.y));
+  this->Planes.push_back(this->rectPlane(3, rect.w));
+  r.planeCount = 4;
+  r.firstVertex = static_cast<std::uint32_t>(this->Vertices.size());
+  this->Regions.push_back(r);
+  return static_cast<std::uint32_t>(this->Regions.size() - 1);
+}
+
+void PortalTraversal::fallBack(Fallback why)
+{
+  this->FrustumOnly = true;
+  this->Stats.fallback = why;
+  this->Stack.clear();
+  this->Visible.clear();
+  if (this->Graph)
+  {
+    for (std::int32_t n = 0; n < this->Graph->nodeCount(); ++n)
+    {
+      this->Visible.push_back(n);
+    }
+  }
+  this->Stats.roomsVisited = this->Visible.size();
+}
+
+bool PortalTraversal::begin(const PortalGraph& graph, const PortalView& view,
+  const TraversalOptions& options)
+{
+  this->Graph = &graph;
+  this->Options = options;
+  this->View = view;
+  this->Stats = FrameStats();
+  this->FrustumOnly = false;
+  this->Regions.clear();
+  this->Planes.clear();
+  this->Vertices.clear();
+  this->Visible.clear();
+  this->Stack.clear();
+  const auto nodes = static_cast<std::size_t>(graph.nodeCount());
+  if (this->NodeRegions.size() < nodes)
+  {
+    this->NodeRegions.resize(nodes);
+  }
+  for (auto& list : this->NodeRegions)
+  {
+    list.clear();
+  }
+  this->NodeGeneration.assign(nodes, 0);
+  this->PlaneSlack = 10.0 * graph.tolerance();
+
+  this->ViewFrustum = culling::Frustum::fromViewProjection(view.clipFromWorld);
+  const glm::dmat4& m = view.clipFromWorld;
+  for (int r = 0; r < 4; ++r)
+  {
+    this->Rows[r] = glm::dvec4(m[0][r], m[1][r], m[2][r], m[3][r]);
+  }
+  const bool finiteEye =
+    std::isfinite(view.eye.x) && std::isfinite(view.eye.y) && std::isfinite(view.eye.z);
+  if (!this->ViewFrustum.valid() || !finiteEye)
+  {
+    this->fallBack(Fallback::InvalidView);
+    return false;
+  }
+  if (view.parallel)
+  {
+    this->fallBack(Fallback::ParallelProjection);
+    return false;
+  }
+  // How far the near plane reaches from the eye: its corners.
+  const glm::dmat4 inv = glm::inverse(m);
+  double reach = 0.0;
+  for (int k = 0; k < 4; ++k)
+  {
+    glm::dvec4 c = inv * glm::dvec4(k & 1 ? 1.0 : -1.0, k & 2 ? 1.0 : -1.0, -1.0, 1.0);
+    if (!(std::abs(c.w) > 0.0))
+    {
+      continue;
+    }
+    reach = std::max(reach, glm::length(glm::dvec3(c) / c.w - view.eye));
+  }
+  if (!std::isfinite(reach))
+  {
+    this->fallBack(Fallback::InvalidView);
+    return false;
+  }
+  this->NearDistance = options.nearDistance >= 0.0 ? options.nearDistance : 1.01 * reach;
+  // The eye plane (w = depth in front of the eye), moved a hair forward so that projected points
+  // stay finite; portals closer than that are within NearDistance and handled by locate().
+  const glm::dvec4 front = normalizedPlane(this->Rows[3]);
+  const double nearDepth = geometry::planeDistance(front, glm::dvec3(inv * glm::dvec4(0, 0, -1, 1)) /
+      (inv * glm::dvec4(0, 0, -1, 1)).w);
+  this->FrontPlane = front - glm::dvec4(0.0, 0.0, 0.0, 1e-3 * std::max(nearDepth, 0.0));
+  return true;
+}
+
+bool PortalTraversal::subsumed(const Region& inner, const Region& outer) const
+{
+  constexpr double e = 1e-12;
+  if (inner.rect.x < outer.rect.x - e || inner.rect.y < outer.rect.y - e ||
+    inner.rect.z > outer.rect.z + e || inner.rect.w > outer.rect.w + e)
+  {
+    return false;
+  }
+  if (outer.edgePlanes == 0)
+  {
+    return true;
+  }
+  if (inner.vertexCount == 0)
+  {
+    return false; // a rectangle-only region: cannot show it is inside the edge planes
+  }
+  const std::uint32_t firstEdge = outer.firstPlane + 4;
+  for (std::uint32_t v = inner.firstVertex; v < inner.firstVertex + inner.vertexCount; ++v)
+  {
+    for (std::uint32_t p = firstEdge; p < firstEdge + outer.edgePlanes; ++p)
+    {
+      if (geometry::planeDistance(this->Planes[p], this->Vertices[v]) < -this->PlaneSlack)
+      {
+        return false;
+      }
+    }
+  }
+  return true;
+}
+
+bool PortalTraversal::attach(std::int32_t node, std::uint32_t region, bool checkSubsumed)
+{
+  auto& list = this->NodeRegions[static_cast<std::size_t>(node)];
+  if (checkSubsumed)
+  {
+    for (const std::uint32_t other : list)
+    {
+      if (other == region || this->subsumed(this->Regions[region], this->Regions[other]))
+      {
+        ++this->Stats.regionsSubsumed;
+        return false;
+      }
+    }
+  }
+  if (list.empty())
+  {
+    this->Visible.push_back(node);
+    if (this->Graph->rooms()[static_cast<std::size_t>(node)].leaky)
+    {
+      // Something unknown is behind this room's broken portal: give up narrowing.
+      this->fallBack(Fallback::LeakyRoom);
+      return false;
+    }
+  }
+  list.push_back(region);
+  auto& generation = this->NodeGeneration[static_cast<std::size_t>(node)];
+  if (list.size() > std::max<std::size_t>(this->Options.maxRegionsPerRoom, 1))
+  {
+    // Bound the work: one rectangle around all of them (bigger, hence still conservative).
+    glm::dvec4 u = this->Regions[list[0]].rect;
+    for (const std::uint32_t r : list)
+    {
+      const glm::dvec4& q = this->Regions[r].rect;
+      u = glm::dvec4(std::min(u.x, q.x), std::min(u.y, q.y), std::max(u.z, q.z), std::max(u.w, q.w));
+    }
+    const std::uint32_t merged = this->addRegion(u);
+    list.assign(1, merged);
+    ++generation;
+    ++this->Stats.regionsMerged;
+    this->Stack.push_back(Work{ node, merged, generation });
+    return true;
+  }
+  this->Stack.push_back(Work{ node, region, generation });
+  return true;
+}
+
+void PortalTraversal::crossPortal(const GraphPortal& portal, std::int32_t to, std::uint32_t from)
+{
+  ++this->Stats.portalsTested;
+  const Region parent = this->Regions[from];
+  const double slack = this->PlaneSlack;
+  const culling::Frustum& f = this->ViewFrustum;
+
+  // Quick reject by the portal's box.
+  const glm::dvec3& lo = portal.bounds.lo;
+  const glm::dvec3& hi = portal.bounds.hi;
+  if (culling::pVertexDistance(f.planes[culling::kFar], lo, hi) < -slack ||
+    culling::pVertexDistance(this->FrontPlane, lo, hi) < -slack)
+  {
+    return;
+  }
+  for (std::uint32_t p = parent.firstPlane; p < parent.firstPlane + parent.planeCount; ++p)
+  {
+    if (culling::pVertexDistance(this->Planes[p], lo, hi) < -slack)
+    {
+      return;
+    }
+  }
+
+  // Edge-on (the eye in the portal's plane) or non-planar: no narrowing is possible or safe.
+  if (!portal.planar ||
+    std::abs(geometry::planeDistance(portal.plane, this->View.eye)) <= slack)
+  {
+    if (this->attach(to, from, true))
+    {
+      ++this->Stats.portalsTraversed;
+    }
+    return;
+  }
+
+  const bool exact = this->Options.mode == NarrowingMode::ExactFrustum;
+  std::vector<glm::dvec3>* a = &this->ClipA;
+  std::vector<glm::dvec3>* b = &this->ClipB;
+  *a = portal.hull;
+  auto clip = [&](const glm::dvec4& plane)
+  {
+    geometry::clipPolygon(*a, plane, slack, *b);
+    std::swap(a, b);
+    return a->size() >= 3;
+  };
+  if (!clip(this->FrontPlane) || !clip(f.planes[culling::kFar]))
+  {
+    return;
+  }
+  if (exact)
+  {
+    for (std::uint32_t p = parent.firstPlane; p < parent.firstPlane + parent.planeCount; ++p)
+    {
+      if (!clip(this->Planes[p]))
+      {
+        return;
+      }
+    }
+  }
+
+  // Screen rectangle of what is left, within the parent's.
+  glm::dvec4 rect(std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity(),
+    -std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity());
+  const glm::dmat4& m = this->View.clipFromWorld;
+  for (const glm::dvec3& v : *a)
+  {
+    const glm::dvec4 c = m * glm::dvec4(v, 1.0);
+    if (!(c.w > 0.0))
+    {
+      rect = parent.rect; // cannot happen after the front clip, but never shrink on doubt
+      break;
+    }
+    const double x = c.x / c.w, y = c.y / c.w;
+    rect = glm::dvec4(std::min(rect.x, x), std::min(rect.y, y), std::max(rect.z, x),
+      std::max(rect.w, y));
+  }
+  rect = glm::dvec4(std::max(rect.x - kRectSlack, parent.rect.x),
+    std::max(rect.y - kRectSlack, parent.rect.y), std::min(rect.z + kRectSlack, parent.rect.z),
+    std::min(rect.w + kRectSlack, parent.rect.w));
+  if (!(rect.x <= rect.z && rect.y <= rect.w))
+  {
+    return;
+  }
+
+  const std::uint32_t id = this->addRegion(rect);
+  if (exact)
+  {
+    // Planes through the eye and each edge of the clipped portal, facing its centroid.
+    glm::dvec3 centroid(0.0);
+    for (const glm::dvec3& v : *a)
+    {
+      centroid += v;
+    }
+    centroid /= static_cast<double>(a->size());
+    const glm::dvec3& eye = this->View.eye;
+    std::uint32_t edges = 0;
+    for (std::size_t k = 0; k < a->size(); ++k)
+    {
+      const glm::dvec3 p0 = (*a)[k] - eye;
+      const glm::dvec3 p1 = (*a)[(k + 1) % a->size()] - eye;
+      glm::dvec3 n = glm::cross(p0, p1);
+      const double len = glm::length(n);
+      if (!(len > 1e-12 * glm::length(p0) * glm::length(p1)))
+      {
+        continue; // degenerate edge: fewer planes = a bigger region
+      }
+      n /= len;
+      glm::dvec4 plane(n, -glm::dot(n, eye));
+      if (geometry::planeDistance(plane, centroid) < 0.0)
+      {
+        plane = -plane;
+      }
+      this->Planes.push_back(plane);
+      ++edges;
+    }
+    Region& r = this->Regions[id];
+    r.edgePlanes = edges;
+    r.planeCount += edges;
+    r.firstVertex = static_cast<std::uint32_t>(this->Vertices.size());
+    r.vertexCount = static_cast<std::uint32_t>(a->size());
+    this->Vertices.insert(this->Vertices.end(), a->begin(), a->end());
+  }
+  if (this->attach(to, id, true))
+  {
+    ++this->Stats.portalsTraversed;
+  }
+}
+
+void PortalTraversal::startRegion(std::int32_t node, bool expand)
+{
+  if (!this->NodeRegions[static_cast<std::size_t>(node)].empty())
+  {
+    return;
+  }
+  const std::uint32_t full = this->addRegion(glm::dvec4(-1.0, -1.0, 1.0, 1.0));
+  if (expand)
+  {
+    this->attach(node, full, false);
+  }
+  else
+  {
+    this->NodeRegions[static_cast<std::size_t>(node)].push_back(full);
+    this->Visible.push_back(node);
+  }
+}
+
+void PortalTraversal::run(const PortalGraph& graph, const PortalView& view,
+  const TraversalOptions& options)
+{
+  if (!this->begin(graph, view, options))
+  {
+    return;
+  }
+  const EyeLocation loc = graph.locate(view.eye, this->NearDistance, options.outside);
+  if (loc.unknown)
+  {
+    this->fallBack(Fallback::EyeInNoRoom);
+    return;
+  }
+  this->Stats.startRooms = loc.nodes.size();
+  for (const std::int32_t node : loc.nodes)
+  {
+    this->startRegion(node, true);
+    if (this->FrustumOnly)
+    {
+      return;
+    }
+  }
+  while (!this->Stack.empty() && !this->FrustumOnly)
+  {
+    const Work w = this->Stack.back();
+    this->Stack.pop_back();
+    if (w.generation != this->NodeGeneration[static_cast<std::size_t>(w.node)])
+    {
+      continue; // merged into a bigger region since it was queued
+    }
+    ++this->Stats.regionsExpanded;
+    const GraphRoom& room = graph.rooms()[static_cast<std::size_t>(w.node)];
+    for (const std::uint32_t pi : room.portals)
+    {
+      const GraphPortal& portal = graph.portals()[pi];
+      this->crossPortal(portal, portal.other(w.node), w.region);
+      if (this->FrustumOnly)
+      {
+        return;
+      }
+    }
+  }
+  this->Stats.roomsVisited = this->Visible.size();
+}
+
+void PortalTraversal::runPvs(const PortalGraph& graph, const PortalPvs& pvs,
+  const PortalView& view, const TraversalOptions& options)
+{
+  if (!this->begin(graph, view, options))
+  {
+    return;
+  }
+  if (pvs.nodeCount() != graph.nodeCount() || pvs.fingerprint() != graph.fingerprint())
+  {
+    this->fallBack(Fallback::InvalidView);
+    return;
+  }
+  const EyeLocation loc = graph.locate(view.eye, this->NearDistance, options.outside);
+  if (loc.unknown)
+  {
+    this->fallBack(Fallback::EyeInNoRoom);
+    return;
+  }
+  this->Stats.startRooms = loc.nodes.size();
+  for (const std::int32_t node : loc.nodes)
+  {
+    for (const std::int32_t seen : pvs.visibleFrom(node))
+    {
+      this->startRegion(seen, false);
+    }
+  }
+  this->Stats.roomsVisited = this->Visible.size();
+}
+
+void PortalTraversal::runFrustumOnly(const PortalGraph& graph, const PortalView& view)
+{
+  TraversalOptions options;
+  if (this->begin(graph, view, options))
+  {
+    this->fallBack(Fallback::None);
+  }
+}
+
+bool PortalTraversal::nodeVisible(std::int32_t node) const
+{
+  if (this->FrustumOnly)
+  {
+    return true;
+  }
+  return node >= 0 && static_cast<std::size_t>(node) < this->NodeRegions.size() &&
+    !this->NodeRegions[static_cast<std::size_t>(node)].empty();
+}
+
+bool PortalTraversal::boxVisible(std::int32_t node, const Box& box) const
+{
+  if (box.empty())
+  {
+    return this->nodeVisible(node) || node < 0;
+  }
+  const culling::Frustum& f = this->ViewFrustum;
+  if (this->FrustumOnly || node < 0 || !this->Graph || node >= this->Graph->nodeCount())
+  {
+    return !f.valid() || !culling::boxOutside(f, box.lo, box.hi);
+  }
+  const double slack = this->PlaneSlack;
+  if (culling::pVertexDistance(f.planes[culling::kNear], box.lo, box.hi) < -slack ||
+    culling::pVertexDistance(f.planes[culling::kFar], box.lo, box.hi) < -slack)
+  {
+    return false;
+  }
+  for (const std::uint32_t r : this->NodeRegions[static_cast<std::size_t>(node)])
+  {
+    const Region& region = this->Regions[r];
+    bool inside = true;
+    for (std::uint32_t p = region.firstPlane; p < region.firstPlane + region.planeCount && inside;
+         ++p)
+    {
+      inside = culling::pVertexDistance(this->Planes[p], box.lo, box.hi) >= -slack;
+    }
+    if (inside)
+    {
+      return true;
+    }
+  }
+  return false;
+}
+
+void PortalTraversal::cullObjects(const std::vector<PortalObject>& objects,
+  std::vector<std::uint8_t>& visible)
+{
+  visible.resize(objects.size());
+  this->Stats.objectsDrawn = 0;
+  this->Stats.objectsTotal = objects.size();
+  this->Stats.trianglesDrawn = this->Stats.trianglesTotal = 0;
+  for (std::size_t i = 0; i < objects.size(); ++i)
+  {
+    const PortalObject& o = objects[i];
+    const bool v = this->boxVisible(o.node, o.bounds);
+    visible[i] = v ? 1 : 0;
+    this->Stats.trianglesTotal += o.triangles;
+    if (v)
+    {
+      ++this->Stats.objectsDrawn;
+      this->Stats.trianglesDrawn += o.triangles;
+    }
+  }
+}
+
+std::vector<glm::dvec4> PortalTraversal::regionRectangles(std::int32_t node) const
+{
+  std::vector<glm::dvec4> out;
+  if (this->FrustumOnly)
+  {
+    out.emplace_back(-1.0, -1.0, 1.0, 1.0);
+    return out;
+  }
+  if (node >= 0 && static_cast<std::size_t>(node) < this->NodeRegions.size())
+  {
+    for (const std::uint32_t r : this->NodeRegions[static_cast<std::size_t>(node)])
+    {
+      out.push_back(this->Regions[r].rect);
+    }
+  }
+  return out;
+}
+
+} // namespace portals
+} // namespace scenevis

@@ -1,0 +1,295 @@
+// Accuracy of vtkPortalCuller against the exact visible set (ID buffer) in the generated building
+// (2 floors x 4 x 4 rooms, one actor per room plus one for the outside): over many random eyes
+// inside the rooms, every mode must draw every room that covers a pixel (0 false negatives);
+// prints over-draw (rooms drawn / rooms visible) and the cost per frame (cull and render) for
+// screen rectangles, exact frustum, PVS and no culling. The portals go through a .vtp file.
+#include "vtkPortalCuller.h"
+
+#include "scenevis/PortalGraph.h"
+#include "scenevis/Scenes.h"
+#include "scenevis/testing/IdBuffer.h"
+#include "scenevis/testing/RenderWindow.h"
+#include "scenevis/testing/StrictVtkOutput.h"
+
+#include <vtkActor.h>
+#include <vtkCallbackCommand.h>
+#include <vtkCamera.h>
+#include <vtkCellArray.h>
+#include <vtkCellData.h>
+#include <vtkFieldData.h>
+#include <vtkIntArray.h>
+#include <vtkNew.h>
+#include <vtkPoints.h>
+#include <vtkPolyData.h>
+#include <vtkPolyDataMapper.h>
+#include <vtkProperty.h>
+#include <vtkRenderWindow.h>
+#include <vtkRenderer.h>
+#include <vtkXMLPolyDataReader.h>
+#include <vtkXMLPolyDataWriter.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <iostream>
+#include <random>
+#include <set>
+#include <string>
+#include <vector>
+
+namespace
+{
+namespace st = scenevis::testing;
+namespace scenes = scenevis::scenes;
+
+/// Polygons of @p b whose room is @p room (all rooms when @p room < -1), with cell data "RoomNode"
+/// (room, or @p outsideNode for the outside).
+vtkSmartPointer<vtkPolyData> RoomPolyData(const scenes::BuildingScene& b, int room, int outsideNode)
+{
+  vtkNew<vtkPoints> points;
+  vtkNew<vtkCellArray> polys;
+  vtkNew<vtkIntArray> node;
+  node->SetName("RoomNode");
+  for (std::size_t i = 0; i < b.mesh.polygonCount(); ++i)
+  {
+    if (room >= -1 && b.room[i] != room)
+    {
+      continue;
+    }
+    polys->InsertNextCell(static_cast<vtkIdType>(b.mesh.polygonSize(i)));
+    for (std::uint32_t k = 0; k < b.mesh.polygonSize(i); ++k)
+    {
+      const glm::dvec3& p = b.mesh.points[b.mesh.polygon(i)[k]];
+      polys->InsertCellPoint(points->InsertNextPoint(p.x, p.y, p.z));
+    }
+    node->InsertNextValue(b.room[i] < 0 ? outsideNode : b.room[i]);
+  }
+  vtkNew<vtkPolyData> pd;
+  pd->SetPoints(points);
+  pd->SetPolys(polys);
+  pd->GetCellData()->AddArray(node);
+  return pd;
+}
+
+vtkSmartPointer<vtkPolyData> PortalPolyData(const scenes::BuildingScene& b)
+{
+  vtkNew<vtkPoints> points;
+  vtkNew<vtkCellArray> polys;
+  vtkNew<vtkIntArray> a, c;
+  a->SetName("RoomA");
+  c->SetName("RoomB");
+  for (const auto& p : b.portals)
+  {
+    polys->InsertNextCell(static_cast<vtkIdType>(p.polygon.size()));
+    for (const auto& q : p.polygon)
+    {
+      polys->InsertCellPoint(points->InsertNextPoint(q.x, q.y, q.z));
+    }
+    a->InsertNextValue(p.roomA);
+    c->InsertNextValue(p.roomB);
+  }
+  vtkNew<vtkPolyData> pd;
+  pd->SetPoints(points);
+  pd->SetPolys(polys);
+  pd->GetCellData()->AddArray(a);
+  pd->GetCellData()->AddArray(c);
+  return pd;
+}
+
+struct ModeResult
+{
+  const char* name;
+  int mode;
+  std::size_t falseNegatives = 0; ///< rooms missed that cover an interior pixel
+  std::size_t edgeOnlyMisses = 0; ///< rooms missed that show only on edge pixels (cracks)
+  std::size_t drawn = 0;
+  std::uint64_t triangles = 0;
+  double cullMs = 0.0;
+  double frameMs = 0.0;
+};
+} // namespace
+
+int TestPortalCullerAccuracy(int, char*[])
+{
+  st::StrictVtkOutput vtkOutput;
+  const scenes::BuildingScene b = scenes::building(2, 4, 4, 5);
+  const int rooms = static_cast<int>(b.rooms.size());
+  const int outsideNode = rooms;
+
+  // Portals through a VTK XML file, as any tool would provide them.
+  const std::filesystem::path tempDir = std::filesystem::temp_directory_path();
+  const std::string portalFile = (tempDir / "scenevis-test-building-portals.vtp").string();
+  const std::string pvsFile = (tempDir / "scenevis-test-building.pvs").string();
+  {
+    vtkNew<vtkXMLPolyDataWriter> writer;
+    writer->SetInputData(PortalPolyData(b));
+    writer->SetFileName(portalFile.c_str());
+    if (!writer->Write())
+    {
+      std::cerr << "cannot write " << portalFile << "\n";
+      return EXIT_FAILURE;
+    }
+  }
+  vtkNew<vtkXMLPolyDataReader> reader;
+  reader->SetFileName(portalFile.c_str());
+  reader->Update();
+
+  auto window = st::MakeRenderWindow(200, 150);
+  vtkNew<vtkRenderer> renderer;
+  window->AddRenderer(renderer);
+  std::vector<vtkSmartPointer<vtkActor>> actors;
+  std::vector<vtkProp*> props;
+  for (int r = -1; r < rooms; ++r)
+  {
+    auto pd = RoomPolyData(b, r, outsideNode);
+    vtkNew<vtkIntArray> id; // the actor's room, as field data
+    id->SetName("RoomId");
+    id->InsertNextValue(r);
+    pd->GetFieldData()->AddArray(id);
+    vtkNew<vtkPolyDataMapper> mapper;
+    mapper->SetInputData(pd);
+    mapper->ScalarVisibilityOff();
+    auto actor = vtkSmartPointer<vtkActor>::New();
+    actor->SetMapper(mapper);
+    actor->GetProperty()->SetColor(0.4 + 0.6 * ((r * 37 + 50) % 100) / 100.0, 0.7, 0.5);
+    renderer->AddActor(actor);
+    actors.push_back(actor);
+    props.push_back(actor);
+  }
+  auto all = RoomPolyData(b, -2, outsideNode);
+
+  vtkNew<vtkPortalCuller> culler;
+  culler->SetPortals(reader->GetOutput());
+  renderer->AddCuller(culler);
+  int progressEvents = 0;
+  vtkNew<vtkCallbackCommand> onProgress;
+  onProgress->SetClientData(&progressEvents);
+  onProgress->SetCallback(
+    [](vtkObject*, unsigned long, void* count, void*) { ++*static_cast<int*>(count); });
+  culler->AddObserver(vtkCommand::ProgressEvent, onProgress);
+  bool ok = culler->ComputePVS(renderer) && culler->SavePVS(pvsFile.c_str()) &&
+    culler->LoadPVS(renderer, pvsFile.c_str());
+  if (!ok || progressEvents != rooms + 1)
+  {
+    std::cerr << "FAIL PVS compute/save/load (progress events " << progressEvents << ")\n";
+    return EXIT_FAILURE;
+  }
+  if (std::string(culler->GetGraphReport()).find("error") != std::string::npos)
+  {
+    std::cerr << "FAIL graph report: " << culler->GetGraphReport() << "\n";
+    return EXIT_FAILURE;
+  }
+
+  // Eyes must be in a room (not in furniture or stair steps) to be meaningful.
+  scenevis::portals::CellSceneInput input = scenevis::portals::cellSceneOf(b);
+  const auto graph = scenevis::portals::PortalGraph::build(input);
+  std::mt19937_64 rng(2024);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  ModeResult modes[] = { { "screen rectangles", vtkPortalCuller::MODE_SCREEN_RECTANGLES },
+    { "exact frustum", vtkPortalCuller::MODE_EXACT_FRUSTUM }, { "pvs", vtkPortalCuller::MODE_PVS },
+    { "no culling", vtkPortalCuller::MODE_OFF } };
+  std::size_t visibleTotal = 0;
+  long long trianglesTotal = 0;
+  int views = 0;
+  vtkCamera* camera = renderer->GetActiveCamera();
+  camera->SetViewAngle(60.0);
+  window->Render(); // warm-up: shaders, buffers
+  while (views < 80)
+  {
+    const auto& cell = b.rooms[rng() % b.rooms.size()].bounds;
+    const glm::dvec3 eye(cell.lo.x + 0.5 + u(rng) * (cell.hi.x - cell.lo.x - 1.0),
+      cell.lo.y + 0.5 + u(rng) * (cell.hi.y - cell.lo.y - 1.0), cell.lo.z + 0.7 + u(rng) * 1.8);
+    if (graph.locate(eye, 0.0).nodes.empty())
+    {
+      continue;
+    }
+    ++views;
+    const double yaw = u(rng) * 6.283185307, pitch = (u(rng) - 0.5) * 0.8;
+    camera->SetPosition(eye.x, eye.y, eye.z);
+    camera->SetFocalPoint(eye.x + std::cos(yaw) * std::cos(pitch),
+      eye.y + std::sin(yaw) * std::cos(pitch), eye.z + std::sin(pitch));
+    camera->SetViewUp(0, 0, 1);
+    camera->SetClippingRange(0.05, 200.0);
+
+    const st::IdImage ids = st::RenderVisibleIds(window, all, camera, "RoomNode");
+    const std::vector<std::uint32_t> visible = st::VisibleSet(ids);
+    const std::vector<std::uint8_t> edges = st::ComputeEdgeMask(ids);
+    visibleTotal += visible.size();
+    for (ModeResult& m : modes)
+    {
+      culler->SetMode(m.mode);
+      std::vector<vtkProp*> list = props;
+      int length = static_cast<int>(list.size());
+      int initialized = 0;
+      culler->Cull(renderer, list.data(), length, initialized);
+      m.cullMs += culler->GetLastCullTime();
+      std::vector<std::uint32_t> drawn;
+      for (int i = 0; i < length; ++i)
+      {
+        const auto it = std::find(props.begin(), props.end(), list[static_cast<std::size_t>(i)]);
+        const int room = static_cast<int>(it - props.begin()) - 1;
+        drawn.push_back(static_cast<std::uint32_t>(room < 0 ? outsideNode : room));
+      }
+      const st::CullingCheck check = st::CullingIsConservative(visible, drawn);
+      for (const std::uint32_t missing : check.missing)
+      {
+        // A room seen only on edge pixels (3x3 neighbourhood not uniform) can be a rasterisation
+        // crack: the generated walls have T-junctions where door-height splits meet a corner,
+        // and a pixel centre exactly on such a corner line looks into the hollow wall. Counted
+        // and printed, but only rooms covering an interior pixel are false negatives.
+        std::size_t interior = 0, total = 0;
+        for (std::size_t k = 0; k < ids.ids.size(); ++k)
+        {
+          if (ids.ids[k] == missing)
+          {
+            ++total;
+            interior += edges[k] ? 0 : 1;
+          }
+        }
+        const auto at = std::find(ids.ids.begin(), ids.ids.end(), missing) - ids.ids.begin();
+        (interior ? m.falseNegatives : m.edgeOnlyMisses) += 1;
+        std::cerr << (interior ? "FAIL " : "edge-only ") << m.name << " view " << views
+                  << " eye (" << eye.x << ", " << eye.y << ", " << eye.z << ") focal ("
+                  << camera->GetFocalPoint()[0] << ", " << camera->GetFocalPoint()[1] << ", "
+                  << camera->GetFocalPoint()[2] << "): room " << missing << " not drawn, "
+                  << total << " pixel(s) (" << interior << " interior), first at ("
+                  << at % ids.width << ", " << at / ids.width << ")\n";
+      }
+      m.drawn += drawn.size();
+      m.triangles += static_cast<std::uint64_t>(culler->GetNumberOfTrianglesDrawn());
+      trianglesTotal = static_cast<long long>(culler->GetNumberOfTrianglesTotal());
+      // The cost of a frame with this mode installed (the renderer's frustum culler runs first).
+      const auto t0 = std::chrono::steady_clock::now();
+      window->Render();
+      m.frameMs +=
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    }
+  }
+  std::printf("\nPortal culling accuracy, building 2 x 4 x 4 (%d rooms + outside, %lld "
+              "triangles), %d views, %zu rooms visible in all (ID buffer):\n",
+    rooms, trianglesTotal, views, visibleTotal);
+  std::printf("| mode | false negatives | edge-pixel-only misses | rooms drawn / visible | triangles "
+              "drawn per frame | cull ms/frame | frame ms (cull + render %dx%d) |\n"
+              "|---|---|---|---|---|---|---|\n",
+    window->GetSize()[0], window->GetSize()[1]);
+  bool pass = true;
+  for (const ModeResult& m : modes)
+  {
+    std::printf("| %s | %zu | %zu | %.2f | %.0f | %.4f | %.2f |\n", m.name, m.falseNegatives,
+      m.edgeOnlyMisses,
+      static_cast<double>(m.drawn) / static_cast<double>(visibleTotal),
+      static_cast<double>(m.triangles) / views, m.cullMs / views, m.frameMs / views);
+    pass = pass && m.falseNegatives == 0;
+  }
+  // Exact is at least as tight as rectangles, and both cull most of the building.
+  pass = pass && modes[1].drawn <= modes[0].drawn &&
+    modes[0].drawn < static_cast<std::size_t>(views) * static_cast<std::size_t>(rooms) / 4;
+  if (!pass)
+  {
+    std::cerr << "FAIL: false negatives or no culling\n";
+  }
+  return vtkOutput.ExitCode(pass ? EXIT_SUCCESS : EXIT_FAILURE);
+}

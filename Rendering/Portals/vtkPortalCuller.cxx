@@ -1,0 +1,638 @@
+#include "vtkPortalCuller.h"
+
+#include "vtkActor.h"
+#include "vtkCamera.h"
+#include "vtkCellArray.h"
+#include "vtkCellData.h"
+#include "vtkCommand.h"
+#include "vtkDataArray.h"
+#include "vtkFieldData.h"
+#include "vtkMapper.h"
+#include "vtkMath.h"
+#include "vtkMatrix4x4.h"
+#include "vtkObjectFactory.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+#include "vtkProp.h"
+#include "vtkPropCollection.h"
+#include "vtkRenderer.h"
+#include "vtkSmartPointer.h"
+#include "vtkWeakPointer.h"
+
+#include "scenevis/PortalGraph.h"
+#include "scenevis/PortalPvs.h"
+#include "scenevis/PortalTraversal.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <set>
+#include <sstream>
+#include <unordered_map>
+#include <vector>
+
+namespace sp = scenevis::portals;
+
+vtkStandardNewMacro(vtkPortalCuller);
+
+namespace
+{
+struct Slot
+{
+  vtkProp* Prop = nullptr;
+  /// Room ids of the prop's cells (empty: no room, frustum test only).
+  std::vector<int> Rooms;
+  /// 2D prop or bounds that cannot be tested: never culled.
+  bool Never = false;
+  scenevis::Box Bounds;
+  vtkIdType Triangles = 0;
+};
+
+const char* FallbackText(sp::Fallback f)
+{
+  switch (f)
+  {
+    case sp::Fallback::EyeInNoRoom:
+      return "eye in no room";
+    case sp::Fallback::LeakyRoom:
+      return "leaky room (a portal names a missing room)";
+    case sp::Fallback::ParallelProjection:
+      return "parallel projection";
+    case sp::Fallback::InvalidView:
+      return "unusable camera";
+    case sp::Fallback::None:
+    default:
+      return "";
+  }
+}
+} // namespace
+
+class vtkPortalCuller::vtkInternals
+{
+public:
+  vtkSmartPointer<vtkPolyData> Portals;
+  std::unordered_map<vtkProp*, int> ExplicitRooms;
+  bool Dirty = true;
+  vtkMTimeType PropsTime = 0;
+  vtkMTimeType PortalsTime = 0;
+  vtkWeakPointer<vtkRenderer> Renderer;
+
+  std::vector<Slot> Slots;
+  std::unordered_map<vtkProp*, std::size_t> SlotOf;
+  scenevis::PolygonMesh Mesh;
+  std::vector<std::int32_t> MeshRooms;
+  sp::PortalGraph Graph;
+  bool HaveGraph = false;
+  std::string Report;
+  sp::PortalPvs Pvs;
+  sp::PortalTraversal Traversal;
+  std::vector<vtkProp*> Culled;
+  std::string Fallback;
+  bool WarnedNoPortals = false;
+  bool WarnedArrays = false;
+  bool WarnedCamera = false;
+};
+
+//------------------------------------------------------------------------------
+vtkPortalCuller::vtkPortalCuller()
+  : Internals(new vtkInternals)
+{
+  this->SetRoomIdArrayName("RoomId");
+}
+
+//------------------------------------------------------------------------------
+vtkPortalCuller::~vtkPortalCuller()
+{
+  this->SetRoomIdArrayName(nullptr);
+}
+
+//------------------------------------------------------------------------------
+void vtkPortalCuller::SetPortals(vtkPolyData* portals)
+{
+  if (this->Internals->Portals.Get() != portals)
+  {
+    this->Internals->Portals = portals;
+    this->Internals->Dirty = true;
+    this->Modified();
+  }
+}
+
+//------------------------------------------------------------------------------
+vtkPolyData* vtkPortalCuller::GetPortals()
+{
+  return this->Internals->Portals;
+}
+
+//------------------------------------------------------------------------------
+void vtkPortalCuller::SetPropRoom(vtkProp* prop, int room)
+{
+  if (prop)
+  {
+    this->Internals->ExplicitRooms[prop] = room;
+    this->Internals->Dirty = true;
+  }
+}
+
+//------------------------------------------------------------------------------
+void vtkPortalCuller::RemovePropRoom(vtkProp* prop)
+{
+  this->Internals->Dirty = this->Internals->ExplicitRooms.erase(prop) > 0 || this->Internals->Dirty;
+}
+
+//------------------------------------------------------------------------------
+void vtkPortalCuller::RemoveAllPropRooms()
+{
+  this->Internals->ExplicitRooms.clear();
+  this->Internals->Dirty = true;
+}
+
+//------------------------------------------------------------------------------
+void vtkPortalCuller::InvalidateScene()
+{
+  this->Internals->Dirty = true;
+}
+
+//------------------------------------------------------------------------------
+const char* vtkPortalCuller::GetFallbackReason() const
+{
+  return this->Internals->Fallback.c_str();
+}
+
+//------------------------------------------------------------------------------
+const char* vtkPortalCuller::GetGraphReport() const
+{
+  return this->Internals->Report.c_str();
+}
+
+namespace
+{
+/// Adds the polygons of @p pd (world coordinates through @p m) to @p mesh with their rooms:
+/// @p fixedRoom, or the cell values of @p cellRooms (cell ids in vtkPolyData order).
+void AddPolygons(vtkPolyData* pd, vtkMatrix4x4* m, int fixedRoom, vtkDataArray* cellRooms,
+  scenevis::PolygonMesh& mesh, std::vector<std::int32_t>& rooms, vtkIdType& triangles)
+{
+  vtkPoints* points = pd->GetPoints();
+  if (!points)
+  {
+    return;
+  }
+  const vtkIdType firstPoly = pd->GetNumberOfVerts() + pd->GetNumberOfLines();
+  const auto base = static_cast<std::uint32_t>(mesh.points.size());
+  const vtkIdType n = points->GetNumberOfPoints();
+  for (vtkIdType i = 0; i < n; ++i)
+  {
+    double p[4] = { 0, 0, 0, 1 };
+    points->GetPoint(i, p);
+    double q[4];
+    m->MultiplyPoint(p, q);
+    mesh.addPoint(glm::dvec3(q[0], q[1], q[2]) / q[3]);
+  }
+  vtkCellArray* polys = pd->GetPolys();
+  vtkIdType npts = 0;
+  const vtkIdType* ids = nullptr;
+  std::vector<std::uint32_t> local;
+  vtkIdType cell = firstPoly;
+  for (polys->InitTraversal(); polys->GetNextCell(npts, ids); ++cell)
+  {
+    if (npts < 3)
+    {
+      continue;
+    }
+    triangles += npts - 2;
+    local.clear();
+    for (vtkIdType k = 0; k < npts; ++k)
+    {
+      local.push_back(base + static_cast<std::uint32_t>(ids[k]));
+    }
+    mesh.addPolygon(local.data(), local.size());
+    rooms.push_back(cellRooms ? static_cast<std::int32_t>(cellRooms->GetTuple1(cell)) : fixedRoom);
+  }
+  vtkCellArray* strips = pd->GetStrips();
+  for (strips->InitTraversal(); strips->GetNextCell(npts, ids);)
+  {
+    triangles += std::max<vtkIdType>(npts - 2, 0);
+  }
+}
+
+bool FiniteBounds(const double* b)
+{
+  return b && std::all_of(b, b + 6, [](double v) { return std::isfinite(v); }) &&
+    vtkMath::AreBoundsInitialized(b);
+}
+} // namespace
+
+
+//------------------------------------------------------------------------------
+double vtkPortalCuller::Cull(
+  vtkRenderer* ren, vtkProp** propList, int& listLength, int& initialized)
+{
+  const auto start = std::chrono::steady_clock::now();
+  vtkInternals& in = *this->Internals;
+  this->NumberOfRoomsVisited = this->NumberOfPortalsTraversed = 0;
+  this->NumberOfPropsDrawn = this->NumberOfPropsCulled = 0;
+  this->NumberOfTrianglesDrawn = this->NumberOfTrianglesTotal = 0;
+  this->FrustumOnly = true;
+  in.Fallback.clear();
+  if (!propList || listLength <= 0)
+  {
+    listLength = std::max(listLength, 0);
+    initialized = 1;
+    return 0.0;
+  }
+  const auto n = static_cast<std::size_t>(listLength);
+
+  // --- 1. Scene and view. --------------------------------------------------------------------
+  bool usable = this->Mode != MODE_OFF && ren && this->EnsureScene(ren);
+  if (this->Mode == MODE_OFF)
+  {
+    in.Fallback = "mode off";
+  }
+  else if (!usable)
+  {
+    in.Fallback = "no usable portals";
+  }
+  sp::PortalView view;
+  if (usable)
+  {
+    vtkCamera* cam = ren->GetActiveCamera();
+    const int* size = ren->GetSize();
+    const double aspect = ren->GetTiledAspectRatio();
+    bool ok = cam && size && size[0] > 0 && size[1] > 0 && std::isfinite(aspect) && aspect > 0.0;
+    if (ok)
+    {
+      double eye[3];
+      cam->GetPosition(eye);
+      const double* range = cam->GetClippingRange();
+      ok = std::isfinite(eye[0]) && std::isfinite(eye[1]) && std::isfinite(eye[2]) &&
+        std::isfinite(range[0]) && std::isfinite(range[1]) && range[1] > range[0];
+      if (ok)
+      {
+        vtkMatrix4x4* m = cam->GetCompositeProjectionTransformMatrix(aspect, -1, 1);
+        view = sp::PortalView::fromRowMajor(
+          &m->GetData()[0], glm::dvec3(eye[0], eye[1], eye[2]), cam->GetParallelProjection() != 0);
+      }
+    }
+    if (!ok)
+    {
+      usable = false;
+      in.Fallback = "unusable camera or viewport";
+      if (!in.WarnedCamera)
+      {
+        in.WarnedCamera = true;
+        vtkWarningMacro("The active camera or the viewport is not usable (non-finite position or "
+                        "clipping range, zero size): nothing is culled (warned once).");
+      }
+    }
+  }
+
+  // --- 2. Traverse. --------------------------------------------------------------------------
+  if (usable)
+  {
+    sp::TraversalOptions options;
+    options.mode = this->Mode == MODE_SCREEN_RECTANGLES ? sp::NarrowingMode::ScreenRectangles
+                                                        : sp::NarrowingMode::ExactFrustum;
+    options.outside = this->OutsidePolicy == OUTSIDE_FRUSTUM_ONLY ? sp::OutsidePolicy::FrustumOnly
+                                                                  : sp::OutsidePolicy::ExteriorPortals;
+    if (this->Mode == MODE_PVS)
+    {
+      if (in.Pvs.empty() || in.Pvs.fingerprint() != in.Graph.fingerprint())
+      {
+        in.Pvs = sp::PortalPvs::compute(in.Graph);
+      }
+      in.Traversal.runPvs(in.Graph, in.Pvs, view, options);
+    }
+    else
+    {
+      in.Traversal.run(in.Graph, view, options);
+    }
+    const sp::FrameStats& s = in.Traversal.stats();
+    this->FrustumOnly = s.fallback != sp::Fallback::None;
+    in.Fallback = FallbackText(s.fallback);
+    this->NumberOfRoomsVisited = static_cast<int>(s.roomsVisited);
+    this->NumberOfPortalsTraversed = static_cast<int>(s.portalsTraversed);
+  }
+
+  // --- 3. Drawn props first (relative order kept), culled ones after. ------------------------
+  in.Culled.clear();
+  std::size_t kept = 0;
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    vtkProp* prop = propList[i];
+    bool visible = true;
+    vtkIdType triangles = 0;
+    const auto found = in.SlotOf.find(prop);
+    if (found != in.SlotOf.end())
+    {
+      const Slot& slot = in.Slots[found->second];
+      triangles = slot.Triangles;
+      if (usable && !slot.Never)
+      {
+        if (slot.Rooms.empty())
+        {
+          visible = in.Traversal.boxVisible(-1, slot.Bounds);
+        }
+        else
+        {
+          visible = false;
+          for (const int room : slot.Rooms)
+          {
+            if (in.Traversal.boxVisible(in.Graph.nodeOf(room), slot.Bounds))
+            {
+              visible = true;
+              break;
+            }
+          }
+        }
+      }
+    }
+    this->NumberOfTrianglesTotal += triangles;
+    if (visible)
+    {
+      propList[kept++] = prop;
+      this->NumberOfTrianglesDrawn += triangles;
+    }
+    else
+    {
+      in.Culled.push_back(prop);
+    }
+  }
+  std::copy(in.Culled.begin(), in.Culled.end(), propList + kept);
+  this->NumberOfPropsCulled = static_cast<int>(in.Culled.size());
+  this->NumberOfPropsDrawn = static_cast<int>(kept);
+  listLength = static_cast<int>(kept);
+
+  // --- 4. Render-time multipliers (vtkCuller contract). ------------------------------------
+  double total = 0.0;
+  for (std::size_t i = 0; i < kept; ++i)
+  {
+    if (!initialized)
+    {
+      propList[i]->SetRenderTimeMultiplier(1.0);
+      total += 1.0;
+    }
+    else
+    {
+      total += propList[i]->GetRenderTimeMultiplier();
+    }
+  }
+  initialized = 1;
+  // The renderer divides by the total: never 0 (or NaN) while props remain.
+  if (kept > 0 && !(total > 0.0 && std::isfinite(total)))
+  {
+    total = static_cast<double>(kept);
+  }
+  this->LastCullTime =
+    std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  return total;
+}
+
+//------------------------------------------------------------------------------
+// (Re)build the slots, the room geometry and the portal graph when the renderer's props, the
+// portals or the explicit rooms changed.
+bool vtkPortalCuller::EnsureScene(vtkRenderer* ren)
+{
+  vtkInternals& in = *this->Internals;
+  const char* arrayName = this->RoomIdArrayName ? this->RoomIdArrayName : "";
+  vtkPropCollection* props = ren->GetViewProps();
+  const vtkMTimeType propsTime = props->GetMTime();
+  const vtkMTimeType portalsTime = in.Portals ? in.Portals->GetMTime() : 0;
+  if (!in.Dirty && in.Renderer.Get() == ren && propsTime == in.PropsTime &&
+    portalsTime == in.PortalsTime)
+  {
+    return in.HaveGraph;
+  }
+  in.Dirty = false;
+  in.Renderer = ren;
+  in.PropsTime = propsTime;
+  in.PortalsTime = portalsTime;
+  in.Slots.clear();
+  in.SlotOf.clear();
+  in.Mesh = scenevis::PolygonMesh();
+  in.MeshRooms.clear();
+  in.HaveGraph = false;
+  in.Report.clear();
+
+  // Props: room ids, bounds, room polygons.
+  vtkCollectionSimpleIterator it;
+  props->InitTraversal(it);
+  while (vtkProp* prop = props->GetNextProp(it))
+  {
+    if (in.SlotOf.count(prop))
+    {
+      continue;
+    }
+    Slot slot;
+    slot.Prop = prop;
+    const double* b = prop->GetBounds(); // also brings the mapper's input up to date
+    if (!FiniteBounds(b))
+    {
+      slot.Never = true;
+    }
+    else
+    {
+      slot.Bounds.extend(glm::dvec3(b[0], b[2], b[4]));
+      slot.Bounds.extend(glm::dvec3(b[1], b[3], b[5]));
+    }
+    vtkActor* actor = vtkActor::SafeDownCast(prop);
+    vtkPolyData* pd = actor && actor->GetMapper()
+      ? vtkPolyData::SafeDownCast(actor->GetMapper()->GetInputDataObject(0, 0))
+      : nullptr;
+    const auto explicitRoom = in.ExplicitRooms.find(prop);
+    int fixedRoom = 0;
+    bool haveFixed = false;
+    vtkDataArray* cellRooms = nullptr;
+    if (explicitRoom != in.ExplicitRooms.end())
+    {
+      fixedRoom = explicitRoom->second;
+      haveFixed = true;
+    }
+    else if (pd && *arrayName)
+    {
+      vtkDataArray* field = pd->GetFieldData()->GetArray(arrayName);
+      vtkDataArray* cells = pd->GetCellData()->GetArray(arrayName);
+      if (field && field->GetNumberOfTuples() >= 1 && field->GetNumberOfComponents() == 1)
+      {
+        fixedRoom = static_cast<int>(field->GetTuple1(0));
+        haveFixed = true;
+      }
+      else if (cells && cells->GetNumberOfComponents() == 1 &&
+        cells->GetNumberOfTuples() == pd->GetNumberOfCells())
+      {
+        cellRooms = cells;
+      }
+    }
+    if (haveFixed)
+    {
+      slot.Rooms.push_back(fixedRoom);
+    }
+    else if (cellRooms)
+    {
+      std::set<int> distinct;
+      for (vtkIdType c = 0; c < cellRooms->GetNumberOfTuples(); ++c)
+      {
+        distinct.insert(static_cast<int>(cellRooms->GetTuple1(c)));
+      }
+      slot.Rooms.assign(distinct.begin(), distinct.end());
+    }
+    if (pd && actor)
+    {
+      if (haveFixed || cellRooms)
+      {
+        AddPolygons(pd, actor->GetMatrix(), fixedRoom, cellRooms, in.Mesh, in.MeshRooms,
+          slot.Triangles);
+      }
+      else
+      {
+        scenevis::PolygonMesh unused;
+        std::vector<std::int32_t> unusedRooms;
+        AddPolygons(pd, actor->GetMatrix(), -1, nullptr, unused, unusedRooms, slot.Triangles);
+      }
+    }
+    in.SlotOf.emplace(prop, in.Slots.size());
+    in.Slots.push_back(std::move(slot));
+  }
+
+  // Portals.
+  vtkPolyData* portals = in.Portals;
+  if (!portals || portals->GetNumberOfPolys() == 0)
+  {
+    if (!in.WarnedNoPortals)
+    {
+      in.WarnedNoPortals = true;
+      vtkWarningMacro("No portals (SetPortals() with polygons): nothing is culled (warned once).");
+    }
+    return false;
+  }
+  vtkDataArray* roomA = portals->GetCellData()->GetArray("RoomA");
+  vtkDataArray* roomB = portals->GetCellData()->GetArray("RoomB");
+  if (!roomA || !roomB || roomA->GetNumberOfTuples() != portals->GetNumberOfCells() ||
+    roomB->GetNumberOfTuples() != portals->GetNumberOfCells())
+  {
+    if (!in.WarnedArrays)
+    {
+      in.WarnedArrays = true;
+      vtkWarningMacro("The portals need integer cell-data arrays \"RoomA\" and \"RoomB\" with one value per "
+        "cell: nothing is culled (warned once).");
+    }
+    return false;
+  }
+  sp::CellSceneInput input;
+  input.mesh = &in.Mesh;
+  input.roomOfPolygon = in.MeshRooms;
+  const vtkIdType firstPoly = portals->GetNumberOfVerts() + portals->GetNumberOfLines();
+  if (firstPoly > 0 || portals->GetNumberOfStrips() > 0)
+  {
+    in.Report += "warning: the portals' vertices, lines and strips are ignored (polygons only)\n";
+  }
+  vtkCellArray* polys = portals->GetPolys();
+  vtkIdType npts = 0;
+  const vtkIdType* ids = nullptr;
+  vtkIdType cell = firstPoly;
+  for (polys->InitTraversal(); polys->GetNextCell(npts, ids); ++cell)
+  {
+    sp::PortalDesc d;
+    for (vtkIdType k = 0; k < npts; ++k)
+    {
+      double p[3];
+      portals->GetPoint(ids[k], p);
+      d.polygon.emplace_back(p[0], p[1], p[2]);
+    }
+    d.roomA = static_cast<std::int32_t>(roomA->GetTuple1(cell));
+    d.roomB = static_cast<std::int32_t>(roomB->GetTuple1(cell));
+    input.portals.push_back(std::move(d));
+  }
+  sp::PortalGraphReport report;
+  in.Graph = sp::PortalGraph::build(input, &report);
+  in.Report += report.summary();
+  if (report.errors() + report.warnings() > 0)
+  {
+    vtkWarningMacro("Portal graph: " << report.errors() << " errors, " << report.warnings()
+                       << " warnings (culling stays conservative):\n"
+                       << report.summary());
+  }
+  if (!in.Pvs.empty() && in.Pvs.fingerprint() != in.Graph.fingerprint())
+  {
+    in.Pvs = sp::PortalPvs();
+  }
+  in.HaveGraph = true;
+  this->NumberOfRooms = in.Graph.roomCount();
+  return true;
+}
+
+//------------------------------------------------------------------------------
+bool vtkPortalCuller::ComputePVS(vtkRenderer* ren)
+{
+  vtkInternals& in = *this->Internals;
+  if (!ren || !this->EnsureScene(ren))
+  {
+    vtkWarningMacro("ComputePVS: no usable scene (renderer and portals needed).");
+    return false;
+  }
+  sp::PvsOptions options;
+  options.progress = [this](double fraction)
+  {
+    this->InvokeEvent(vtkCommand::ProgressEvent, &fraction);
+    return true;
+  };
+  in.Pvs = sp::PortalPvs::compute(in.Graph, options);
+  this->NumberOfRooms = in.Graph.roomCount();
+  return !in.Pvs.empty();
+}
+
+//------------------------------------------------------------------------------
+bool vtkPortalCuller::SavePVS(const char* fileName)
+{
+  vtkInternals& in = *this->Internals;
+  if (!fileName || in.Pvs.empty())
+  {
+    vtkWarningMacro("SavePVS: no PVS computed yet, or no file name.");
+    return false;
+  }
+  std::string error;
+  if (!in.Pvs.save(fileName, &error))
+  {
+    vtkWarningMacro("SavePVS: " << error);
+    return false;
+  }
+  return true;
+}
+
+//------------------------------------------------------------------------------
+bool vtkPortalCuller::LoadPVS(vtkRenderer* ren, const char* fileName)
+{
+  vtkInternals& in = *this->Internals;
+  if (!fileName || !ren || !this->EnsureScene(ren))
+  {
+    vtkWarningMacro("LoadPVS: no usable scene (renderer and portals needed) or no file name.");
+    return false;
+  }
+  std::string error;
+  if (!sp::PortalPvs::load(fileName, in.Graph, in.Pvs, &error))
+  {
+    vtkWarningMacro("LoadPVS: " << error);
+    return false;
+  }
+  return true;
+}
+
+//------------------------------------------------------------------------------
+void vtkPortalCuller::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  const char* modes[] = { "off", "screen rectangles", "exact frustum", "pvs" };
+  os << indent << "Mode: " << modes[this->Mode] << "\n";
+  os << indent << "OutsidePolicy: "
+     << (this->OutsidePolicy == OUTSIDE_FRUSTUM_ONLY ? "frustum only" : "exterior portals") << "\n";
+  os << indent << "RoomIdArrayName: " << (this->RoomIdArrayName ? this->RoomIdArrayName : "(none)")
+     << "\n";
+  os << indent << "Portals: " << this->Internals->Portals.Get() << "\n";
+  os << indent << "NumberOfRooms: " << this->NumberOfRooms << "\n";
+  os << indent << "NumberOfRoomsVisited: " << this->NumberOfRoomsVisited << "\n";
+  os << indent << "NumberOfPortalsTraversed: " << this->NumberOfPortalsTraversed << "\n";
+  os << indent << "NumberOfPropsDrawn: " << this->NumberOfPropsDrawn << "\n";
+  os << indent << "NumberOfPropsCulled: " << this->NumberOfPropsCulled << "\n";
+  os << indent << "NumberOfTrianglesDrawn: " << this->NumberOfTrianglesDrawn << "\n";
+  os << indent << "LastCullTime: " << this->LastCullTime << " ms\n";
+  os << indent << "FrustumOnly: " << this->FrustumOnly << " (" << this->Internals->Fallback
+     << ")\n";
+}

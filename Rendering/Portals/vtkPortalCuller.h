@@ -1,0 +1,176 @@
+/**
+ * @class   vtkPortalCuller
+ * @brief   Cells-and-portals occlusion culling for architectural models.
+ *
+ * Indoors, walls hide almost everything. The model is split into rooms joined by portals (doors,
+ * windows, stair holes); every frame the view is clipped through the portals the eye can see
+ * (Luebke & Georges, "Portals and Mirrors", 1995) and props of rooms that cannot be seen are
+ * culled. The geometry is in the VTK-free core (scenevis/PortalGraph.h, PortalTraversal.h,
+ * PortalPvs.h); this class converts VTK data and honours the vtkCuller contract.
+ *
+ * Scene description (loadable from VTK XML PolyData, e.g. with vtkXMLPolyDataReader):
+ * - Portals (SetPortals): one planar polygon per portal (convex or concave) with two integer
+ *   cell-data arrays "RoomA" and "RoomB" naming the rooms it joins (-1 = outside).
+ * - Room of each prop, first match wins: SetPropRoom(prop, room); a one-tuple field-data array
+ *   named RoomIdArrayName ("RoomId") on the actor's mapper input; a cell-data array of that name
+ *   (an actor whose cells span several rooms is drawn when any of them may be seen). Props with no
+ *   room are only frustum-culled. The polygons of actors with room ids locate the eye (an eye in
+ *   no room: see OutsidePolicy).
+ *
+ * Modes: MODE_EXACT_FRUSTUM (default; narrowing by the portal's edges, tighter),
+ * MODE_SCREEN_RECTANGLES (Luebke-Georges screen rectangles, cheaper per portal, looser),
+ * MODE_PVS (precomputed potentially visible sets of the eye's rooms + frustum; computed on first
+ * use or with ComputePVS(), saved with SavePVS() and loaded with LoadPVS()), MODE_OFF.
+ * All modes are conservative under the cells-and-portals assumption (a room is closed except at
+ * its portals, and the near plane does not reach through walls): a prop that covers a pixel is
+ * never culled. Fallbacks to frustum-only culling (never to an empty image): eye in no room,
+ * a room whose portal names a missing room (leaky), parallel projection, unusable camera.
+ *
+ * vtkCuller contract (as vtkFrustumCoverageCuller): culled props are moved to the end of the
+ * list, which is shortened; drawn props keep their order; with @p initialized set their
+ * render-time multipliers are kept (multiplied by 1), otherwise set to 1; initialized is set to
+ * 1; the returned total is never 0 while props remain. 2D props and props with uninitialized
+ * bounds are never culled.
+ *
+ * The scene is rebuilt when the renderer's props or the portals change, or after
+ * InvalidateScene() (call it after moving actors or changing their data).
+ *
+ * Statistics of the last Cull(): rooms visited, portals traversed, props and triangles drawn,
+ * cull time.
+ *
+ * @code
+ * vtkNew<vtkPortalCuller> culler;
+ * culler->SetPortals(portalsPolyData);
+ * renderer->AddCuller(culler); // after vtkFrustumCoverageCuller, or replace it
+ * @endcode
+ *
+ * @sa vtkCuller vtkFrustumCoverageCuller vtkOctreeCuller
+ */
+
+#ifndef vtkPortalCuller_h
+#define vtkPortalCuller_h
+
+#include "SceneVisRenderingPortalsModule.h" // For export macro
+#include "vtkCuller.h"
+
+#include <memory> // For std::unique_ptr
+#include <string> // For std::string
+
+class vtkPolyData;
+class vtkProp;
+
+class SCENEVISRENDERINGPORTALS_EXPORT vtkPortalCuller : public vtkCuller
+{
+public:
+  static vtkPortalCuller* New();
+  vtkTypeMacro(vtkPortalCuller, vtkCuller);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  double Cull(vtkRenderer* ren, vtkProp** propList, int& listLength, int& initialized) override;
+
+  ///@{
+  /// The portals: polygons with "RoomA"/"RoomB" integer cell data (see the class comment).
+  void SetPortals(vtkPolyData* portals);
+  vtkPolyData* GetPortals();
+  ///@}
+
+  enum Modes
+  {
+    MODE_OFF = 0,
+    MODE_SCREEN_RECTANGLES,
+    MODE_EXACT_FRUSTUM,
+    MODE_PVS
+  };
+  ///@{
+  /// How rooms are found visible. Default MODE_EXACT_FRUSTUM.
+  vtkSetClampMacro(Mode, int, MODE_OFF, MODE_PVS);
+  vtkGetMacro(Mode, int);
+  ///@}
+
+  enum OutsidePolicies
+  {
+    /// Outside all rooms' bounds: enter through exterior portals; in a wall or gap: frustum only.
+    OUTSIDE_EXTERIOR_PORTALS = 0,
+    /// In no room: frustum only.
+    OUTSIDE_FRUSTUM_ONLY
+  };
+  ///@{
+  /// What an eye in no room sees. Default OUTSIDE_EXTERIOR_PORTALS.
+  vtkSetClampMacro(OutsidePolicy, int, OUTSIDE_EXTERIOR_PORTALS, OUTSIDE_FRUSTUM_ONLY);
+  vtkGetMacro(OutsidePolicy, int);
+  ///@}
+
+  ///@{
+  /// Name of the field/cell-data array with the room of an actor's cells. Default "RoomId".
+  vtkSetStringMacro(RoomIdArrayName);
+  vtkGetStringMacro(RoomIdArrayName);
+  ///@}
+
+  ///@{
+  /// Explicit room of a prop (-1: outside), taking precedence over data arrays.
+  void SetPropRoom(vtkProp* prop, int room);
+  void RemovePropRoom(vtkProp* prop);
+  void RemoveAllPropRooms();
+  ///@}
+
+  /// Rebuild the room graph at the next Cull() (after moving props or changing their data).
+  void InvalidateScene();
+
+  ///@{
+  /// Potentially visible sets. ComputePVS() builds the scene from @p ren's props if needed and
+  /// fires vtkCommand::ProgressEvent (call data: double* fraction). Save/Load use a small text
+  /// file tied to the graph (a file for another scene is refused with a warning).
+  bool ComputePVS(vtkRenderer* ren);
+  bool SavePVS(const char* fileName);
+  bool LoadPVS(vtkRenderer* ren, const char* fileName);
+  ///@}
+
+  ///@{
+  /// Statistics of the last Cull().
+  vtkGetMacro(NumberOfRooms, int);
+  vtkGetMacro(NumberOfRoomsVisited, int);
+  vtkGetMacro(NumberOfPortalsTraversed, int);
+  vtkGetMacro(NumberOfPropsDrawn, int);
+  vtkGetMacro(NumberOfPropsCulled, int);
+  vtkGetMacro(NumberOfTrianglesDrawn, vtkIdType);
+  vtkGetMacro(NumberOfTrianglesTotal, vtkIdType);
+  /// Milliseconds spent in the last Cull() (scene rebuilds included).
+  vtkGetMacro(LastCullTime, double);
+  /// Whether the last Cull() fell back to frustum-only culling (or culled nothing).
+  vtkGetMacro(FrustumOnly, bool);
+  /// Why: "" (no fallback), "eye in no room", "leaky room", "parallel projection", ...
+  const char* GetFallbackReason() const;
+  /// Validation issues of the portal graph (one line each), "" when clean.
+  const char* GetGraphReport() const;
+  ///@}
+
+protected:
+  vtkPortalCuller();
+  ~vtkPortalCuller() override;
+
+  int Mode = MODE_EXACT_FRUSTUM;
+  int OutsidePolicy = OUTSIDE_EXTERIOR_PORTALS;
+  char* RoomIdArrayName = nullptr;
+
+  int NumberOfRooms = 0;
+  int NumberOfRoomsVisited = 0;
+  int NumberOfPortalsTraversed = 0;
+  int NumberOfPropsDrawn = 0;
+  int NumberOfPropsCulled = 0;
+  vtkIdType NumberOfTrianglesDrawn = 0;
+  vtkIdType NumberOfTrianglesTotal = 0;
+  double LastCullTime = 0.0;
+  bool FrustumOnly = false;
+
+private:
+  vtkPortalCuller(const vtkPortalCuller&) = delete;
+  void operator=(const vtkPortalCuller&) = delete;
+
+  /// (Re)build props, room geometry and the portal graph if needed; whether culling can run.
+  bool EnsureScene(vtkRenderer* ren);
+
+  class vtkInternals;
+  std::unique_ptr<vtkInternals> Internals;
+};
+
+#endif
