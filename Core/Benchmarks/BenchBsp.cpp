@@ -7,13 +7,20 @@
 //   standard hard translucency scene).
 // Names are BM_<What>/<scene>/<triangles>[/threads:<t>]. `--benchmark_filter=Smoke` runs a small
 // subset in well under a second.
+// BM_BspBuild/bunny/threads:<t> builds the Stanford bunny (69,451 triangles) from the binary STL
+// that scripts/fetch-data.sh puts in ${SCENEVIS_DATA_DIR:-~/.cache/scenevis-data} (key
+// bunny-stl of its manifest.txt); it is skipped when the file is absent.
 #include "scenevis/BspBuilder.h"
 #include "scenevis/BspTraversal.h"
 #include "scenevis/Scenes.h"
 
 #include <benchmark/benchmark.h>
 
+#include <array>
 #include <cmath>
+#include <cstdlib>
+#include <cstring>
+#include <fstream>
 #include <map>
 #include <memory>
 #include <string>
@@ -59,6 +66,87 @@ PolygonMesh uvSphere(std::size_t triangles)
     }
   }
   return mesh;
+}
+
+/// Path of manifest key `key` in the data cache, or "" when the manifest lacks it.
+std::string dataFile(const std::string& key)
+{
+  const char* dir = std::getenv("SCENEVIS_DATA_DIR");
+  const char* home = std::getenv("HOME");
+  const std::string root =
+    dir ? std::string(dir) : std::string(home ? home : ".") + "/.cache/scenevis-data";
+  std::ifstream manifest(root + "/manifest.txt");
+  std::string line;
+  while (std::getline(manifest, line))
+  {
+    if (line.rfind(key + "=", 0) == 0)
+    {
+      return root + "/" + line.substr(key.size() + 1);
+    }
+  }
+  return {};
+}
+
+/// Binary STL: 80-byte header, uint32 count, then per triangle 12 floats + uint16. Points with
+/// bit-identical coordinates are merged. Empty mesh when the file is absent or malformed.
+PolygonMesh loadBinaryStl(const std::string& path)
+{
+  PolygonMesh mesh;
+  std::ifstream in(path, std::ios::binary);
+  char header[80];
+  std::uint32_t count = 0;
+  if (!in.read(header, 80) || !in.read(reinterpret_cast<char*>(&count), 4))
+  {
+    return mesh;
+  }
+  std::map<std::array<float, 3>, std::uint32_t> ids;
+  for (std::uint32_t t = 0; t < count; ++t)
+  {
+    char record[50];
+    if (!in.read(record, 50))
+    {
+      return PolygonMesh{};
+    }
+    std::uint32_t tri[3];
+    for (int k = 0; k < 3; ++k)
+    {
+      std::array<float, 3> p;
+      std::memcpy(p.data(), record + 12 + 12 * k, 12);
+      auto it = ids.find(p);
+      if (it == ids.end())
+      {
+        it = ids.emplace(p, mesh.addPoint({ p[0], p[1], p[2] })).first;
+      }
+      tri[k] = it->second;
+    }
+    mesh.addPolygon(tri, 3);
+  }
+  return mesh;
+}
+
+void modelBuildBenchmark(benchmark::State& state, const std::string& key, int threads)
+{
+  const std::string path = dataFile(key);
+  const PolygonMesh mesh = path.empty() ? PolygonMesh{} : loadBinaryStl(path);
+  if (mesh.polygonCount() == 0)
+  {
+    state.SkipWithError("model not fetched (scripts/fetch-data.sh)");
+    return;
+  }
+  bsp::BuildConfig config;
+  config.threads = threads;
+  bsp::Tree tree;
+  for (auto _ : state)
+  {
+    tree = bsp::build(mesh, config);
+    benchmark::DoNotOptimize(tree.root);
+  }
+  const double input = static_cast<double>(mesh.polygonCount());
+  state.counters["triangles"] = input;
+  state.counters["fragments/input"] = static_cast<double>(tree.fragments.size()) / input;
+  state.counters["splits"] = static_cast<double>(tree.statistics.splits);
+  state.counters["treeBytes/tri"] = static_cast<double>(tree.statistics.memoryBytes) / input;
+  state.counters["depth"] = static_cast<double>(tree.statistics.depth);
 }
 
 enum class SceneKind
@@ -237,6 +325,14 @@ int registerAll()
           ->MeasureProcessCPUTime();
       }
     }
+  }
+  for (int threads : { 1, 2 })
+  {
+    benchmark::RegisterBenchmark(
+      ("BM_BspBuild/bunny/threads:" + std::to_string(threads)).c_str(), modelBuildBenchmark,
+      std::string("bunny-stl"), threads)
+      ->Unit(benchmark::kMillisecond)
+      ->MeasureProcessCPUTime();
   }
   for (SceneKind kind : all)
   {

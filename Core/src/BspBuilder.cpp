@@ -37,6 +37,28 @@ constexpr std::uint32_t kMaxChainList = 128;
 /// balances as well and keeps the cost per node independent of the list size.
 constexpr std::uint32_t kMedianSample = 1024;
 
+/// Free-plane sweeps (see chooseScored) sort the extents of at most this many (strided) fragments
+/// per axis: enough to find the gaps between parts, cheap enough for every node above
+/// kMinFreePlaneList (sorting dominates; 512 costs twice as much for < 1 % fewer fragments).
+constexpr std::uint32_t kSweepSample = 256;
+
+/// Lists this short are scored against every polygon anyway (samplePolygons >= n), so trying
+/// more candidate planes there is cheap and pays: this many times BuildConfig::candidates.
+constexpr std::uint32_t kSmallListCandidateFactor = 2;
+
+/// Tolerance floor in units of the coordinate resolution: max|coordinate| * DBL_EPSILON is the
+/// rounding step of the input coordinates (an input point, or a split point stored in world
+/// coordinates, is off its exact position by up to half of it), and a plane fitted through
+/// rounded points is off by a few steps more; 16 steps cover both with margin.
+constexpr double kResolutionSteps = 16.0;
+
+/// Estimated cost of building the subtree of a list of m fragments, m log2 m (a balanced tree
+/// handles every fragment once per level); the SubtreeCost score sums it over both children.
+double subtreeCost(double m)
+{
+  return m > 1.0 ? m * std::log2(m) : 0.0;
+}
+
 /// With BuildConfig::threads > 1, a node whose two sides both have at least this many fragments
 /// hands its back side to a worker thread (one worker at a time; the front side stays here).
 constexpr std::uint32_t kMinParallelList = 16384;
@@ -400,6 +422,11 @@ private:
   std::vector<double> DistScratch;
   std::vector<glm::dvec3> CentroidScratch;
   std::vector<std::pair<double, std::uint32_t>> AxisScratch;
+  std::vector<double> SweepLo;
+  std::vector<double> SweepHi;
+  std::vector<double> SweepFlat;
+  std::vector<double> SweepCost;
+  std::vector<double> CostTable;
   std::vector<std::uint32_t> SamplePiece;
   std::vector<std::uint32_t> SampleEnd;
   std::vector<glm::dvec3> SamplePoints;
@@ -669,6 +696,28 @@ Builder::Choice Builder::chooseScored(const Task& task, std::uint32_t n)
 
   // Returns +inf as soon as the score provably exceeds `cutoff` (ties are still scored exactly,
   // so the lower candidate index wins them), and for a free plane that separates nothing.
+  // SubtreeCost: subtreeCost(front + splits) + subtreeCost(back + splits), counts scaled from the
+  // sample to the list (a split fragment goes to both sides; coplanar fragments of a polygon
+  // plane leave the list, so planes shared by many polygons are cheap). SplitsAndBalance:
+  // splits * splitWeight + |front - back| on the sample.
+  // SubtreeCost applies to lists up to kMinFreePlaneList: most splits happen there, and the depth
+  // below is bounded by the list size anyway; above, its weak preference for balance would let
+  // peeled chains deepen the tree (and the incremental traversal's work), so balance is kept.
+  const bool subtree =
+    Config.score == BuildConfig::Score::SubtreeCost && n <= kMinFreePlaneList;
+  // Counts are whole numbers up to sampleSize: tabulate subtreeCost of their scaled values.
+  CostTable.resize(sampleSize + 1);
+  for (std::uint32_t k = 0; subtree && k <= sampleSize; ++k)
+  {
+    CostTable[k] = subtreeCost(static_cast<double>(k) * n / sampleSize);
+  }
+  const double* costTable = CostTable.data();
+  auto finalScore = [&](double splits, double front, double back) -> double
+  {
+    return subtree ? costTable[static_cast<std::uint32_t>(front + splits)] +
+        costTable[static_cast<std::uint32_t>(back + splits)]
+                   : splits * Config.splitWeight + std::abs(front - back);
+  };
   bool oneSided = false;
   auto score = [&](const glm::dvec4& plane, std::uint32_t piece, double cutoff) -> double
   {
@@ -702,7 +751,28 @@ Builder::Choice Builder::chooseScored(const Task& task, std::uint32_t n)
           }
           break;
       }
-      if (splits * Config.splitWeight + std::max(0.0, std::abs(front - back) - remaining) > cutoff)
+      // Lower bounds of the final score. SubtreeCost: the remaining fragments are put where they
+      // cost least, filling up the smaller side (C is convex); that they could also be coplanar
+      // with a polygon plane is ignored, which makes this a (deterministic) pruning heuristic
+      // rather than a bound for planes shared by many polygons.
+      double bound;
+      if (subtree)
+      {
+        const double a = front + splits;
+        const double b = back + splits;
+        const double lo = std::min(a, b) + remaining;
+        const double hi = std::max(a, b);
+        const double even = std::floor((a + b + remaining) * 0.5);
+        bound = lo <= hi ? costTable[static_cast<std::uint32_t>(lo)] +
+            costTable[static_cast<std::uint32_t>(hi)]
+                         : costTable[static_cast<std::uint32_t>(even)] +
+            costTable[static_cast<std::uint32_t>(a + b + remaining - even)];
+      }
+      else
+      {
+        bound = splits * Config.splitWeight + std::max(0.0, std::abs(front - back) - remaining);
+      }
+      if (bound > cutoff)
       {
         return kInfinity;
       }
@@ -715,7 +785,7 @@ Builder::Choice Builder::chooseScored(const Task& task, std::uint32_t n)
       }
       oneSided = true;
     }
-    return splits * Config.splitWeight + std::abs(front - back);
+    return finalScore(splits, front, back);
   };
 
   // Free planes first: on big lists one usually wins, and its score then cuts the polygon
@@ -778,15 +848,121 @@ Builder::Choice Builder::chooseScored(const Task& task, std::uint32_t n)
         }
       }
     }
+    // Sweep: the axis plane through a fragment's extreme coordinate that scores best on the
+    // fragments' extents. It finds gaps between the parts of an assembly and planes along
+    // aligned faces, which a median never hits; the winner is then scored like the others.
+    const std::uint32_t m = std::min(n, kSweepSample);
+    for (int axis = 0; axis < 3; ++axis)
+    {
+      SweepLo.resize(m);
+      SweepHi.resize(m);
+      SweepFlat.clear();
+      for (std::uint32_t j = 0; j < m; ++j)
+      {
+        const Frag& f = list[static_cast<std::uint32_t>((static_cast<std::uint64_t>(j) * n) / m)];
+        double lo = Local[Verts[f.first]][axis];
+        double hi = lo;
+        for (std::uint32_t k = 1; k < f.count; ++k)
+        {
+          const double c = Local[Verts[f.first + k]][axis];
+          lo = std::min(lo, c);
+          hi = std::max(hi, c);
+        }
+        SweepLo[j] = lo;
+        SweepHi[j] = hi;
+        if (hi - lo <= 2.0 * Tol)
+        {
+          SweepFlat.push_back(0.5 * (lo + hi)); // may lie on the plane (goes behind it)
+        }
+      }
+      std::sort(SweepLo.begin(), SweepLo.end());
+      std::sort(SweepHi.begin(), SweepHi.end());
+      std::sort(SweepFlat.begin(), SweepFlat.end());
+      // Positions in ascending order; every count below only moves forward.
+      double best = kInfinity;
+      double bestPosition = 0.0;
+      const std::size_t flats = SweepFlat.size();
+      std::size_t iLo = 0;
+      std::size_t iHi = 0;
+      std::size_t backOrOn = 0;
+      std::size_t belowLo = 0;
+      std::size_t flatBelow = 0;
+      std::size_t flatUpTo = 0;
+      SweepCost.resize(m + 1);
+      for (std::uint32_t k = 0; k <= m; ++k)
+      {
+        SweepCost[k] = subtree ? subtreeCost(static_cast<double>(k) * n / m)
+                               : static_cast<double>(k) * sampleSize / m;
+      }
+      while (iLo < m || iHi < m)
+      {
+        const bool takeLo = iHi >= m || (iLo < m && SweepLo[iLo] <= SweepHi[iHi]);
+        const double v = takeLo ? SweepLo[iLo++] : SweepHi[iHi++];
+        while (backOrOn < m && SweepHi[backOrOn] <= v + Tol)
+        {
+          ++backOrOn;
+        }
+        while (belowLo < m && SweepLo[belowLo] < v - Tol)
+        {
+          ++belowLo;
+        }
+        while (flatUpTo < flats && SweepFlat[flatUpTo] <= v + Tol)
+        {
+          ++flatUpTo;
+        }
+        while (flatBelow < flats && SweepFlat[flatBelow] < v - Tol)
+        {
+          ++flatBelow;
+        }
+        // Fragments both back-or-on and front-or-on lie on the plane: estimated from the flat
+        // ones' mid-points, clamped so that every count stays within [0, m].
+        const std::size_t frontOrOn = m - belowLo;
+        const std::size_t on = std::clamp(flatUpTo - flatBelow,
+          backOrOn + frontOrOn > m ? backOrOn + frontOrOn - m : std::size_t{ 0 },
+          std::min(backOrOn, frontOrOn));
+        const double back = static_cast<double>(backOrOn);
+        const double front = static_cast<double>(frontOrOn - on);
+        const double straddle = static_cast<double>(m) - back - front;
+        if (straddle == 0 && (front == 0 || back == 0))
+        {
+          continue;
+        }
+        const auto iStraddle = static_cast<std::uint32_t>(straddle);
+        const auto iFront = static_cast<std::uint32_t>(front);
+        const auto iBack = static_cast<std::uint32_t>(back);
+        const double sc = subtree
+          ? SweepCost[iFront + iStraddle] + SweepCost[iBack + iStraddle]
+          : SweepCost[iStraddle] * Config.splitWeight + std::abs(SweepCost[iFront] - SweepCost[iBack]);
+        if (sc < best)
+        {
+          best = sc;
+          bestPosition = v;
+        }
+      }
+      if (best < kInfinity)
+      {
+        glm::dvec4 plane(0.0);
+        plane[axis] = 1.0;
+        plane.w = -bestPosition;
+        const double sc = score(plane, kNone, bestFree);
+        if (sc < bestFree)
+        {
+          bestFree = sc;
+          freePlane = plane;
+        }
+      }
+    }
   }
 
   Choice choice;
   double bestPolygon = kInfinity;
   bool bestOneSided = false;
-  const std::uint32_t polygonCandidates = std::min(candidates, n);
+  const std::uint32_t listCandidates =
+    n <= kMinFreePlaneList ? candidates * kSmallListCandidateFactor : candidates;
+  const std::uint32_t polygonCandidates = std::min(listCandidates, n);
   for (std::uint32_t c = 0; c < polygonCandidates; ++c)
   {
-    const std::uint32_t index = n <= candidates ? c : rng.below(n);
+    const std::uint32_t index = n <= listCandidates ? c : rng.below(n);
     const std::uint32_t piece = list[index].piece;
     const glm::dvec4& plane = Planes[piece];
     const double sc = score(plane, piece, std::min(bestPolygon, bestFree));
@@ -821,7 +997,15 @@ Tree Builder::run()
   const Box bounds = Mesh.bounds();
   Out.origin = bounds.empty() ? glm::dvec3(0.0) : bounds.center();
   const double diagonal = bounds.diagonal();
-  Tol = Config.relativeTolerance * (diagonal > 0.0 ? diagonal : 1.0);
+  // The larger of the requested tolerance and the coordinate resolution (kResolutionSteps): far
+  // from the origin the rounding of the coordinates themselves can exceed a small scene's
+  // relative tolerance, and planar polygons would then be triangulated.
+  const double maxCoordinate = bounds.empty() ? 0.0
+                                              : std::max({ std::abs(bounds.lo.x), std::abs(bounds.lo.y),
+                                                  std::abs(bounds.lo.z), std::abs(bounds.hi.x),
+                                                  std::abs(bounds.hi.y), std::abs(bounds.hi.z) });
+  Tol = std::max(Config.relativeTolerance * (diagonal > 0.0 ? diagonal : 1.0),
+    kResolutionSteps * std::numeric_limits<double>::epsilon() * maxCoordinate);
   Out.tolerance = st.tolerance = Tol;
   Out.points = Mesh.points;
   Out.inputPointCount = Mesh.points.size();
