@@ -5,6 +5,7 @@
 #include "scenevis/BspBuilder.h"
 #include "scenevis/BspTraversal.h"
 #include "scenevis/OrderOracle.h"
+#include "scenevis/Scenes.h"
 
 #include <gtest/gtest.h>
 
@@ -800,4 +801,45 @@ TEST(BspOrder, OracleRejectsAReversedBspOrder)
       EXPECT_GT(scenevis::oracle::checkOrder(fragments, order, view).violations.size(), 0u);
     }
   }
+}
+
+// The hard case "a 1M-triangle sphere": the textbook partition makes it a chain of depth n (every
+// polygon behind every other plane); the scored heuristic must keep it shallow, conserve area,
+// and walk it fully and incrementally (too big for the O(n^2) oracle, which checks the same code
+// on the smaller cases above).
+TEST(BspOrder, MillionTriangleSphereBuildsShallowAndWalks)
+{
+  namespace bsp = scenevis::bsp;
+  const PolygonMesh sphere = scenevis::scenes::sphere({ 0.3, -0.2, 0.1 }, 1.0, 1'000'000);
+  ASSERT_GT(sphere.polygonCount(), 990'000u);
+  const bsp::Tree tree = bsp::build(sphere);
+  EXPECT_LT(tree.statistics.depth, 1000u);
+  EXPECT_LE(tree.fragments.size(), sphere.polygonCount() * 3 / 2);
+
+  double fragmentArea = 0.0;
+  for (const bsp::Fragment& f : tree.fragments)
+  {
+    fragmentArea += 0.5 *
+      glm::length(scenevis::newellNormal(tree.points.data(), &tree.fragmentVertices[f.first], f.count));
+  }
+  EXPECT_NEAR(fragmentArea, sphere.area(), 1e-9 * sphere.area());
+
+  bsp::IncrementalOrder incremental(tree, bsp::Direction::BackToFront);
+  std::vector<std::uint32_t> full;
+  for (int step = 0; step < 3; ++step)
+  {
+    const double angle = step * kPi / 180.0; // 1-degree orbit steps
+    const View view = View::perspective({ 4.0 * std::cos(angle), 1.0, 4.0 * std::sin(angle) });
+    bsp::order(tree, view, bsp::Direction::BackToFront, full);
+    incremental.update(view);
+    ASSERT_EQ(incremental.order(), full) << "step " << step;
+    std::vector<std::uint32_t> sorted = full;
+    std::sort(sorted.begin(), sorted.end());
+    for (std::size_t i = 0; i < sorted.size(); ++i)
+    {
+      ASSERT_EQ(sorted[i], i);
+    }
+  }
+  // A small step re-emits only a small part of the tree.
+  EXPECT_LT(incremental.lastUpdate().nodesVisited, tree.nodes.size() / 4);
 }

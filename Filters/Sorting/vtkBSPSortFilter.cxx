@@ -18,15 +18,12 @@
 #include "vtkProp3D.h"
 #include "vtkSmartPointer.h"
 #include "vtkSMPTools.h"
-#include "vtkTypeInt32Array.h"
-#include "vtkTypeInt64Array.h"
 #include "vtkWeakPointer.h"
 
 #include "scenevis/BspBuilder.h"
 #include "scenevis/BspTraversal.h"
 
 #include <chrono>
-#include <cstring>
 #include <numeric>
 #include <cmath>
 #include <sstream>
@@ -43,72 +40,6 @@ double SecondsSince(std::chrono::steady_clock::time_point start)
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-/// The fragments of `tree` as polygons in `order`, with 32-bit storage when the ids allow.
-template <typename ArrayT>
-vtkSmartPointer<vtkCellArray> EmitPolygonsAs(
-  const bsp::Tree& tree, const std::vector<std::uint32_t>& order)
-{
-  using ValueT = typename ArrayT::ValueType;
-  const std::size_t count = order.size();
-  vtkNew<ArrayT> offsets;
-  offsets->SetNumberOfValues(static_cast<vtkIdType>(count + 1));
-  ValueT* offsetPtr = offsets->GetPointer(0);
-  // Prefix sum of the fragment sizes in output order (serial: it is a dependency chain).
-  offsetPtr[0] = 0;
-  for (std::size_t r = 0; r < count; ++r)
-  {
-    offsetPtr[r + 1] = offsetPtr[r] + static_cast<ValueT>(tree.fragments[order[r]].count);
-  }
-  vtkNew<ArrayT> connectivity;
-  connectivity->SetNumberOfValues(static_cast<vtkIdType>(offsetPtr[count]));
-  ValueT* connPtr = connectivity->GetPointer(0);
-  vtkSMPTools::For(0, static_cast<vtkIdType>(count), [&](vtkIdType begin, vtkIdType end) {
-    for (vtkIdType r = begin; r < end; ++r)
-    {
-      const bsp::Fragment& fragment = tree.fragments[order[static_cast<std::size_t>(r)]];
-      const std::uint32_t* vertices = tree.fragmentVertices.data() + fragment.first;
-      std::copy(vertices, vertices + fragment.count, connPtr + offsetPtr[r]);
-    }
-  });
-  auto polys = vtkSmartPointer<vtkCellArray>::New();
-  polys->SetData(offsets, connectivity);
-  return polys;
-}
-
-vtkSmartPointer<vtkCellArray> EmitPolygons(
-  const bsp::Tree& tree, const std::vector<std::uint32_t>& order)
-{
-  const bool fits32 = tree.points.size() < 0x7fffffffu && tree.fragmentVertices.size() < 0x7fffffffu;
-  return fits32 ? EmitPolygonsAs<vtkTypeInt32Array>(tree, order)
-                : EmitPolygonsAs<vtkTypeInt64Array>(tree, order);
-}
-
-/// target[offset + r] = source[order[r]] for every tuple, on raw memory for numeric arrays.
-void PermuteTuples(vtkAbstractArray* source, const std::vector<std::uint32_t>& order,
-  vtkAbstractArray* target, vtkIdType offset)
-{
-  const int components = source->GetNumberOfComponents();
-  auto* sourceData = vtkDataArray::SafeDownCast(source);
-  auto* targetData = vtkDataArray::SafeDownCast(target);
-  if (sourceData && targetData && sourceData->HasStandardMemoryLayout() &&
-    targetData->HasStandardMemoryLayout())
-  {
-    const int size = sourceData->GetDataTypeSize() * components;
-    const auto* from = static_cast<const unsigned char*>(sourceData->GetVoidPointer(0));
-    auto* to = static_cast<unsigned char*>(targetData->GetVoidPointer(0)) + offset * size;
-    vtkSMPTools::For(0, static_cast<vtkIdType>(order.size()), [&](vtkIdType begin, vtkIdType end) {
-      for (vtkIdType r = begin; r < end; ++r)
-      {
-        std::memcpy(to + r * size, from + static_cast<std::size_t>(order[static_cast<std::size_t>(r)]) * size, size);
-      }
-    });
-    return;
-  }
-  for (std::size_t r = 0; r < order.size(); ++r)
-  {
-    target->SetTuple(offset + static_cast<vtkIdType>(r), order[r], source);
-  }
-}
 } // namespace
 
 struct vtkBSPSortFilter::Internals
@@ -359,7 +290,9 @@ int vtkBSPSortFilter::RequestData(vtkInformation* vtkNotUsed(request),
   output->GetPointData()->ShallowCopy(internal.Cache->GetPointData());
   output->SetVerts(internal.Cache->GetVerts());
   output->SetLines(internal.Cache->GetLines());
-  output->SetPolys(EmitPolygons(tree, order));
+  output->SetPolys(vtkBSPSortUtilities::EmitPolygons(tree.fragments.data(),
+    tree.fragmentVertices.data(), tree.fragmentVertices.size(), tree.points.size(), order.data(),
+    order.size()));
 
   // Cell data: pass-through cells keep their data, fragments take their source cell's.
   const vtkIdType passThrough = internal.NumberOfPassThroughCells;
@@ -381,7 +314,7 @@ int vtkBSPSortFilter::RequestData(vtkInformation* vtkNotUsed(request),
     {
       target->SetTuple(c, c, inCD->GetAbstractArray(source->GetName()));
     }
-    PermuteTuples(source, order, target, passThrough);
+    vtkBSPSortUtilities::PermuteTuples(source, order.data(), order.size(), target, passThrough);
   }
 
   if (this->GenerateOrderArrays)

@@ -9,15 +9,54 @@
 #include "vtkPointData.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
+#include "vtkSMPTools.h"
+#include "vtkTypeInt32Array.h"
+#include "vtkTypeInt64Array.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 
 namespace
 {
 bool IsFinite(const double v[3])
 {
   return std::isfinite(v[0]) && std::isfinite(v[1]) && std::isfinite(v[2]);
+}
+
+/// The fragments as polygons in `order` (nullptr: as they are), with ArrayT offsets/connectivity.
+template <typename ArrayT>
+vtkSmartPointer<vtkCellArray> EmitPolygonsAs(const scenevis::bsp::Fragment* fragments,
+  const std::uint32_t* fragmentVertices, const std::uint32_t* order, std::size_t count)
+{
+  using ValueT = typename ArrayT::ValueType;
+  auto fragmentAt = [&](std::size_t r) -> const scenevis::bsp::Fragment& {
+    return fragments[order ? order[r] : r];
+  };
+  vtkNew<ArrayT> offsets;
+  offsets->SetNumberOfValues(static_cast<vtkIdType>(count + 1));
+  ValueT* offsetPtr = offsets->GetPointer(0);
+  // Prefix sum of the fragment sizes in output order (serial: it is a dependency chain).
+  offsetPtr[0] = 0;
+  for (std::size_t r = 0; r < count; ++r)
+  {
+    offsetPtr[r + 1] = offsetPtr[r] + static_cast<ValueT>(fragmentAt(r).count);
+  }
+  vtkNew<ArrayT> connectivity;
+  connectivity->SetNumberOfValues(static_cast<vtkIdType>(offsetPtr[count]));
+  ValueT* connPtr = connectivity->GetPointer(0);
+  vtkSMPTools::For(0, static_cast<vtkIdType>(count), [&](vtkIdType begin, vtkIdType end) {
+    for (vtkIdType r = begin; r < end; ++r)
+    {
+      const scenevis::bsp::Fragment& fragment = fragmentAt(static_cast<std::size_t>(r));
+      const std::uint32_t* vertices = fragmentVertices + fragment.first;
+      std::copy(vertices, vertices + fragment.count, connPtr + offsetPtr[r]);
+    }
+  });
+  auto polys = vtkSmartPointer<vtkCellArray>::New();
+  polys->SetData(offsets, connectivity);
+  return polys;
 }
 } // namespace
 
@@ -157,4 +196,44 @@ bool vtkBSPSortUtilities::ViewFromCamera(
   view = parallel ? scenevis::View::parallel({ direction[0], direction[1], direction[2] })
                   : scenevis::View::perspective({ eye[0], eye[1], eye[2] });
   return true;
+}
+
+//------------------------------------------------------------------------------
+vtkSmartPointer<vtkCellArray> vtkBSPSortUtilities::EmitPolygons(
+  const scenevis::bsp::Fragment* fragments, const std::uint32_t* fragmentVertices,
+  std::size_t vertexCount, std::size_t pointCount, const std::uint32_t* order, std::size_t count)
+{
+  const bool fits32 = pointCount < 0x7fffffffu && vertexCount < 0x7fffffffu;
+  return fits32 ? EmitPolygonsAs<vtkTypeInt32Array>(fragments, fragmentVertices, order, count)
+                : EmitPolygonsAs<vtkTypeInt64Array>(fragments, fragmentVertices, order, count);
+}
+
+//------------------------------------------------------------------------------
+void vtkBSPSortUtilities::PermuteTuples(vtkAbstractArray* source, const std::uint32_t* order,
+  std::size_t count, vtkAbstractArray* target, vtkIdType offset)
+{
+  const int components = source->GetNumberOfComponents();
+  auto* sourceData = vtkDataArray::SafeDownCast(source);
+  auto* targetData = vtkDataArray::SafeDownCast(target);
+  if (sourceData && targetData && sourceData->HasStandardMemoryLayout() &&
+    targetData->HasStandardMemoryLayout() &&
+    sourceData->GetDataType() == targetData->GetDataType())
+  {
+    const int size = sourceData->GetDataTypeSize() * components;
+    const auto* from = static_cast<const unsigned char*>(sourceData->GetVoidPointer(0));
+    auto* to = static_cast<unsigned char*>(targetData->GetVoidPointer(0)) + offset * size;
+    vtkSMPTools::For(0, static_cast<vtkIdType>(count), [&](vtkIdType begin, vtkIdType end) {
+      for (vtkIdType r = begin; r < end; ++r)
+      {
+        std::memcpy(to + r * size,
+          from + static_cast<std::size_t>(order[static_cast<std::size_t>(r)]) * size,
+          static_cast<std::size_t>(size));
+      }
+    });
+    return;
+  }
+  for (std::size_t r = 0; r < count; ++r)
+  {
+    target->SetTuple(offset + static_cast<vtkIdType>(r), order[r], source);
+  }
 }

@@ -11,7 +11,10 @@
  *   lerp(point(a), point(b), t)), and EVERY point-data array is interpolated the same way, with
  *   normals re-normalised;
  * - a camera becomes a scenevis::View in the data coordinates of a prop (through the inverse of
- *   its matrix): an eye point for perspective cameras, a direction for parallel ones.
+ *   its matrix): an eye point for perspective cameras, a direction for parallel ones;
+ * - ordered fragments (of a bsp::Tree or a painter::Result, which share the layout) become a
+ *   vtkCellArray of polygons, and per-cell arrays follow the same order (EmitPolygons,
+ *   PermuteTuples): both run on every camera change, so they work on raw memory, in parallel.
  *
  * A plain class of static functions (no vtkObject): it has no state.
  */
@@ -20,6 +23,7 @@
 #define vtkBSPSortUtilities_h
 
 #include "SceneVisFiltersSortingModule.h" // For export macro
+#include "vtkSmartPointer.h"              // For vtkSmartPointer
 #include "vtkType.h"                      // For vtkIdType
 
 #include "scenevis/BspTree.h"     // For scenevis::bsp::SplitPoint
@@ -27,9 +31,12 @@
 #include "scenevis/View.h"        // For scenevis::View
 
 #include <cstddef> // For std::size_t
+#include <cstdint> // For std::uint32_t
 #include <vector>  // For std::vector
 
+class vtkAbstractArray;
 class vtkCamera;
+class vtkCellArray;
 class vtkMatrix4x4;
 class vtkPointData;
 class vtkPoints;
@@ -61,6 +68,27 @@ public:
    * direction (then @p view is unchanged).
    */
   static bool ViewFromCamera(vtkCamera* camera, vtkMatrix4x4* propMatrix, scenevis::View& view);
+
+  /**
+   * The polygons fragments[order[0]], fragments[order[1]], ... (@p count of them) as a cell array;
+   * @p order nullptr: fragments[0 .. count) as they are. Each fragment lists
+   * fragmentVertices[first .. first + count). The cell array uses 32-bit storage when
+   * @p pointCount and @p vertexCount (the size of @p fragmentVertices) allow, else 64-bit.
+   * Works for bsp::Tree (fragments in tree order + an IncrementalOrder) and painter::Result
+   * (fragments already in drawing order).
+   */
+  static vtkSmartPointer<vtkCellArray> EmitPolygons(const scenevis::bsp::Fragment* fragments,
+    const std::uint32_t* fragmentVertices, std::size_t vertexCount, std::size_t pointCount,
+    const std::uint32_t* order, std::size_t count);
+
+  /**
+   * target[offset + r] = source[order[r]] for r in [0, count): every component of every tuple.
+   * @p target must already hold at least offset + count tuples. Numeric arrays with the standard
+   * memory layout are copied as raw bytes in parallel; other arrays (strings, variants, SOA)
+   * tuple by tuple.
+   */
+  static void PermuteTuples(vtkAbstractArray* source, const std::uint32_t* order,
+    std::size_t count, vtkAbstractArray* target, vtkIdType offset);
 
   vtkBSPSortUtilities() = delete;
 };
