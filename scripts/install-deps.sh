@@ -8,6 +8,7 @@ packages=(
   libvtk9-dev libglm-dev
   libosmesa6-dev xvfb xauth
   googletest libgtest-dev libgmock-dev libbenchmark-dev
+  clang libclang-rt-14-dev  # libFuzzer for scripts/sanitize.sh (~45 MB download)
 )
 
 missing=()

@@ -12,4 +12,9 @@ cd "$build"
 export LP_NUM_THREADS=1
 xvfb-run -a -s "-screen 0 1280x1024x24" \
   ctest --output-on-failure -j"$(nproc)" --timeout 600 "$@"
+# Second build with ASan + UBSan + LeakSanitizer of the non-rendering tests, and a short fuzz run
+# (scripts/sanitize.sh; SCENEVIS_SANITIZE=0 skips it, SCENEVIS_FUZZ_SECONDS=0 skips the fuzzing).
+if [ "${SCENEVIS_SANITIZE:-1}" != "0" ]; then
+  bash "$root/scripts/sanitize.sh"
+fi
 echo "test: done in $(( $(date +%s) - start )) s"
