@@ -1,9 +1,15 @@
-// Per-frame cull time of vtkOctreeCuller (three update modes) against VTK 9.1's
+// Per-frame cull time of vtkOctreeCuller (four update modes) against VTK 9.1's
 // vtkFrustumCoverageCuller on 100k props (the part boxes of the CAD assembly as scaled cube
-// actors sharing one mapper), calling Cull() directly with a prop array: no rendering. The core
-// culling benchmarks (Core/Benchmarks/BenchCulling.cpp) are linked into the same executable so
-// one run shows everything side by side. `--benchmark_filter=Smoke` runs 1k-prop variants.
+// actors sharing one mapper), calling Cull() directly with a prop array: no rendering.
+// Frame time of vtkChunkedPolyDataMapper against vtkPolyDataMapper on one merged CAD mesh of
+// ~10M triangles (cadAssembly(100000, 100)) with ~10 % in view, OSMesa 800x600, a frame = a
+// small camera move + Render() (wall time: llvmpipe renders in its own threads).
+// The core culling benchmarks (Core/Benchmarks/BenchCulling.cpp) are linked into the same
+// executable so one run shows everything side by side. `--benchmark_filter=Smoke` runs small
+// variants. SCENEVIS_BENCH_MESH_TRIANGLES overrides the mesh size (default 10'000'000).
+#include "vtkChunkedPolyDataMapper.h"
 #include "vtkOctreeCuller.h"
+#include "vtkDemoSceneSource.h"
 
 #include "scenevis/Scenes.h"
 
@@ -12,6 +18,7 @@
 
 #include <vtkActor.h>
 #include <vtkCamera.h>
+#include <vtkCellData.h>
 #include <vtkCubeSource.h>
 #include <vtkCullerCollection.h>
 #include <vtkFrustumCoverageCuller.h>
@@ -19,10 +26,13 @@
 #include <vtkPolyDataMapper.h>
 #include <vtkRenderWindow.h>
 #include <vtkRenderer.h>
+#include <vtkRendererCollection.h>
+#include <vtkUnsignedCharArray.h>
 
 #include <benchmark/benchmark.h>
 
 #include <cmath>
+#include <cstdlib>
 #include <map>
 #include <memory>
 #include <vector>
@@ -150,19 +160,154 @@ void BM_OctreeCuller_Manual_100k(benchmark::State& s)
 {
   Octree(s, 100000, vtkOctreeCuller::UPDATE_MANUAL);
 }
+void BM_OctreeCuller_OnEvents_100k(benchmark::State& s)
+{
+  Octree(s, 100000, vtkOctreeCuller::UPDATE_ON_EVENTS);
+}
 void BM_Smoke_VtkFrustumCoverageCuller_1k(benchmark::State& s) { VtkFrustumCoverage(s, 1000); }
 void BM_Smoke_OctreeCuller_1k(benchmark::State& s)
 {
   Octree(s, 1000, vtkOctreeCuller::UPDATE_BOUNDS_EVERY_FRAME);
 }
+void BM_Smoke_OctreeCuller_OnEvents_1k(benchmark::State& s)
+{
+  Octree(s, 1000, vtkOctreeCuller::UPDATE_ON_EVENTS);
+}
+
+// ---- One big mesh: chunked vs plain mapper, whole frames. ------------------------------------
+struct MeshScene
+{
+  vtkSmartPointer<vtkRenderWindow> window;
+  vtkNew<vtkRenderer> plainRenderer, chunkedRenderer;
+  vtkNew<vtkPolyDataMapper> plain;
+  vtkNew<vtkChunkedPolyDataMapper> chunked;
+  vtkNew<vtkActor> plainActor, chunkedActor;
+  vtkNew<vtkCamera> camera;
+  double bounds[6];
+  vtkIdType triangles = 0;
+};
+std::map<std::size_t, std::unique_ptr<MeshScene>> meshCache;
+
+MeshScene& meshScene(std::size_t parts, std::size_t trianglesPerPart)
+{
+  auto& s = meshCache[parts * 100000 + trianglesPerPart];
+  if (!s)
+  {
+    s = std::make_unique<MeshScene>();
+    vtkNew<vtkDemoSceneSource> source;
+    source->SetScene(vtkDemoSceneSource::SCENE_CAD_ASSEMBLY);
+    source->SetPartCount(static_cast<vtkIdType>(parts));
+    source->SetTriangleCount(static_cast<vtkIdType>(parts * trianglesPerPart));
+    source->Update();
+    vtkNew<vtkPolyData> mesh;
+    mesh->ShallowCopy(source->GetOutput());
+    // Opaque part colours (RGB cell scalars): both mappers draw in the opaque pass.
+    auto* rgba = vtkUnsignedCharArray::SafeDownCast(mesh->GetCellData()->GetScalars());
+    vtkNew<vtkUnsignedCharArray> rgb;
+    rgb->SetName("RGB");
+    rgb->SetNumberOfComponents(3);
+    rgb->SetNumberOfTuples(rgba->GetNumberOfTuples());
+    for (vtkIdType i = 0; i < rgba->GetNumberOfTuples(); ++i)
+    {
+      for (int k = 0; k < 3; ++k)
+      {
+        rgb->SetValue(3 * i + k, rgba->GetValue(4 * i + k));
+      }
+    }
+    mesh->GetCellData()->RemoveArray(rgba->GetName());
+    mesh->GetCellData()->SetScalars(rgb);
+    mesh->GetBounds(s->bounds);
+    s->triangles = mesh->GetNumberOfPolys();
+    s->window = scenevis::testing::MakeRenderWindow(800, 600);
+    s->plain->SetInputData(mesh);
+    s->chunked->SetInputData(mesh);
+    s->plainActor->SetMapper(s->plain);
+    s->chunkedActor->SetMapper(s->chunked);
+    s->plainRenderer->AddActor(s->plainActor);
+    s->chunkedRenderer->AddActor(s->chunkedActor);
+    s->plainRenderer->SetActiveCamera(s->camera);
+    s->chunkedRenderer->SetActiveCamera(s->camera);
+  }
+  return *s;
+}
+
+/// Looking obliquely down at a corner region of the board: about 10 % of the triangles in view.
+/// @p frame moves the camera a little (a slow pan).
+void MeshView(MeshScene& s, std::size_t frame)
+{
+  const double* b = s.bounds;
+  const double w = b[1] - b[0], h = b[3] - b[2];
+  const double t = 0.002 * static_cast<double>(frame % 50);
+  const double fx = b[0] + (0.22 + t) * w, fy = b[2] + 0.22 * h;
+  s.camera->SetFocalPoint(fx, fy, b[4]);
+  s.camera->SetPosition(fx - 0.12 * w, fy - 0.12 * h, b[4] + 0.18 * w);
+  s.camera->SetViewUp(0, 0, 1);
+  s.camera->SetViewAngle(30);
+  s.camera->SetClippingRange(0.005 * w, 2.0 * w);
+}
+
+void MeshFrame(benchmark::State& state, std::size_t parts, std::size_t perPart, bool chunked)
+{
+  MeshScene& s = meshScene(parts, perPart);
+  vtkRenderer* ren = chunked ? s.chunkedRenderer.GetPointer() : s.plainRenderer.GetPointer();
+  s.window->GetRenderers()->RemoveAllItems();
+  s.window->AddRenderer(ren);
+  MeshView(s, 0);
+  s.window->Render(); // builds the buffers (and the partition), untimed
+  s.window->Render();
+  std::size_t frame = 0;
+  double drawn = 0.0, calls = 0.0;
+  for (auto _ : state)
+  {
+    MeshView(s, ++frame);
+    s.window->Render();
+    if (chunked)
+    {
+      drawn += static_cast<double>(s.chunked->GetNumberOfTrianglesDrawn());
+      calls += static_cast<double>(s.chunked->GetNumberOfDrawCalls());
+    }
+    else
+    {
+      drawn += static_cast<double>(s.triangles);
+    }
+  }
+  const double frames = static_cast<double>(std::max<std::size_t>(frame, 1));
+  state.counters["triangles"] = static_cast<double>(s.triangles);
+  state.counters["drawn/frame"] = drawn / frames;
+  state.counters["in view %"] = 100.0 * drawn / frames / static_cast<double>(s.triangles);
+  if (chunked)
+  {
+    state.counters["draw calls"] = calls / frames;
+    state.counters["chunks"] = static_cast<double>(s.chunked->GetNumberOfChunks());
+    state.counters["VBO builds"] = static_cast<double>(s.chunked->GetNumberOfVertexBufferBuilds());
+    state.counters["partition s"] = s.chunked->GetLastPartitionTime();
+  }
+}
+
+std::size_t MeshParts()
+{
+  const char* env = std::getenv("SCENEVIS_BENCH_MESH_TRIANGLES");
+  const std::size_t triangles = env ? std::strtoull(env, nullptr, 10) : 10000000;
+  return std::max<std::size_t>(triangles / 100, 100);
+}
+void BM_PlainMapperFrame_CadMesh(benchmark::State& s) { MeshFrame(s, MeshParts(), 100, false); }
+void BM_ChunkedMapperFrame_CadMesh(benchmark::State& s) { MeshFrame(s, MeshParts(), 100, true); }
+void BM_Smoke_PlainMapperFrame_CadMesh(benchmark::State& s) { MeshFrame(s, 2000, 50, false); }
+void BM_Smoke_ChunkedMapperFrame_CadMesh(benchmark::State& s) { MeshFrame(s, 2000, 50, true); }
 } // namespace
 
 BENCHMARK(BM_VtkFrustumCoverageCuller_100k)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_OctreeCuller_BoundsEveryFrame_100k)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_OctreeCuller_OnModified_100k)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_OctreeCuller_Manual_100k)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_OctreeCuller_OnEvents_100k)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Smoke_VtkFrustumCoverageCuller_1k)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_Smoke_OctreeCuller_1k)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_Smoke_OctreeCuller_OnEvents_1k)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_PlainMapperFrame_CadMesh)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(6);
+BENCHMARK(BM_ChunkedMapperFrame_CadMesh)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(30);
+BENCHMARK(BM_Smoke_PlainMapperFrame_CadMesh)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(3);
+BENCHMARK(BM_Smoke_ChunkedMapperFrame_CadMesh)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(3);
 
 int main(int argc, char** argv)
 {
@@ -174,5 +319,6 @@ int main(int argc, char** argv)
   benchmark::RunSpecifiedBenchmarks();
   benchmark::Shutdown();
   cache.clear();
+  meshCache.clear();
   return 0;
 }

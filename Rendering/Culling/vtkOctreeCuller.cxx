@@ -1,6 +1,9 @@
 #include "vtkOctreeCuller.h"
 
 #include "vtkActor.h"
+#include "vtkAlgorithm.h"
+#include "vtkAlgorithmOutput.h"
+#include "vtkCallbackCommand.h"
 #include "vtkCamera.h"
 #include "vtkCellArray.h"
 #include "vtkCullerCollection.h"
@@ -9,9 +12,11 @@
 #include "vtkMapper.h"
 #include "vtkMath.h"
 #include "vtkMatrix4x4.h"
+#include "vtkNew.h"
 #include "vtkObjectFactory.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
+#include "vtkPolyDataMapper.h"
 #include "vtkProp.h"
 #include "vtkProperty.h"
 #include "vtkRenderer.h"
@@ -23,6 +28,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <unordered_map>
 #include <unordered_set>
 #include <utility>
@@ -55,6 +61,11 @@ struct Slot
   bool IsActor = false;
   vtkObject* UserTransform = nullptr; // held by the prop; followed only while PropTime holds
   vtkMTimeType UserTransformTime = 0;
+  // UPDATE_ON_EVENTS: the objects whose ModifiedEvent marks this slot dirty, and whether the
+  // slot must be polled every frame instead (props / mappers whose bounds events cannot cover).
+  std::vector<vtkObject*> Watched;
+  bool Polled = false;
+  bool Registered = false;
 };
 
 bool FiniteBounds(const double* b)
@@ -104,6 +115,249 @@ public:
   bool WarnedInvalidBounds = false;
   bool WarnedCamera = false;
   bool WarnedViewport = false;
+
+  // --- UPDATE_ON_EVENTS ---------------------------------------------------------------------
+  struct Watch
+  {
+    unsigned long ModifiedTag = 0, DeleteTag = 0;
+    std::vector<std::uint32_t> Slots;
+  };
+  // Every object observed, with the slots that depend on it (one observer pair per object, so a
+  // source shared by 100k actors costs one callback that marks 100k slots).
+  std::unordered_map<vtkObject*, Watch> Watches;
+  vtkNew<vtkCallbackCommand> Callback;
+  std::vector<std::uint32_t> DirtyList, DirtyWork;
+  std::vector<unsigned char> Dirty, PrevPresent;
+  std::vector<std::uint32_t> PolledSlots;
+  bool EventsActive = false;
+  vtkIdType Events = 0;
+
+  vtkInternals()
+  {
+    this->Callback->SetClientData(this);
+    this->Callback->SetCallback(&vtkInternals::OnEvent);
+  }
+  ~vtkInternals() { this->UnwatchAll(); }
+
+  static void OnEvent(vtkObject* caller, unsigned long event, void* clientData, void*)
+  {
+    auto* self = static_cast<vtkInternals*>(clientData);
+    const auto it = self->Watches.find(caller);
+    if (it == self->Watches.end())
+    {
+      return;
+    }
+    ++self->Events;
+    for (const std::uint32_t s : it->second.Slots)
+    {
+      self->MarkDirty(s);
+    }
+    if (event == vtkCommand::DeleteEvent)
+    {
+      self->Watches.erase(it); // its observers die with it
+    }
+  }
+
+  void MarkDirty(std::uint32_t s)
+  {
+    if (s < this->Dirty.size() && !this->Dirty[s])
+    {
+      this->Dirty[s] = 1;
+      this->DirtyList.push_back(s);
+    }
+  }
+
+  void WatchObject(vtkObject* object, std::uint32_t s)
+  {
+    auto inserted = this->Watches.try_emplace(object);
+    Watch& w = inserted.first->second;
+    if (inserted.second)
+    {
+      w.ModifiedTag = object->AddObserver(vtkCommand::ModifiedEvent, this->Callback);
+      w.DeleteTag = object->AddObserver(vtkCommand::DeleteEvent, this->Callback);
+    }
+    w.Slots.push_back(s);
+  }
+
+  void Unregister(std::uint32_t s)
+  {
+    Slot& slot = this->Slots[s];
+    for (vtkObject* object : slot.Watched)
+    {
+      const auto it = this->Watches.find(object);
+      if (it == this->Watches.end())
+      {
+        continue; // deleted meanwhile
+      }
+      auto& list = it->second.Slots;
+      const auto pos = std::find(list.begin(), list.end(), s);
+      if (pos != list.end())
+      {
+        *pos = list.back();
+        list.pop_back();
+      }
+      if (list.empty())
+      {
+        object->RemoveObserver(it->second.ModifiedTag);
+        object->RemoveObserver(it->second.DeleteTag);
+        this->Watches.erase(it);
+      }
+    }
+    slot.Watched.clear();
+    slot.Registered = false;
+  }
+
+  void UnwatchAll()
+  {
+    for (auto& entry : this->Watches)
+    {
+      entry.first->RemoveObserver(entry.second.ModifiedTag);
+      entry.first->RemoveObserver(entry.second.DeleteTag);
+    }
+    this->Watches.clear();
+    for (Slot& slot : this->Slots)
+    {
+      slot.Watched.clear();
+      slot.Registered = false;
+    }
+    this->PolledSlots.clear();
+  }
+
+  /// The objects whose modification can change slot @p s's bounds (see the class documentation).
+  /// Returns false when events cannot cover the prop: it is then polled every frame.
+  static bool Dependencies(const Slot& slot, bool withProperty, std::vector<vtkObject*>& deps)
+  {
+    deps.clear();
+    vtkProp* prop = slot.Prop;
+    deps.push_back(prop);
+    const char* name = prop->GetClassName();
+    // Only plain actors: subclasses such as vtkFollower / vtkLODActor / vtkAxesActor compute
+    // their matrix or bounds from other state (the camera, their parts).
+    if (std::strcmp(name, "vtkOpenGLActor") != 0 && std::strcmp(name, "vtkActor") != 0)
+    {
+      return false;
+    }
+    auto* actor = static_cast<vtkActor*>(prop);
+    if (actor->GetUserTransform())
+    {
+      return false; // a transform's inputs / concatenations change it without an event on it
+    }
+    if (vtkMatrix4x4* m = actor->GetUserMatrix())
+    {
+      deps.push_back(m);
+    }
+    if (withProperty)
+    {
+      deps.push_back(actor->GetProperty());
+    }
+    vtkMapper* mapper = actor->GetMapper();
+    if (!mapper)
+    {
+      return true; // SetMapper() modifies the actor
+    }
+    if (!mapper->IsA("vtkPolyDataMapper"))
+    {
+      return false;
+    }
+    deps.push_back(mapper);
+    if (mapper->GetNumberOfInputConnections(0) == 0)
+    {
+      return true; // SetInputConnection / SetInputData modify the mapper
+    }
+    vtkDataObject* data = mapper->GetInputDataObject(0, 0);
+    if (data)
+    {
+      if (!data->IsA("vtkPolyData"))
+      {
+        return false;
+      }
+      deps.push_back(data);
+      // A polydata's bounds come from its points; editing them fires events on the points or
+      // their array, not on the polydata.
+      if (vtkPoints* points = static_cast<vtkPolyData*>(data)->GetPoints())
+      {
+        deps.push_back(points);
+        if (points->GetData())
+        {
+          deps.push_back(points->GetData());
+        }
+      }
+    }
+    // The upstream pipeline: a modified algorithm re-executes at the next GetBounds() (for a
+    // culled prop nothing else would notice).
+    std::vector<vtkAlgorithm*> stack;
+    if (vtkAlgorithmOutput* out = mapper->GetInputConnection(0, 0))
+    {
+      stack.push_back(out->GetProducer());
+    }
+    std::size_t algorithms = 0;
+    while (!stack.empty())
+    {
+      vtkAlgorithm* algorithm = stack.back();
+      stack.pop_back();
+      if (!algorithm || std::find(deps.begin(), deps.end(), algorithm) != deps.end())
+      {
+        continue;
+      }
+      if (++algorithms > 64)
+      {
+        return false; // a huge pipeline: poll instead
+      }
+      deps.push_back(algorithm);
+      for (int port = 0; port < algorithm->GetNumberOfInputPorts(); ++port)
+      {
+        for (int c = 0; c < algorithm->GetNumberOfInputConnections(port); ++c)
+        {
+          if (vtkAlgorithmOutput* in = algorithm->GetInputConnection(port, c))
+          {
+            stack.push_back(in->GetProducer());
+          }
+        }
+      }
+    }
+    return true;
+  }
+
+  /// (Re)register slot @p s; returns whether it is polled.
+  void Register(std::uint32_t s, bool withProperty, std::vector<vtkObject*>& scratch)
+  {
+    Slot& slot = this->Slots[s];
+    const bool events = Dependencies(slot, withProperty, scratch);
+    if (slot.Registered && scratch == slot.Watched && slot.Polled == !events)
+    {
+      return;
+    }
+    this->Unregister(s);
+    for (vtkObject* object : scratch)
+    {
+      this->WatchObject(object, s);
+    }
+    slot.Watched = scratch;
+    slot.Registered = true;
+    if (slot.Polled != !events)
+    {
+      slot.Polled = !events;
+      this->PolledSetChanged = true;
+    }
+  }
+
+  bool PolledSetChanged = true;
+  void UpdatePolledList()
+  {
+    if (!this->PolledSetChanged)
+    {
+      return;
+    }
+    this->PolledSlots.clear();
+    for (std::uint32_t s = 0; s < this->Slots.size(); ++s)
+    {
+      if (this->Slots[s].Registered && this->Slots[s].Polled)
+      {
+        this->PolledSlots.push_back(s);
+      }
+    }
+    this->PolledSetChanged = false;
+  }
 };
 
 //------------------------------------------------------------------------------
@@ -122,6 +376,17 @@ void vtkOctreeCuller::InvalidateProp(vtkProp* prop)
   {
     this->Internals->Invalidated.insert(prop);
   }
+}
+
+//------------------------------------------------------------------------------
+vtkIdType vtkOctreeCuller::GetNumberOfObservedObjects() const
+{
+  return static_cast<vtkIdType>(this->Internals->Watches.size());
+}
+
+vtkIdType vtkOctreeCuller::GetNumberOfPolledProps() const
+{
+  return this->Internals->EventsActive ? static_cast<vtkIdType>(this->Internals->PolledSlots.size()) : 0;
 }
 
 //------------------------------------------------------------------------------
@@ -279,6 +544,10 @@ double vtkOctreeCuller::Cull(
   if (!sameList && !rebuild)
   {
     in.ListSlots.resize(n);
+    if (in.EventsActive)
+    {
+      in.PrevPresent = in.Present;
+    }
     std::fill(in.Present.begin(), in.Present.end(), 0);
     std::size_t present = 0;
     for (std::size_t i = 0; i < n && !rebuild; ++i)
@@ -297,6 +566,25 @@ double vtkOctreeCuller::Cull(
     }
     // Forget props that are gone once they are the majority (they are held by reference).
     rebuild = rebuild || (in.Slots.size() > 64 && 2 * present < in.Slots.size());
+    if (in.EventsActive && !rebuild)
+    {
+      // Props that left stop being observed; props that came back are re-read.
+      std::vector<vtkObject*> scratch;
+      for (std::uint32_t s = 0; s < in.Slots.size(); ++s)
+      {
+        if (in.PrevPresent[s] && !in.Present[s])
+        {
+          in.Unregister(s);
+          in.PolledSetChanged = true;
+        }
+        else if (!in.PrevPresent[s] && in.Present[s])
+        {
+          in.Register(s, this->NormalConeCulling, scratch);
+          in.PolledSetChanged = true;
+          in.MarkDirty(s);
+        }
+      }
+    }
   }
   if (!sameList)
   {
@@ -304,6 +592,8 @@ double vtkOctreeCuller::Cull(
   }
   if (rebuild)
   {
+    in.UnwatchAll();
+    in.EventsActive = false;
     in.Slots.clear();
     in.SlotOf.clear();
     in.Invalidated.clear();
@@ -345,10 +635,30 @@ double vtkOctreeCuller::Cull(
     in.MultiplierIsOne.assign(in.Slots.size(), 0);
     in.RebuildRequested = false;
     ++this->NumberOfRebuilds;
+    in.Dirty.assign(in.Slots.size(), 0);
+    in.DirtyList.clear();
+    if (this->UpdateMode == UPDATE_ON_EVENTS)
+    {
+      std::vector<vtkObject*> scratch;
+      for (std::uint32_t s = 0; s < in.Slots.size(); ++s)
+      {
+        in.Register(s, this->NormalConeCulling, scratch);
+      }
+      in.PolledSetChanged = true;
+      in.EventsActive = true;
+      // Events fired while the bounds were read above (pipeline updates) are already seen.
+      std::fill(in.Dirty.begin(), in.Dirty.end(), 0);
+      in.DirtyList.clear();
+    }
   }
   else
   {
     // --- 2. Find moved props (UpdateMode) and refit their paths. ------------------------------
+    if (in.EventsActive && this->UpdateMode != UPDATE_ON_EVENTS)
+    {
+      in.UnwatchAll();
+      in.EventsActive = false;
+    }
     std::size_t refits = 0;
     auto refresh = [&](std::uint32_t s)
     {
@@ -381,6 +691,64 @@ double vtkOctreeCuller::Cull(
                        slot.Prop->vtkObject::GetMTime() != slot.PropTime))
         {
           refresh(s);
+        }
+      }
+    }
+    else if (this->UpdateMode == UPDATE_ON_EVENTS)
+    {
+      if (!in.EventsActive)
+      {
+        // Switched to events: observe everything, and re-read every prop once (changes made
+        // before were not observed).
+        std::vector<vtkObject*> scratch;
+        in.Dirty.assign(slots, 0);
+        in.DirtyList.clear();
+        for (std::uint32_t s = 0; s < slots; ++s)
+        {
+          if (in.Present[s])
+          {
+            in.Register(s, this->NormalConeCulling, scratch);
+            in.MarkDirty(s);
+          }
+        }
+        in.PolledSetChanged = true;
+        in.EventsActive = true;
+      }
+      // O(dirty props): re-read the props whose dependencies fired ModifiedEvent. A slot's own
+      // events while its bounds are read (its pipeline updating) are absorbed (it is still
+      // marked); events for other slots raised meanwhile are handled in the next round.
+      std::vector<vtkObject*> scratch;
+      for (int round = 0; round < 4 && !in.DirtyList.empty(); ++round)
+      {
+        in.DirtyWork.swap(in.DirtyList);
+        for (const std::uint32_t s : in.DirtyWork)
+        {
+          if (in.Present[s])
+          {
+            refresh(s);
+            in.Register(s, this->NormalConeCulling, scratch);
+          }
+          in.Dirty[s] = 0;
+        }
+        in.DirtyWork.clear();
+      }
+      // Props events cannot cover (see the class documentation): polled like
+      // UPDATE_BOUNDS_EVERY_FRAME.
+      in.UpdatePolledList();
+      for (const std::uint32_t s : in.PolledSlots)
+      {
+        Slot& slot = in.Slots[s];
+        if (!in.Present[s])
+        {
+          continue;
+        }
+        const double* b = slot.Prop->GetBounds();
+        const bool same = slot.Kind == SlotKind::Tree && b && std::equal(b, b + 6, slot.Bounds);
+        if (!same || (slot.Kind == SlotKind::Tree && this->NormalConeCulling &&
+                       slot.Prop->vtkObject::GetMTime() != slot.PropTime))
+        {
+          refresh(s);
+          in.Register(s, this->NormalConeCulling, scratch);
         }
       }
     }
@@ -633,6 +1001,7 @@ void vtkOctreeCuller::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "SortingStyle: " << this->SortingStyle << "\n";
   os << indent << "UpdateMode: " << this->UpdateMode << "\n";
   os << indent << "Props known: " << this->Internals->Slots.size() << "\n";
+  os << indent << "Objects observed: " << this->Internals->Watches.size() << "\n";
   os << indent << "NumberOfNodesVisited: " << this->NumberOfNodesVisited << "\n";
   os << indent << "NumberOfPropsTested: " << this->NumberOfPropsTested << "\n";
   os << indent << "NumberOfPropsCulled: " << this->NumberOfPropsCulled << "\n";

@@ -40,7 +40,28 @@
  * Updates: the hierarchy is rebuilt only when props appear (or more than half of those it knows
  * are gone); a prop whose bounds change is refit in O(log n). How changes are found is the
  * UpdateMode:
- * - UPDATE_BOUNDS_EVERY_FRAME (default): GetBounds() of every prop every frame, like
+ * - UPDATE_ON_EVENTS (default): event-driven dirty tracking; a frame costs O(changed props) plus
+ *   the traversal. The culler observes ModifiedEvent (and DeleteEvent) on, per prop: the prop;
+ *   for a plain vtkActor (class vtkActor / vtkOpenGLActor) also its user matrix, its property
+ *   (only with NormalConeCulling), its mapper (a vtkPolyDataMapper), the mapper's input
+ *   vtkPolyData, that polydata's vtkPoints and their data array, and every algorithm upstream of
+ *   the mapper (up to 64). An object shared by many props is observed once. A fired event marks
+ *   the dependent props; at the next Cull() only those re-read their bounds (and dependencies).
+ *   Detected therefore: SetPosition / SetOrientation / RotateX.. / SetScale / SetOrigin /
+ *   SetUserMatrix / SetMapper, user-matrix SetElement / DeepCopy / Modified(), SetInputData /
+ *   SetInputConnection, a new output of the pipeline, point edits followed by Modified() on the
+ *   points, their array or the polydata, parameter changes of any upstream algorithm (also of
+ *   culled props, whose pipeline has not executed). Polled every frame instead (GetBounds() as in
+ *   UPDATE_BOUNDS_EVERY_FRAME, O(such props)): props that are not plain vtkActors (vtkFollower,
+ *   vtkLODActor, vtkAssembly, volumes, ...), actors with a user transform (its inputs and
+ *   concatenations change it silently), mappers that are not vtkPolyDataMappers or whose input is
+ *   not a vtkPolyData, and pipelines of more than 64 algorithms. NOT detected: writing memory
+ *   directly (e.g. through GetPointer() or vtkMatrix4x4::Element) without calling Modified(),
+ *   changes to cell connectivity alone (no Modified() on the polydata), and time-dependent
+ *   pipeline output without a Modified() (call InvalidateProp() for those). Props that leave the
+ *   renderer stop being observed at the next Cull(); all observers go with the culler or when
+ *   the mode is changed.
+ * - UPDATE_BOUNDS_EVERY_FRAME: GetBounds() of every prop every frame, like
  *   vtkFrustumCoverageCuller (same pipeline updates); always correct.
  * - UPDATE_ON_MODIFIED: GetBounds() only for props whose MTime, mapper MTime or mapper input
  *   MTime changed since the last frame (moves through SetPosition/SetUserMatrix/..., new input
@@ -117,11 +138,12 @@ public:
   {
     UPDATE_BOUNDS_EVERY_FRAME = 0,
     UPDATE_ON_MODIFIED,
-    UPDATE_MANUAL
+    UPDATE_MANUAL,
+    UPDATE_ON_EVENTS
   };
   ///@{
   /// How moved props are found (see the class documentation).
-  vtkSetClampMacro(UpdateMode, int, UPDATE_BOUNDS_EVERY_FRAME, UPDATE_MANUAL);
+  vtkSetClampMacro(UpdateMode, int, UPDATE_BOUNDS_EVERY_FRAME, UPDATE_ON_EVENTS);
   vtkGetMacro(UpdateMode, int);
   ///@}
 
@@ -144,6 +166,9 @@ public:
   /// Hierarchy rebuilds and prop refits since construction.
   vtkGetMacro(NumberOfRebuilds, vtkIdType);
   vtkGetMacro(NumberOfRefits, vtkIdType);
+  /// UPDATE_ON_EVENTS: objects observed now, and props polled every frame (see above).
+  vtkIdType GetNumberOfObservedObjects() const;
+  vtkIdType GetNumberOfPolledProps() const;
   /// Whether the last Cull() culled nothing because camera or viewport were unusable.
   vtkGetMacro(CullingSkipped, bool);
   ///@}
@@ -157,7 +182,7 @@ protected:
   double MaximumDistance = VTK_DOUBLE_MAX;
   bool NormalConeCulling = false;
   int SortingStyle = 0;
-  int UpdateMode = UPDATE_BOUNDS_EVERY_FRAME;
+  int UpdateMode = UPDATE_ON_EVENTS;
 
   vtkIdType NumberOfNodesVisited = 0;
   vtkIdType NumberOfPropsTested = 0;

@@ -1,0 +1,826 @@
+#include "vtkChunkedPolyDataMapper.h"
+
+#include "vtkActor.h"
+#include "vtkCamera.h"
+#include "vtkCellArray.h"
+#include "vtkCellArrayIterator.h"
+#include "vtkCellData.h"
+#include "vtkDataArray.h"
+#include "vtkDoubleArray.h"
+#include "vtkFloatArray.h"
+#include "vtkIdList.h"
+#include "vtkMath.h"
+#include "vtkMatrix4x4.h"
+#include "vtkNew.h"
+#include "vtkObjectFactory.h"
+#include "vtkOpenGLHelper.h"
+#include "vtkOpenGLIndexBufferObject.h"
+#include "vtkOpenGLVertexBufferObjectGroup.h"
+#include "vtkPointData.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+#include "vtkProperty.h"
+#include "vtkRenderer.h"
+#include "vtkShaderProgram.h"
+#include "vtkSmartPointer.h"
+#include "vtk_glew.h"
+
+#include "scenevis/Frustum.h"
+#include "scenevis/NormalCone.h"
+
+#include <glm/geometric.hpp>
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <cstdint>
+#include <functional>
+#include <limits>
+#include <utility>
+
+vtkStandardNewMacro(vtkChunkedPolyDataMapper);
+
+namespace
+{
+namespace sc = scenevis::culling;
+
+struct Node
+{
+  glm::dvec3 lo{ 0.0 }, hi{ 0.0 };
+  sc::NormalCone cone;
+  std::uint32_t firstChunk = 0, endChunk = 0;
+  std::uint32_t right = 0; ///< 0: leaf (left child = this + 1 otherwise)
+};
+
+double SecondsSince(std::chrono::steady_clock::time_point start)
+{
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+} // namespace
+
+//------------------------------------------------------------------------------
+struct vtkChunkedPolyDataMapper::Internals
+{
+  // Partition of the current input.
+  vtkPolyData* Input = nullptr; // compared only, never dereferenced
+  vtkMTimeType InputMTime = 0;
+  int BuiltChunkSize = 0;
+  vtkSmartPointer<vtkPolyData> Chunked;
+  vtkIdType PolyBase = 0;                    // cells before the polygons (verts + lines)
+  std::vector<vtkIdType> InputPolyOf;        // reordered polygon k -> input cell id
+  std::vector<std::uint32_t> ChunkPolyBegin; // chunk c: reordered polygons [b[c], b[c+1])
+  std::vector<std::uint64_t> ChunkTriBegin;  // chunk c: triangles [t[c], t[c+1])
+  std::vector<Node> Nodes;                   // depth first, root 0
+  bool WarnedMismatch = false;
+
+  // This frame.
+  bool Cull = false;
+  bool Skipped = false;
+  std::vector<std::pair<std::uint64_t, std::uint64_t>> Ranges; // (first triangle, count)
+  std::vector<std::uint32_t> DrawnChunks;
+
+  // Per-frame traversal parameters.
+  sc::Frustum Frustum;
+  bool UseFrustum = true;
+  bool UseCones = false;
+  bool Parallel = false;
+  glm::dvec3 EyeModel{ 0.0 }, DopModel{ 0.0, 0.0, -1.0 };
+  double MinPixels = 0.0;
+  double PixelsPerUnit = 0.0;
+  double Model[16];
+  double MaxScale = 1.0;
+  glm::dvec3 EyeWorld{ 0.0 }, ViewDirWorld{ 0.0, 0.0, -1.0 };
+
+  // Statistics.
+  vtkIdType NodesVisited = 0, ChunksTested = 0, ChunksDrawn = 0, CulledFrustum = 0,
+            CulledCone = 0, CulledSize = 0, TrianglesDrawn = 0, DrawCalls = 0;
+  vtkIdType PartitionBuilds = 0, VertexBufferBuilds = 0;
+  double PartitionTime = 0.0, CullTime = 0.0;
+
+  std::uint64_t TotalTriangles() const { return this->ChunkTriBegin.empty() ? 0 : this->ChunkTriBegin.back(); }
+  std::uint32_t ChunkCount() const
+  {
+    return this->ChunkPolyBegin.empty() ? 0 : static_cast<std::uint32_t>(this->ChunkPolyBegin.size() - 1);
+  }
+
+  void Build(vtkPolyData* input, int chunkSize);
+  void Emit(std::uint32_t firstChunk, std::uint32_t endChunk)
+  {
+    const std::uint64_t first = this->ChunkTriBegin[firstChunk];
+    const std::uint64_t count = this->ChunkTriBegin[endChunk] - first;
+    this->ChunksDrawn += endChunk - firstChunk;
+    this->TrianglesDrawn += static_cast<vtkIdType>(count);
+    for (std::uint32_t c = firstChunk; c < endChunk; ++c)
+    {
+      this->DrawnChunks.push_back(c);
+    }
+    if (count == 0)
+    {
+      return;
+    }
+    if (!this->Ranges.empty() && this->Ranges.back().first + this->Ranges.back().second == first)
+    {
+      this->Ranges.back().second += count;
+    }
+    else
+    {
+      this->Ranges.emplace_back(first, count);
+    }
+  }
+  void Traverse(std::uint32_t node, std::uint8_t mask);
+  bool SmallFeature(const Node& n) const;
+};
+
+//------------------------------------------------------------------------------
+void vtkChunkedPolyDataMapper::Internals::Build(vtkPolyData* input, int chunkSize)
+{
+  this->Chunked = nullptr;
+  this->InputPolyOf.clear();
+  this->ChunkPolyBegin.clear();
+  this->ChunkTriBegin.clear();
+  this->Nodes.clear();
+  this->Input = input;
+  this->InputMTime = input->GetMTime();
+  this->BuiltChunkSize = chunkSize;
+  vtkCellArray* polys = input->GetPolys();
+  vtkPoints* points = input->GetPoints();
+  const vtkIdType numPolys = polys ? polys->GetNumberOfCells() : 0;
+  if (!points || numPolys == 0 || numPolys >= std::numeric_limits<std::uint32_t>::max())
+  {
+    return;
+  }
+  const auto start = std::chrono::steady_clock::now();
+  const auto np = static_cast<std::size_t>(numPolys);
+  const vtkIdType numPoints = points->GetNumberOfPoints();
+
+  // Point access without a virtual call per coordinate for the common array types.
+  vtkDataArray* pointData = points->GetData();
+  const double* dptr = nullptr;
+  const float* fptr = nullptr;
+  if (auto* d = vtkDoubleArray::SafeDownCast(pointData))
+  {
+    dptr = d->GetPointer(0);
+  }
+  else if (auto* f = vtkFloatArray::SafeDownCast(pointData))
+  {
+    fptr = f->GetPointer(0);
+  }
+  auto point = [&](vtkIdType id) -> glm::dvec3
+  {
+    if (dptr)
+    {
+      return glm::dvec3(dptr[3 * id], dptr[3 * id + 1], dptr[3 * id + 2]);
+    }
+    if (fptr)
+    {
+      return glm::dvec3(fptr[3 * id], fptr[3 * id + 1], fptr[3 * id + 2]);
+    }
+    double p[3];
+    points->GetPoint(id, p);
+    return glm::dvec3(p[0], p[1], p[2]);
+  };
+
+  // Per polygon: centroid, triangle count (as vtkOpenGLIndexBufferObject makes them).
+  std::vector<std::array<float, 3>> centroid(np);
+  std::vector<std::uint32_t> tris(np);
+  std::vector<std::uint8_t> big(np); // 7+ points, or bad ids: no normal cone
+  {
+    auto it = vtk::TakeSmartPointer(polys->NewIterator());
+    std::size_t k = 0;
+    for (it->GoToFirstCell(); !it->IsDoneWithTraversal(); it->GoToNextCell(), ++k)
+    {
+      vtkIdType npts = 0;
+      const vtkIdType* ids = nullptr;
+      it->GetCurrentCell(npts, ids);
+      tris[k] = npts < 3 ? 0u : static_cast<std::uint32_t>(npts - 2);
+      big[k] = npts >= 7 ? 1 : 0;
+      glm::dvec3 c(0.0);
+      vtkIdType used = 0;
+      for (vtkIdType j = 0; j < npts; ++j)
+      {
+        if (ids[j] < 0 || ids[j] >= numPoints)
+        {
+          big[k] = 1;
+          continue;
+        }
+        const glm::dvec3 p = point(ids[j]);
+        if (std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z))
+        {
+          c += p;
+          ++used;
+        }
+      }
+      c = used ? c / static_cast<double>(used) : glm::dvec3(0.0);
+      centroid[k] = { static_cast<float>(c.x), static_cast<float>(c.y), static_cast<float>(c.z) };
+    }
+  }
+
+  // Median splits along the largest centroid extent.
+  std::vector<std::uint32_t> perm(np);
+  for (std::size_t k = 0; k < np; ++k)
+  {
+    perm[k] = static_cast<std::uint32_t>(k);
+  }
+  const std::uint64_t limit = static_cast<std::uint64_t>(chunkSize);
+  std::vector<glm::dvec3> normals;
+  // Leaf: box of its points and normal cone of its fan triangles.
+  auto makeLeaf = [&](std::uint32_t nodeIndex, std::uint32_t begin, std::uint32_t end)
+  {
+    Node& node = this->Nodes[nodeIndex];
+    const auto chunk = static_cast<std::uint32_t>(this->ChunkPolyBegin.size());
+    this->ChunkPolyBegin.push_back(begin);
+    node.firstChunk = chunk;
+    node.endChunk = chunk + 1;
+    scenevis::Box box;
+    normals.clear();
+    bool coneOk = true;
+    for (std::uint32_t i = begin; i < end; ++i)
+    {
+      vtkIdType npts = 0;
+      const vtkIdType* ids = nullptr;
+      polys->GetCellAtId(perm[i], npts, ids);
+      coneOk = coneOk && !big[perm[i]];
+      glm::dvec3 first(0.0), prev(0.0);
+      for (vtkIdType j = 0; j < npts; ++j)
+      {
+        if (ids[j] < 0 || ids[j] >= numPoints)
+        {
+          continue;
+        }
+        const glm::dvec3 p = point(ids[j]);
+        if (std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z))
+        {
+          box.extend(p);
+        }
+        if (coneOk)
+        {
+          if (j == 0)
+          {
+            first = p;
+          }
+          else if (j >= 2)
+          {
+            normals.push_back(glm::cross(prev - first, p - first));
+          }
+          prev = p;
+        }
+      }
+    }
+    if (box.empty())
+    {
+      box.lo = box.hi = glm::dvec3(0.0); // nothing drawable: a point, culled or not, is harmless
+    }
+    node.lo = box.lo;
+    node.hi = box.hi;
+    node.cone = coneOk ? sc::normalConeOf(normals) : sc::NormalCone::none();
+  };
+  // Recursive build (depth first, left first; depth ~ 2 log2(chunks)): node ids and chunk order
+  // follow the in-order leaf sequence, so every subtree covers a contiguous chunk range.
+  std::function<std::uint32_t(std::uint32_t, std::uint32_t)> build =
+    [&](std::uint32_t begin, std::uint32_t end) -> std::uint32_t
+  {
+    const auto nodeIndex = static_cast<std::uint32_t>(this->Nodes.size());
+    this->Nodes.emplace_back();
+    std::uint64_t count = 0;
+    glm::dvec3 lo(std::numeric_limits<double>::max()), hi(-std::numeric_limits<double>::max());
+    for (std::uint32_t i = begin; i < end; ++i)
+    {
+      count += tris[perm[i]];
+      const auto& c = centroid[perm[i]];
+      lo = glm::min(lo, glm::dvec3(c[0], c[1], c[2]));
+      hi = glm::max(hi, glm::dvec3(c[0], c[1], c[2]));
+    }
+    if (count <= limit || end - begin <= 1)
+    {
+      makeLeaf(nodeIndex, begin, end);
+      return nodeIndex;
+    }
+    const glm::dvec3 extent = hi - lo;
+    const int axis = extent.x >= extent.y && extent.x >= extent.z ? 0 : (extent.y >= extent.z ? 1 : 2);
+    const std::uint32_t mid = begin + (end - begin) / 2;
+    std::nth_element(perm.begin() + begin, perm.begin() + mid, perm.begin() + end,
+      [&](std::uint32_t a, std::uint32_t b) { return centroid[a][axis] < centroid[b][axis]; });
+    build(begin, mid);
+    const std::uint32_t right = build(mid, end);
+    Node& node = this->Nodes[nodeIndex];
+    const Node& left = this->Nodes[nodeIndex + 1];
+    const Node& r = this->Nodes[right];
+    node.right = right;
+    node.firstChunk = left.firstChunk;
+    node.endChunk = r.endChunk;
+    node.lo = glm::min(left.lo, r.lo);
+    node.hi = glm::max(left.hi, r.hi);
+    node.cone = sc::merge(left.cone, r.cone);
+    return nodeIndex;
+  };
+  build(0, static_cast<std::uint32_t>(np));
+  this->ChunkPolyBegin.push_back(static_cast<std::uint32_t>(np));
+  const std::uint32_t chunks = this->ChunkCount();
+  this->ChunkTriBegin.assign(chunks + 1, 0);
+  for (std::uint32_t c = 0; c < chunks; ++c)
+  {
+    std::uint64_t t = 0;
+    for (std::uint32_t i = this->ChunkPolyBegin[c]; i < this->ChunkPolyBegin[c + 1]; ++i)
+    {
+      t += tris[perm[i]];
+    }
+    this->ChunkTriBegin[c + 1] = this->ChunkTriBegin[c] + t;
+  }
+  // Inflate against float rounding on the GPU (positions, shift-scale, matrices in float).
+  const glm::dvec3 rootSize = this->Nodes[0].hi - this->Nodes[0].lo;
+  const double margin = 1e-5 * glm::length(rootSize) + 1e-30;
+  for (Node& n : this->Nodes)
+  {
+    n.lo -= margin;
+    n.hi += margin;
+  }
+
+  // The reordered copy.
+  auto out = vtkSmartPointer<vtkPolyData>::New();
+  out->SetPoints(points);
+  out->GetPointData()->ShallowCopy(input->GetPointData());
+  out->GetFieldData()->ShallowCopy(input->GetFieldData());
+  if (input->GetNumberOfVerts() > 0)
+  {
+    out->SetVerts(input->GetVerts());
+  }
+  if (input->GetNumberOfLines() > 0)
+  {
+    out->SetLines(input->GetLines());
+  }
+  if (input->GetNumberOfStrips() > 0)
+  {
+    out->SetStrips(input->GetStrips());
+  }
+  vtkNew<vtkCellArray> newPolys;
+  if (numPoints < std::numeric_limits<std::int32_t>::max())
+  {
+    newPolys->Use32BitStorage();
+  }
+  newPolys->AllocateExact(numPolys, polys->GetNumberOfConnectivityIds());
+  this->PolyBase = input->GetNumberOfVerts() + input->GetNumberOfLines();
+  this->InputPolyOf.resize(np);
+  for (std::size_t k = 0; k < np; ++k)
+  {
+    vtkIdType npts = 0;
+    const vtkIdType* ids = nullptr;
+    polys->GetCellAtId(perm[k], npts, ids);
+    newPolys->InsertNextCell(npts, ids);
+    this->InputPolyOf[k] = this->PolyBase + perm[k];
+  }
+  out->SetPolys(newPolys);
+  vtkCellData* inCD = input->GetCellData();
+  if (inCD->GetNumberOfArrays() > 0)
+  {
+    const vtkIdType numCells = input->GetNumberOfCells();
+    vtkNew<vtkIdList> source;
+    source->SetNumberOfIds(numCells);
+    for (vtkIdType i = 0; i < numCells; ++i)
+    {
+      source->SetId(i, i);
+    }
+    for (std::size_t k = 0; k < np; ++k)
+    {
+      source->SetId(this->PolyBase + static_cast<vtkIdType>(k), this->InputPolyOf[k]);
+    }
+    vtkCellData* outCD = out->GetCellData();
+    for (int a = 0; a < inCD->GetNumberOfArrays(); ++a)
+    {
+      vtkAbstractArray* array = inCD->GetAbstractArray(a);
+      if (!array || array->GetNumberOfTuples() != numCells)
+      {
+        continue;
+      }
+      auto copy = vtk::TakeSmartPointer(array->NewInstance());
+      copy->SetName(array->GetName());
+      copy->SetNumberOfComponents(array->GetNumberOfComponents());
+      copy->SetNumberOfTuples(numCells);
+      array->GetTuples(source, copy);
+      if (auto* data = vtkDataArray::SafeDownCast(array))
+      {
+        if (data->GetLookupTable())
+        {
+          vtkDataArray::SafeDownCast(copy)->SetLookupTable(data->GetLookupTable());
+        }
+      }
+      const int index = outCD->AddArray(copy);
+      const int attribute = inCD->IsArrayAnAttribute(a);
+      if (attribute >= 0)
+      {
+        outCD->SetActiveAttribute(index, attribute);
+      }
+    }
+  }
+  this->Chunked = out;
+  this->PartitionTime = SecondsSince(start);
+  ++this->PartitionBuilds;
+}
+
+//------------------------------------------------------------------------------
+bool vtkChunkedPolyDataMapper::Internals::SmallFeature(const Node& n) const
+{
+  // World-space bounding sphere of the box (APPROXIMATE test).
+  const glm::dvec3 c = 0.5 * (n.lo + n.hi);
+  const double r = 0.5 * glm::length(n.hi - n.lo) * this->MaxScale;
+  const double* m = this->Model;
+  const glm::dvec3 cw(m[0] * c.x + m[1] * c.y + m[2] * c.z + m[3],
+    m[4] * c.x + m[5] * c.y + m[6] * c.z + m[7], m[8] * c.x + m[9] * c.y + m[10] * c.z + m[11]);
+  double pixels = 2.0 * r * this->PixelsPerUnit;
+  if (!this->Parallel)
+  {
+    const double depth = glm::dot(cw - this->EyeWorld, this->ViewDirWorld);
+    if (depth <= r)
+    {
+      return false;
+    }
+    pixels /= depth;
+  }
+  return pixels < this->MinPixels;
+}
+
+//------------------------------------------------------------------------------
+void vtkChunkedPolyDataMapper::Internals::Traverse(std::uint32_t index, std::uint8_t mask)
+{
+  const Node& n = this->Nodes[index];
+  ++this->NodesVisited;
+  const std::uint32_t chunks = n.endChunk - n.firstChunk;
+  if (this->UseFrustum && mask)
+  {
+    std::uint8_t hint = sc::kPlaneCount;
+    if (!sc::testBoxMasked(this->Frustum, n.lo, n.hi, mask, hint))
+    {
+      this->CulledFrustum += chunks;
+      return;
+    }
+  }
+  if (this->UseCones && n.cone.canCull())
+  {
+    const glm::dvec3 c = 0.5 * (n.lo + n.hi);
+    const double r = 0.5 * glm::length(n.hi - n.lo);
+    const bool back = this->Parallel ? sc::backFacingAlong(n.cone, this->DopModel)
+                                     : sc::backFacingFromEye(n.cone, c, r, this->EyeModel);
+    if (back)
+    {
+      this->CulledCone += chunks;
+      return;
+    }
+  }
+  const bool leaf = n.right == 0;
+  if (leaf)
+  {
+    ++this->ChunksTested;
+    if (this->MinPixels > 0.0 && this->SmallFeature(n))
+    {
+      ++this->CulledSize;
+      return;
+    }
+    this->Emit(n.firstChunk, n.endChunk);
+    return;
+  }
+  // Entirely inside and nothing else to test below: one range for the whole subtree.
+  if ((!this->UseFrustum || mask == 0) && !this->UseCones && this->MinPixels <= 0.0)
+  {
+    this->Emit(n.firstChunk, n.endChunk);
+    return;
+  }
+  this->Traverse(index + 1, mask);
+  this->Traverse(n.right, mask);
+}
+
+//------------------------------------------------------------------------------
+vtkChunkedPolyDataMapper::vtkChunkedPolyDataMapper()
+  : Internal(new Internals)
+{
+}
+
+vtkChunkedPolyDataMapper::~vtkChunkedPolyDataMapper() = default;
+
+//------------------------------------------------------------------------------
+vtkIdType vtkChunkedPolyDataMapper::GetNumberOfChunks() const
+{
+  return this->Internal->ChunkCount();
+}
+vtkIdType vtkChunkedPolyDataMapper::GetNumberOfTriangles() const
+{
+  return static_cast<vtkIdType>(this->Internal->TotalTriangles());
+}
+vtkIdType vtkChunkedPolyDataMapper::GetNumberOfNodesVisited() const
+{
+  return this->Internal->NodesVisited;
+}
+vtkIdType vtkChunkedPolyDataMapper::GetNumberOfChunksTested() const
+{
+  return this->Internal->ChunksTested;
+}
+vtkIdType vtkChunkedPolyDataMapper::GetNumberOfChunksDrawn() const
+{
+  return this->Internal->ChunksDrawn;
+}
+vtkIdType vtkChunkedPolyDataMapper::GetNumberOfChunksCulledByFrustum() const
+{
+  return this->Internal->CulledFrustum;
+}
+vtkIdType vtkChunkedPolyDataMapper::GetNumberOfChunksCulledByNormalCone() const
+{
+  return this->Internal->CulledCone;
+}
+vtkIdType vtkChunkedPolyDataMapper::GetNumberOfChunksCulledBySize() const
+{
+  return this->Internal->CulledSize;
+}
+vtkIdType vtkChunkedPolyDataMapper::GetNumberOfTrianglesDrawn() const
+{
+  return this->Internal->TrianglesDrawn;
+}
+vtkIdType vtkChunkedPolyDataMapper::GetNumberOfDrawCalls() const
+{
+  return this->Internal->DrawCalls;
+}
+bool vtkChunkedPolyDataMapper::GetCullingSkipped() const
+{
+  return this->Internal->Skipped;
+}
+double vtkChunkedPolyDataMapper::GetLastPartitionTime() const
+{
+  return this->Internal->PartitionTime;
+}
+double vtkChunkedPolyDataMapper::GetLastCullTime() const
+{
+  return this->Internal->CullTime;
+}
+vtkIdType vtkChunkedPolyDataMapper::GetNumberOfPartitionBuilds() const
+{
+  return this->Internal->PartitionBuilds;
+}
+vtkIdType vtkChunkedPolyDataMapper::GetNumberOfVertexBufferBuilds() const
+{
+  return this->Internal->VertexBufferBuilds;
+}
+
+void vtkChunkedPolyDataMapper::GetDrawnCellIds(std::vector<vtkIdType>& cellIds) const
+{
+  const Internals& in = *this->Internal;
+  cellIds.clear();
+  if (!in.Chunked)
+  {
+    return;
+  }
+  if (in.Skipped)
+  {
+    cellIds.assign(in.InputPolyOf.begin(), in.InputPolyOf.end());
+    return;
+  }
+  for (const std::uint32_t c : in.DrawnChunks)
+  {
+    for (std::uint32_t k = in.ChunkPolyBegin[c]; k < in.ChunkPolyBegin[c + 1]; ++k)
+    {
+      cellIds.push_back(in.InputPolyOf[k]);
+    }
+  }
+}
+
+vtkIdType vtkChunkedPolyDataMapper::GetInputCellId(vtkIdType id) const
+{
+  const Internals& in = *this->Internal;
+  if (id < 0)
+  {
+    return -1;
+  }
+  if (!in.Chunked || id < in.PolyBase)
+  {
+    return id;
+  }
+  const auto k = static_cast<std::size_t>(id - in.PolyBase);
+  return k < in.InputPolyOf.size() ? in.InputPolyOf[k] : id;
+}
+
+//------------------------------------------------------------------------------
+vtkUnsignedCharArray* vtkChunkedPolyDataMapper::MapScalars(double alpha)
+{
+  int cellFlag = 0;
+  return this->MapScalars(this->CurrentInput ? this->CurrentInput : this->GetInput(), alpha,
+    cellFlag);
+}
+
+//------------------------------------------------------------------------------
+void vtkChunkedPolyDataMapper::BuildBufferObjects(vtkRenderer* ren, vtkActor* act)
+{
+  ++this->Internal->VertexBufferBuilds;
+  this->Superclass::BuildBufferObjects(ren, act);
+}
+
+//------------------------------------------------------------------------------
+void vtkChunkedPolyDataMapper::ReleaseGraphicsResources(vtkWindow* window)
+{
+  this->Superclass::ReleaseGraphicsResources(window);
+}
+
+//------------------------------------------------------------------------------
+void vtkChunkedPolyDataMapper::UpdateCameraShiftScale(vtkRenderer* ren, vtkActor* actor)
+{
+  // vtkOpenGLPolyDataMapper::RenderPiece has updated the pipeline and set CurrentInput to the
+  // input; swap in the reordered copy before anything builds buffers from it.
+  Internals& in = *this->Internal;
+  vtkPolyData* input = this->CurrentInput;
+  if (input != in.Input || input->GetMTime() != in.InputMTime || in.BuiltChunkSize != this->ChunkSize)
+  {
+    in.Build(input, this->ChunkSize);
+  }
+  if (in.Chunked)
+  {
+    this->CurrentInput = in.Chunked;
+  }
+  this->Superclass::UpdateCameraShiftScale(ren, actor);
+}
+
+//------------------------------------------------------------------------------
+void vtkChunkedPolyDataMapper::RenderPieceStart(vtkRenderer* ren, vtkActor* actor)
+{
+  this->Superclass::RenderPieceStart(ren, actor); // buffers up to date
+  Internals& in = *this->Internal;
+  const auto start = std::chrono::steady_clock::now();
+  in.Ranges.clear();
+  in.DrawnChunks.clear();
+  in.NodesVisited = in.ChunksTested = in.ChunksDrawn = in.CulledFrustum = in.CulledCone =
+    in.CulledSize = in.TrianglesDrawn = in.DrawCalls = 0;
+  in.Cull = false;
+  in.Skipped = true;
+  vtkProperty* property = actor->GetProperty();
+  bool usable = in.Chunked && this->CurrentInput == in.Chunked.GetPointer() && !ren->GetSelector() &&
+    property->GetRepresentation() == VTK_SURFACE && !property->GetEdgeVisibility() &&
+    !property->GetVertexVisibility();
+  if (usable &&
+    static_cast<std::uint64_t>(this->Primitives[PrimitiveTris].IBO->IndexCount) !=
+      3 * in.TotalTriangles())
+  {
+    usable = false;
+    if (!in.WarnedMismatch)
+    {
+      in.WarnedMismatch = true;
+      vtkWarningMacro("The triangle index buffer does not match the chunk partition (polygons "
+                      "of 7+ points triangulated differently?): drawing everything (warned once).");
+    }
+  }
+  vtkCamera* cam = ren->GetActiveCamera();
+  int* size = ren->GetSize();
+  if (usable && cam && size && size[0] > 0 && size[1] > 0)
+  {
+    const double aspect = ren->GetTiledAspectRatio();
+    vtkMatrix4x4* model = actor->GetMatrix();
+    vtkNew<vtkMatrix4x4> clipFromModel;
+    vtkMatrix4x4::Multiply4x4(
+      cam->GetCompositeProjectionTransformMatrix(aspect, -1, 1), model, clipFromModel);
+    in.Frustum = sc::Frustum::fromRowMajor(&clipFromModel->GetData()[0]);
+    usable = std::isfinite(aspect) && aspect > 0.0 && in.Frustum.valid();
+    std::copy(model->GetData(), model->GetData() + 16, in.Model);
+    double eye[4] = { 0, 0, 0, 1 }, dop[3];
+    cam->GetPosition(eye);
+    cam->GetDirectionOfProjection(dop);
+    in.EyeWorld = glm::dvec3(eye[0], eye[1], eye[2]);
+    in.ViewDirWorld = glm::dvec3(dop[0], dop[1], dop[2]);
+    in.Parallel = cam->GetParallelProjection() != 0;
+    in.UseFrustum = this->FrustumCulling;
+    // Normal cones in model coordinates (back-facing is invariant under a transform of positive
+    // determinant when the eye / direction of projection are taken into model coordinates).
+    const double* m = in.Model;
+    const double det3 = vtkMath::Determinant3x3(
+      m[0], m[4], m[8], m[1], m[5], m[9], m[2], m[6], m[10]);
+    in.UseCones = this->NormalConeCulling && property->GetBackfaceCulling() &&
+      !property->GetFrontfaceCulling() && det3 > 0.0 && std::isfinite(det3) &&
+      m[12] == 0.0 && m[13] == 0.0 && m[14] == 0.0 && m[15] == 1.0;
+    if (in.UseCones)
+    {
+      vtkNew<vtkMatrix4x4> inverse;
+      vtkMatrix4x4::Invert(model, inverse);
+      double e[4];
+      inverse->MultiplyPoint(eye, e);
+      const double* im = inverse->GetData();
+      in.EyeModel = glm::dvec3(e[0], e[1], e[2]) / e[3];
+      const glm::dvec3 d(im[0] * dop[0] + im[1] * dop[1] + im[2] * dop[2],
+        im[4] * dop[0] + im[5] * dop[1] + im[6] * dop[2],
+        im[8] * dop[0] + im[9] * dop[1] + im[10] * dop[2]);
+      in.DopModel = glm::normalize(d);
+      in.UseCones = std::isfinite(in.EyeModel.x) && std::isfinite(in.EyeModel.y) &&
+        std::isfinite(in.EyeModel.z) && std::isfinite(in.DopModel.x) &&
+        std::isfinite(in.DopModel.y) && std::isfinite(in.DopModel.z);
+    }
+    in.MinPixels = this->MinimumPixelSize;
+    if (in.MinPixels > 0.0)
+    {
+      const double pixels = cam->GetUseHorizontalViewAngle() ? size[0] : size[1];
+      in.PixelsPerUnit = in.Parallel
+        ? pixels / (2.0 * cam->GetParallelScale())
+        : pixels / (2.0 * std::tan(vtkMath::RadiansFromDegrees(cam->GetViewAngle()) / 2.0));
+      in.MaxScale = 0.0;
+      for (int col = 0; col < 3; ++col)
+      {
+        in.MaxScale = std::max(in.MaxScale,
+          std::sqrt(m[col] * m[col] + m[4 + col] * m[4 + col] + m[8 + col] * m[8 + col]));
+      }
+      if (!(std::isfinite(in.PixelsPerUnit) && in.PixelsPerUnit > 0.0))
+      {
+        in.MinPixels = 0.0;
+      }
+    }
+  }
+  else
+  {
+    usable = false;
+  }
+  if (usable && !in.Nodes.empty())
+  {
+    in.Traverse(0, sc::kAllPlanes);
+    in.Cull = true;
+    in.Skipped = false;
+  }
+  else
+  {
+    in.TrianglesDrawn = static_cast<vtkIdType>(in.TotalTriangles());
+    in.ChunksDrawn = in.ChunkCount();
+  }
+  in.CullTime = SecondsSince(start);
+}
+
+//------------------------------------------------------------------------------
+void vtkChunkedPolyDataMapper::RenderPieceDraw(vtkRenderer* ren, vtkActor* actor)
+{
+  Internals& in = *this->Internal;
+  if (!in.Cull)
+  {
+    in.DrawCalls = this->Primitives[PrimitiveTris].IBO->IndexCount ? 1 : 0;
+    this->Superclass::RenderPieceDraw(ren, actor);
+    return;
+  }
+  // Verts and lines, then our triangles, then strips: the superclass's order and primitive id
+  // offsets. The superclass draws the others with the remaining primitives' counts set to 0.
+  std::size_t counts[PrimitiveEnd];
+  for (int i = PrimitiveStart; i < PrimitiveEnd; ++i)
+  {
+    counts[i] = this->Primitives[i].IBO->IndexCount;
+  }
+  auto drawOnly = [&](int a, int b)
+  {
+    for (int i = PrimitiveStart; i < PrimitiveEnd; ++i)
+    {
+      this->Primitives[i].IBO->IndexCount = (i == a || i == b) ? counts[i] : 0;
+    }
+    this->Superclass::RenderPieceDraw(ren, actor);
+    for (int i = PrimitiveStart; i < PrimitiveEnd; ++i)
+    {
+      this->Primitives[i].IBO->IndexCount = counts[i];
+    }
+  };
+  if (counts[PrimitivePoints] || counts[PrimitiveLines])
+  {
+    drawOnly(PrimitivePoints, PrimitiveLines);
+  }
+  if (counts[PrimitiveTris] && !in.Ranges.empty())
+  {
+    vtkOpenGLHelper& tris = this->Primitives[PrimitiveTris];
+    this->DrawingVertices = false;
+    this->DrawingSelection = false;
+    this->UpdateShaders(tris, ren, actor);
+    const int numVerts = this->VBOs->GetNumberOfTuples("vertexMC");
+    const bool primitiveIds = tris.Program && tris.Program->IsUniformUsed("PrimitiveIDOffset");
+    tris.IBO->Bind();
+    for (const auto& range : in.Ranges)
+    {
+      if (primitiveIds)
+      {
+        tris.Program->SetUniformi(
+          "PrimitiveIDOffset", this->PrimitiveIDOffset + static_cast<int>(range.first));
+      }
+      glDrawRangeElements(GL_TRIANGLES, 0, static_cast<GLuint>(numVerts - 1),
+        static_cast<GLsizei>(3 * range.second), GL_UNSIGNED_INT,
+        reinterpret_cast<const GLvoid*>(
+          static_cast<std::uintptr_t>(3 * range.first) * sizeof(GLuint)));
+      ++in.DrawCalls;
+    }
+    tris.IBO->Release();
+    if (primitiveIds)
+    {
+      tris.Program->SetUniformi("PrimitiveIDOffset", this->PrimitiveIDOffset);
+    }
+  }
+  this->PrimitiveIDOffset += static_cast<int>(counts[PrimitiveTris] / 3);
+  if (counts[PrimitiveTriStrips])
+  {
+    drawOnly(PrimitiveTriStrips, PrimitiveTriStrips);
+  }
+}
+
+//------------------------------------------------------------------------------
+void vtkChunkedPolyDataMapper::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "ChunkSize: " << this->ChunkSize << "\n";
+  os << indent << "FrustumCulling: " << this->FrustumCulling << "\n";
+  os << indent << "NormalConeCulling: " << this->NormalConeCulling << "\n";
+  os << indent << "MinimumPixelSize: " << this->MinimumPixelSize << " (approximate)\n";
+  os << indent << "NumberOfChunks: " << this->GetNumberOfChunks() << "\n";
+  os << indent << "NumberOfTrianglesDrawn: " << this->GetNumberOfTrianglesDrawn() << "\n";
+  os << indent << "NumberOfDrawCalls: " << this->GetNumberOfDrawCalls() << "\n";
+  os << indent << "NumberOfPartitionBuilds: " << this->GetNumberOfPartitionBuilds() << "\n";
+  os << indent << "NumberOfVertexBufferBuilds: " << this->GetNumberOfVertexBufferBuilds() << "\n";
+}
