@@ -21,6 +21,7 @@ using scenevis::oracle::OracleConfig;
 using scenevis::oracle::OracleReport;
 using scenevis::oracle::Polygon;
 using scenevis::oracle::Relation;
+using scenevis::oracle::Violation;
 
 namespace
 {
@@ -381,9 +382,125 @@ TEST(OrderOracle, FarFromOriginGivesSameVerdicts)
   }
   EXPECT_TRUE(checkOrder(quads, { 0, 1 }, view).ok());
   EXPECT_EQ(checkOrder(quads, { 1, 0 }, view).violations.size(), 1u);
+  // Their planes are resolved well enough at 1e7: none is set aside as untrusted.
+  EXPECT_EQ(checkOrder(sticks, { 0, 1, 2 }, view).untrustedPolygons, 0u);
+  EXPECT_EQ(checkOrder(quads, { 0, 1 }, view).untrustedPolygons, 0u);
   const View parallel = View::parallel({ 0.01, 0.02, -1 });
   EXPECT_TRUE(checkOrder(quads, { 0, 1 }, parallel).ok());
   EXPECT_EQ(checkOrder(quads, { 1, 0 }, parallel).violations.size(), 1u);
+}
+
+// Regressions from Core/Fuzz (fragments of the BSP built from the reproducer, printed with
+// SCENEVIS_FUZZ_DUMP=1; %.17g round-trips every double). Each gave a false violation before the
+// witness re-check (rule 1) and the untrusted-plane rule (rule 2) of OrderOracle.h.
+
+TEST(OrderOracle, FuzzEyeOnSeparatingPlaneIsNotAViolation)
+{
+  // crashes/oracle-eye-on-separating-plane: the eye (-2, -2, -2) lies exactly on the root plane;
+  // fragment 0 (fuzz fragment 23) touches it from one side, the others from the other side. The
+  // double-precision witness ray (separation 0.1) misses fragment 0 in exact arithmetic.
+  const std::vector<Polygon> polys = {
+    { { 0.17102348249889232, -0.25, 0.21577315019937965 },
+      { 0.240566037735849, -0.25, 0.25471698113207542 }, { 0, -1, 0 },
+      { -0.20000000000000007, -1.1333333333333333, -0.13333333333333336 } },
+    { { -0.31034443296686809, -0.88362012238987253, -0.34482778351656596 },
+      { -0.33333333333333337, -0.91666666666666674, -0.33333333333333331 },
+      { -0.32424216698688729, -1.2734949457646756, -0.32424216698688718 } },
+    { { -0.63636363636363646, -1.1931818181818183, -0.63636363636363624 },
+      { -0.61206873875995149, -1.147628885174909, -0.67887970717008495 },
+      { -0.40151128264844799, -1.4280341718970067, -0.40151128264844782 } },
+    { { -0.31818181818181823, -1.5113636363636365, -0.31818181818181812 },
+      { 0.85185236143448828, -0.8873454072349396, -0.86419776866942788 },
+      { 0.81944558355651997, -0.67130047304057339, -0.67130047304057339 },
+      { 0.50228656220989643, 0.49161593856371316, 0.49161593856371316 },
+      { 0.22726506613656949, -0.17047337908093341, 0.22726506613656955 } }
+  };
+  const View view = View::perspective({ -2, -2, -2 });
+  const OracleReport bsp = checkOrder(polys, { 3, 1, 2, 0 }, view); // the BSP's order
+  EXPECT_TRUE(bsp.ok());
+  EXPECT_GT(bsp.unconfirmedRays, 0u); // the grazing rays were cast and dropped
+  EXPECT_EQ(bsp.untrustedPolygons, 0u);
+  for (const Violation& v : bsp.violations)
+  {
+    ADD_FAILURE() << "false violation " << v.farther << " > " << v.nearer;
+  }
+  // The real constraints among fragments 1-3 are still enforced.
+  const OracleReport reversed = checkOrder(polys, { 0, 2, 1, 3 }, view);
+  EXPECT_EQ(reversed.violations.size(), 3u);
+  for (const Violation& v : reversed.violations)
+  {
+    EXPECT_NE(v.farther, 0u);
+    EXPECT_NE(v.nearer, 0u);
+  }
+}
+
+TEST(OrderOracle, FuzzSpeckAt1e7ConstrainsNothing)
+{
+  // crashes/oracle-speck-at-1e7 (with SCENEVIS_FUZZ_STRICT=1): fragment 2 is a 1e-6 speck among
+  // coordinates at 1e7 (rounding ~1e-9), so its vertices do not determine its plane (tilted
+  // ~1e-2 rad). It was reported farther than both others, by up to 0.64.
+  const std::vector<Polygon> polys = {
+    { { 10000000.25, 10000000.25, -19999999.75 }, { 10000000.375, 9999999.5, -19999998.75 },
+      { 10000000.925179189, 9999999.6311699506, -20000000.368830048 } },
+    { { 10000001.000001892, 10000001, -19999999 }, { 10000000.25, 10000000.25, -19999999.75 },
+      { 10000001.000000928, 10000001.000000486, -19999998.999998637 },
+      { 10000001.000001129, 10000001.000000436, -19999998.999998838 } },
+    { { 10000001.000000158, 10000000.999999035, -19999999.000001647 },
+      { 10000001.000000225, 10000000.999998622, -19999999.000002351 },
+      { 10000000.999999918, 10000000.999998519, -19999999.000001479 } }
+  };
+  const View view = View::perspective({ 9999998, 9999998, -20000002 });
+  for (const auto& order : allPermutations(3))
+  {
+    const OracleReport report = checkOrder(polys, order, view);
+    EXPECT_TRUE(report.ok());
+    EXPECT_GE(report.untrustedPolygons, 1u);
+  }
+}
+
+TEST(OrderOracle, FuzzSliverFalsePositive)
+{
+  // corpus/oracle-sliver-false-positive: a tetrahedron-like soup and its copy shifted by ~1e-9,
+  // split by the BSP into 9 fragments; fragment 4 is a 1.65 x 1.5e-10 sliver whose plane (from
+  // its vertices) is 6e-8 rad off, which made fragment 5 look 1.7e-8 farther than it.
+  const std::vector<Polygon> polys = {
+    { { -1.625, -2, 1.625 }, { -0.625, -1.375, -0.875 }, { -1.75, -0.875, -2 } },
+    { { -0.625, -1.375, -0.875 }, { -1.75, -0.875, -2 }, { -2, -1.625, -1.75 } },
+    { { -1.6250000009313226, -2.0000000009313226, 1.6249999990686774 },
+      { -0.62500000120263222, -1.3750000011008912, -0.87500000025304825 },
+      { -1.7500000008974088, -0.87500000123654598, -1.9999999999478253 } },
+    { { -0.625, -1.375, -0.875 }, { -2, -1.625, -1.75 }, { -2, -2, -2 } },
+    { { -0.62500000120263222, -1.3750000011008912, -0.87500000025304825 },
+      { -0.62500000093132257, -1.3750000009313226, -0.87500000093132257 },
+      { -0.62500000114809628, -1.3750000008349788, -0.87500000114809628 },
+      { -0.62500000261135591, -1.3750000004747918, -0.87500000166177194 } },
+    { { -0.62500000093132257, -1.3750000009313226, -0.87500000093132257 },
+      { -0.62500000114809628, -1.3750000008349788, -0.87500000114809628 },
+      { -2.0000000008831509, -1.6250000007868071, -1.7500000009794945 },
+      { -2.0000000009313226, -1.6250000009313226, -1.7500000009313226 } },
+    { { -2.0000000009313226, -1.6250000009313226, -1.7500000009313226 },
+      { -2.0000000009313226, -2.0000000009313226, -2.0000000009313226 },
+      { -0.62500000093132257, -1.3750000009313226, -0.87500000093132257 } },
+    { { -0.62500000114809628, -1.3750000008349788, -0.87500000114809628 },
+      { -1.7500000009313226, -0.87500000093132257, -2.0000000009313226 },
+      { -1.7500000008974088, -0.87500000123654598, -1.9999999999478253 },
+      { -0.62500000261135591, -1.3750000004747918, -0.87500000166177194 } },
+    { { -0.62500000114809628, -1.3750000008349788, -0.87500000114809628 },
+      { -1.7500000009313226, -0.87500000093132257, -2.0000000009313226 },
+      { -2.0000000008831509, -1.6250000007868071, -1.7500000009794945 } }
+  };
+  const View view = View::perspective({ -2, -2, -2 });
+  const std::vector<std::uint32_t> bspOrder = { 0, 2, 1, 7, 8, 3, 4, 5, 6 };
+  const OracleReport report = checkOrder(polys, bspOrder, view);
+  EXPECT_TRUE(report.ok());
+  EXPECT_GE(report.untrustedPolygons, 1u);
+  EXPECT_EQ(scenevis::oracle::relate(polys[5], polys[4], view).relation, Relation::Unconstrained);
+  // The well-conditioned fragments still constrain: the reversed order breaks all 4 relations.
+  const std::vector<std::uint32_t> reversed(bspOrder.rbegin(), bspOrder.rend());
+  const OracleReport wrong = checkOrder(polys, reversed, view);
+  EXPECT_EQ(wrong.constrainedPairs, report.constrainedPairs);
+  EXPECT_EQ(wrong.violations.size(), report.constrainedPairs);
+  EXPECT_GE(wrong.violations.size(), 4u);
 }
 
 TEST(OrderOracle, DegeneratePolygonsAreIgnored)

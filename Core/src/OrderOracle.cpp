@@ -19,6 +19,19 @@ namespace
 {
 
 using Polygon2 = std::vector<glm::dvec2>;
+using LVec = glm::vec<3, long double, glm::defaultp>;
+
+// Unit roundoff of double (half an ulp, relative).
+constexpr double kUnitRoundoff = 0.5 * DBL_EPSILON;
+
+// Rule 2: a plane whose tilt bound, over the scene diagonal, exceeds this many depth tolerances is
+// not trusted.
+constexpr double kUntrustedTilt = 64.0;
+
+LVec toLong(const glm::dvec3& p)
+{
+  return LVec(p.x, p.y, p.z);
+}
 
 bool isFinite(const glm::dvec3& p)
 {
@@ -91,6 +104,13 @@ struct Prepared
   glm::dvec3 normal{ 0.0 }; // unit; zero when the polygon covers no area
   glm::dvec3 point{ 0.0 };  // on the plane (vertex average)
   bool valid = false;
+  // The same in long double, for re-casting witness rays: the vertices relative to the local
+  // origin (the subtraction done in long double), the unit Newell normal and the vertex mean.
+  std::vector<LVec> pointsL;
+  LVec normalL{ 0.0L };
+  LVec meanL{ 0.0L };
+  double extent = 0.0; // diagonal of the polygon's own bounding box (>= its diameter)
+  double tilt = 0.0;   // bound on the angle between the fitted and the intended plane (radians)
 };
 
 // A polygon's image in one projection; `poly` is counter-clockwise.
@@ -163,6 +183,8 @@ public:
   }
 
   double depthTolerance() const { return DepthTolerance; }
+  std::size_t untrustedPolygons() const { return UntrustedPolygons; }
+  std::size_t unconfirmedRays() const { return UnconfirmedRays; }
 
   /// Finds every overlapping pair in every projection and records the depth relations seen.
   void run()
@@ -199,7 +221,7 @@ public:
   }
 
 private:
-  void prepare(const Polygon& poly, Prepared& out) const
+  void prepare(const Polygon& poly, Prepared& out)
   {
     out.valid = false;
     if (poly.size() < 3 || !std::all_of(poly.begin(), poly.end(), isFinite))
@@ -230,6 +252,57 @@ private:
     }
     out.normal = n / length;
     out.point = mean;
+
+    // The plane again in long double, from the vertices relative to the origin subtracted in long
+    // double (exact for all but extreme exponent ranges), for the witness re-check (see sample).
+    out.pointsL.resize(poly.size());
+    LVec meanL(0.0L);
+    glm::dvec3 lo = poly[0];
+    glm::dvec3 hi = poly[0];
+    double maxAbs = 0.0;
+    for (std::size_t i = 0; i < poly.size(); ++i)
+    {
+      out.pointsL[i] = toLong(poly[i]) - toLong(Origin);
+      meanL += out.pointsL[i];
+      lo = glm::min(lo, poly[i]);
+      hi = glm::max(hi, poly[i]);
+      maxAbs = std::max({ maxAbs, std::abs(poly[i].x), std::abs(poly[i].y), std::abs(poly[i].z) });
+    }
+    meanL /= static_cast<long double>(poly.size());
+    LVec nL(0.0L);
+    for (std::size_t i = 0, count = poly.size(); i < count; ++i)
+    {
+      nL += glm::cross(out.pointsL[i] - meanL, out.pointsL[(i + 1) % count] - meanL);
+    }
+    const long double twiceArea = glm::length(nL);
+    if (!(twiceArea > 0.0L))
+    {
+      return;
+    }
+    out.normalL = nL / twiceArea;
+    out.meanL = meanL;
+    // Plane uncertainty (rule 2 of the header). Width w = 2 area / extent; residual r = largest
+    // distance of a vertex from the fitted plane. Each vertex may be off its intended position by
+    // the rounding of its coordinates, u |coordinate|, or (when larger) by the measured residual;
+    // that tilts the plane by about 2 max(u |c|, r) / w, plus the rounding of the normal's own
+    // double computation (~8 eps extent / w).
+    long double residual = 0.0L;
+    for (const LVec& p : out.pointsL)
+    {
+      residual = std::max(residual, std::abs(glm::dot(out.normalL, p - meanL)));
+    }
+    out.extent = glm::length(hi - lo);
+    const double width = static_cast<double>(twiceArea) / out.extent;
+    const double wobble = std::max(kUnitRoundoff * maxAbs, static_cast<double>(residual));
+    out.tilt = (8.0 * DBL_EPSILON * out.extent + 2.0 * wobble) / width;
+    // Across the scene (the largest distance between two hit points) that tilt moves a measured
+    // separation by tilt x diagonal. Up to kUntrustedTilt depth tolerances the re-check's slack
+    // (confirm) absorbs it; beyond, the plane is mostly rounding and constrains nothing.
+    if (!(out.tilt * Diagonal <= kUntrustedTilt * DepthTolerance))
+    {
+      ++UntrustedPolygons;
+      return;
+    }
     // Seen edge-on within the tolerance: the polygon's image is thinner than its own positional
     // uncertainty, so which rays pass through it is not determined; it constrains nothing. For a
     // perspective view that is a plane passing within the tolerance of the eye; for a parallel
@@ -416,7 +489,7 @@ private:
   }
 
   void sample(const Prepared& a, const Prepared& b, const glm::dvec3& origin,
-    const glm::dvec3& direction, PairState& state) const
+    const glm::dvec3& direction, PairState& state)
   {
     const double ca = glm::dot(a.normal, direction);
     const double cb = glm::dot(b.normal, direction);
@@ -437,13 +510,88 @@ private:
     {
       return;
     }
-    (separation > 0.0 ? state.lowFarther : state.highFarther) = true;
+    bool& seen = separation > 0.0 ? state.lowFarther : state.highFarther;
+    if (seen)
+    {
+      return; // already witnessed by a confirmed ray
+    }
+    long double taL = 0.0L;
+    if (!confirm(a, b, origin, direction, separation > 0.0, taL))
+    {
+      ++UnconfirmedRays;
+      return;
+    }
+    seen = true;
     if (!state.hasWitness)
     {
       state.hasWitness = true;
-      state.witness = Origin + origin + ta * direction;
+      state.witness = Origin + glm::dvec3(toLong(origin) + taL * toLong(direction));
       state.separation = separation;
     }
+  }
+
+  /**
+   * Where the ray origin + t direction (long double) meets polygon `p`'s fitted plane: t and the
+   * cosine with the normal; false when the hit is not inside the actual vertex loop by at least
+   * `margin` from every edge (measured in the plane).
+   */
+  static bool hitInside(const Prepared& p, const LVec& origin, const LVec& direction,
+    long double margin, long double& t, long double& cosine)
+  {
+    cosine = glm::dot(p.normalL, direction);
+    if (cosine == 0.0L)
+    {
+      return false;
+    }
+    t = glm::dot(p.normalL, p.meanL - origin) / cosine;
+    const LVec x = origin + t * direction;
+    for (std::size_t i = 0, n = p.pointsL.size(); i < n; ++i)
+    {
+      const LVec edge = p.pointsL[(i + 1) % n] - p.pointsL[i];
+      const long double length = glm::length(edge);
+      if (length == 0.0L)
+      {
+        continue; // repeated vertex
+      }
+      if (!(glm::dot(p.normalL, glm::cross(edge, x - p.pointsL[i])) >= margin * length))
+      {
+        return false;
+      }
+    }
+    cosine = std::abs(cosine);
+    return true;
+  }
+
+  /**
+   * Rule 1 of the header: re-casts a constraining sample ray in long double against both
+   * polygons' actual vertices. Confirmed only when the ray passes through both interiors with a
+   * margin of the depth tolerance, in front of the eye, and sees the same polygon farther by more
+   * than the depth tolerance plus what the two planes' tilt bounds allow over the distance between
+   * the hits. `aFarther` is the double verdict; `ta` receives the long double hit distance on a.
+   */
+  bool confirm(const Prepared& a, const Prepared& b, const glm::dvec3& origin,
+    const glm::dvec3& direction, bool aFarther, long double& ta) const
+  {
+    const LVec o = toLong(origin);
+    LVec d = toLong(direction);
+    d /= glm::length(d);
+    const long double margin = DepthTolerance;
+    long double tb = 0.0L;
+    long double ca = 0.0L;
+    long double cb = 0.0L;
+    if (!hitInside(a, o, d, margin, ta, ca) || !hitInside(b, o, d, margin, tb, cb))
+    {
+      return false;
+    }
+    if (!Parallel && (!(ta > 0.0L) || !(tb > 0.0L)))
+    {
+      return false;
+    }
+    const long double gap = ta - tb; // distance between the hits, signed
+    const long double separation = gap * std::min(ca, cb);
+    const long double slack = DepthTolerance + a.tilt * (std::abs(gap) + a.extent) +
+      b.tilt * (std::abs(gap) + b.extent);
+    return aFarther ? separation > slack : -separation > slack;
   }
 
   OracleConfig Config;
@@ -459,6 +607,8 @@ private:
   Polygon2 Overlap;
   Polygon2 Scratch2;
   std::unordered_map<std::uint64_t, PairState> Pairs;
+  std::size_t UntrustedPolygons = 0;
+  std::size_t UnconfirmedRays = 0;
 };
 
 } // namespace
@@ -486,6 +636,8 @@ OracleReport checkOrder(const std::vector<Polygon>& polygons,
 
   OracleReport report;
   report.depthTolerance = checker.depthTolerance();
+  report.untrustedPolygons = checker.untrustedPolygons();
+  report.unconfirmedRays = checker.unconfirmedRays();
   for (const auto& entry : checker.pairs())
   {
     const PairState& state = entry.second;

@@ -29,8 +29,33 @@
  * For polygons that interpenetrate (an unsplit soup) the samples can disagree; such a pair admits
  * no correct order and is reported as violated whatever the order (and counted in
  * OracleReport::conflictingPairs). Samples are finitely many, so a penetration confined to a thin
- * rim of the overlap can be missed; the oracle never reports a violation that is not witnessed by
- * a real ray.
+ * rim of the overlap can be missed.
+ *
+ * Trust. The search above runs in double precision and can be fooled by its own rounding (found by
+ * Core/Fuzz: an eye on, or within 1e-12 of, a plane that two fragments touch from either side; an
+ * eye thousands of scene diagonals away; slivers and specks whose plane, fitted through rounded
+ * vertices, is tilted). Two rules make every reported relation rest on a real ray:
+ * 1. Witness re-check. Every sample ray that would constrain a pair is re-cast in long double
+ *    against both polygons' actual vertices (taken relative to the local origin in long double,
+ *    planes refitted in long double). It counts only when it hits both polygons' interiors at
+ *    least depthTolerance away from every edge (point-in-convex-polygon test in each polygon's
+ *    plane), in front of the eye (perspective), and the perpendicular separation recomputed from
+ *    those hits exceeds depthTolerance plus tilt(A) * (gap + extent(A)) + tilt(B) * (gap +
+ *    extent(B)), gap being the distance between the two hits (see rule 2 for tilt). Dropped rays
+ *    are counted in OracleReport::unconfirmedRays; the witness reported by relate() is always a
+ *    confirmed ray.
+ * 2. Untrusted planes. A polygon's fitted plane is uncertain by the angle
+ *      tilt = (8 eps extent + 2 max(u |c|, r)) / w,
+ *    where extent is the diagonal of its bounding box, w = 2 area / extent its width, u = eps / 2
+ *    the unit roundoff, |c| its largest absolute coordinate (its vertices are only known to
+ *    u |c|), and r the plane-fit residual (largest distance of a vertex from the fitted plane).
+ *    When tilt * (scene diagonal) exceeds 64 depth tolerances (the sliver 1.65 x 1.5e-10 and the
+ *    1e-6 speck at 1e7 of the fuzzer are far beyond; a 2e-3-wide polygon at 1e7 in a 0.03 scene is
+ *    well within), the polygon imposes no constraint at all and is counted in
+ *    OracleReport::untrustedPolygons. Below that, rule 1's tilt slack covers it.
+ * So a reported violation is always witnessed by a ray that, in long double, clearly passes
+ * through both polygons as given; the price is that relations closer than these margins (rays
+ * grazing an edge, thin or ill-conditioned polygons) go unreported.
  *
  * Candidate pairs come from a sweep over the projected bounding boxes, so the cost is about
  * O(n log n + overlapping pairs) per projection; a few thousand polygons take well under a second.
@@ -110,6 +135,11 @@ struct OracleReport
   std::size_t conflictingPairs = 0;
   /// The absolute depth tolerance that was used.
   double depthTolerance = 0.0;
+  /// Polygons whose fitted plane is too uncertain to judge (rule 2): they constrain nothing.
+  std::size_t untrustedPolygons = 0;
+  /// Sample rays that constrained a pair in double precision but failed the long double re-cast
+  /// (rule 1) and were dropped. Diagnostic: such rays graze an edge or ride on rounding.
+  std::size_t unconfirmedRays = 0;
 
   bool ok() const { return violations.empty(); }
 };
