@@ -562,12 +562,14 @@ TEST(BspBuilder, SplitPointsFarFromTheOriginLieOnTheirPlane)
   }
 }
 
-TEST(BspBuilder, BothScoresBuildValidTrees)
+TEST(BspBuilder, AllScoresAndEffortsBuildValidTrees)
 {
   const scenes::Scene scene = scenes::sphereGrid(2, 0.8, 1.0, 2000);
   BuildConfig classic;
   classic.score = BuildConfig::Score::SplitsAndBalance;
-  for (const BuildConfig& config : { BuildConfig{}, classic })
+  BuildConfig thorough;
+  thorough.effort = BuildConfig::Effort::Thorough;
+  for (const BuildConfig& config : { BuildConfig{}, classic, thorough })
   {
     const bsp::Tree tree = bsp::build(scene.mesh, config);
     EXPECT_GT(tree.statistics.splits, 0u);
@@ -616,6 +618,8 @@ TEST(BspBuilder, IsDeterministic)
   const bsp::Tree c = bsp::build(mesh, other);
   const bsp::Tree d = bsp::build(mesh, other);
   expectSameTree(c, d);
+  other.effort = BuildConfig::Effort::Thorough;
+  expectSameTree(bsp::build(mesh, other), bsp::build(mesh, other));
   EXPECT_NEAR(totalFragmentArea(c), mesh.area(), 1e-9 * mesh.area());
 }
 
@@ -706,3 +710,26 @@ TEST(BspBuilder, ProgressIsReportedAndCanCancel)
 }
 
 } // namespace
+
+// Unused points and points of dropped polygons do not set the tolerance: one stray point 1e7
+// away must not merge two real quads 2e-6 apart into one node (fuzzer finding).
+TEST(BspBuilder, StrayPointsDoNotInflateTheTolerance)
+{
+  PolygonMesh mesh;
+  for (double z : { 0.0, 2e-6 })
+  {
+    const auto a = mesh.addPoint({ 0, 0, z });
+    const auto b = mesh.addPoint({ 1, 0, z });
+    const auto c = mesh.addPoint({ 1, 1, z });
+    const auto d = mesh.addPoint({ 0, 1, z });
+    mesh.addPolygon({ a, b, c, d });
+  }
+  const bsp::Tree clean = bsp::build(mesh);
+  const auto stray = mesh.addPoint({ 1e7, 1e7, 1e7 });
+  mesh.addPolygon({ stray, stray, stray }); // degenerate: dropped
+  mesh.addPoint({ -1e7, 0, 0 });           // unused
+  const bsp::Tree withStrays = bsp::build(mesh);
+  EXPECT_EQ(withStrays.tolerance, clean.tolerance);
+  EXPECT_EQ(withStrays.nodes.size(), 2u); // the two quads stay in separate nodes
+  EXPECT_EQ(withStrays.statistics.degeneratePolygons, 1u);
+}

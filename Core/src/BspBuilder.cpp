@@ -1,5 +1,6 @@
 #include "scenevis/BspBuilder.h"
 
+#include <glm/common.hpp>
 #include <glm/geometric.hpp>
 #include <glm/vec2.hpp>
 
@@ -37,14 +38,28 @@ constexpr std::uint32_t kMaxChainList = 128;
 /// balances as well and keeps the cost per node independent of the list size.
 constexpr std::uint32_t kMedianSample = 1024;
 
-/// Free-plane sweeps (see chooseScored) sort the extents of at most this many (strided) fragments
-/// per axis: enough to find the gaps between parts, cheap enough for every node above
-/// kMinFreePlaneList (sorting dominates; 512 costs twice as much for < 1 % fewer fragments).
-constexpr std::uint32_t kSweepSample = 256;
+/// Per effort level (BuildConfig::Effort, measured trade-off in BspBuilder.h):
+/// - sweepSample: free-plane sweeps (see chooseScored) sort the extents of at most this many
+///   (strided) fragments per axis. 64 finds the gaps between parts as well as 256 (fragments
+///   within 0.3 %) at a quarter of the gathering and less than a quarter of the sorting.
+/// - extraCandidateList / candidateFactor: lists of at most extraCandidateList fragments are
+///   scored against every polygon anyway, so they try candidateFactor * BuildConfig::candidates
+///   polygon planes. Most of the gain of more candidates comes from the shortest lists.
+/// - boundStride: the early-out bound of a candidate's score is checked every this many sample
+///   fragments (checking it costs about as much as classifying a fragment).
+struct EffortParameters
+{
+  std::uint32_t sweepSample;
+  std::uint32_t extraCandidateList;
+  std::uint32_t candidateFactor;
+  std::uint32_t boundStride;
+};
 
-/// Lists this short are scored against every polygon anyway (samplePolygons >= n), so trying
-/// more candidate planes there is cheap and pays: this many times BuildConfig::candidates.
-constexpr std::uint32_t kSmallListCandidateFactor = 2;
+EffortParameters effortParameters(BuildConfig::Effort effort)
+{
+  return effort == BuildConfig::Effort::Thorough ? EffortParameters{ 256, 128, 2, 1 }
+                                                 : EffortParameters{ 64, 32, 2, 4 };
+}
 
 /// Tolerance floor in units of the coordinate resolution: max|coordinate| * DBL_EPSILON is the
 /// rounding step of the input coordinates (an input point, or a split point stored in world
@@ -339,6 +354,7 @@ public:
     : Mesh(mesh)
     , Config(config)
     , Progress(progress)
+    , Effort(effortParameters(config.effort))
   {
   }
 
@@ -389,6 +405,7 @@ private:
   const PolygonMesh& Mesh;
   const BuildConfig& Config;
   const ProgressCallback& Progress;
+  const EffortParameters Effort;
   Tree Out;
   double Tol = 0.0;
 
@@ -422,6 +439,7 @@ private:
   std::vector<double> DistScratch;
   std::vector<glm::dvec3> CentroidScratch;
   std::vector<std::pair<double, std::uint32_t>> AxisScratch;
+  std::vector<glm::dvec3> SweepBox;
   std::vector<double> SweepLo;
   std::vector<double> SweepHi;
   std::vector<double> SweepFlat;
@@ -751,6 +769,11 @@ Builder::Choice Builder::chooseScored(const Task& task, std::uint32_t n)
           }
           break;
       }
+      // Checked every boundStride fragments only.
+      if (Effort.boundStride > 1 && j % Effort.boundStride != Effort.boundStride - 1)
+      {
+        continue;
+      }
       // Lower bounds of the final score. SubtreeCost: the remaining fragments are put where they
       // cost least, filling up the smaller side (C is convex); that they could also be coplanar
       // with a polygon plane is ignored, which makes this a (deterministic) pruning heuristic
@@ -851,7 +874,29 @@ Builder::Choice Builder::chooseScored(const Task& task, std::uint32_t n)
     // Sweep: the axis plane through a fragment's extreme coordinate that scores best on the
     // fragments' extents. It finds gaps between the parts of an assembly and planes along
     // aligned faces, which a median never hits; the winner is then scored like the others.
-    const std::uint32_t m = std::min(n, kSweepSample);
+    const std::uint32_t m = std::min(n, Effort.sweepSample);
+    // Bounding boxes of the strided sample, gathered once for all three axes.
+    SweepBox.resize(2 * static_cast<std::size_t>(m));
+    for (std::uint32_t j = 0; j < m; ++j)
+    {
+      const Frag& f = list[static_cast<std::uint32_t>((static_cast<std::uint64_t>(j) * n) / m)];
+      glm::dvec3 lo = Local[Verts[f.first]];
+      glm::dvec3 hi = lo;
+      for (std::uint32_t k = 1; k < f.count; ++k)
+      {
+        const glm::dvec3& c = Local[Verts[f.first + k]];
+        lo = glm::min(lo, c);
+        hi = glm::max(hi, c);
+      }
+      SweepBox[2 * j] = lo;
+      SweepBox[2 * j + 1] = hi;
+    }
+    SweepCost.resize(m + 1);
+    for (std::uint32_t k = 0; k <= m; ++k)
+    {
+      SweepCost[k] = subtree ? subtreeCost(static_cast<double>(k) * n / m)
+                             : static_cast<double>(k) * sampleSize / m;
+    }
     for (int axis = 0; axis < 3; ++axis)
     {
       SweepLo.resize(m);
@@ -859,15 +904,8 @@ Builder::Choice Builder::chooseScored(const Task& task, std::uint32_t n)
       SweepFlat.clear();
       for (std::uint32_t j = 0; j < m; ++j)
       {
-        const Frag& f = list[static_cast<std::uint32_t>((static_cast<std::uint64_t>(j) * n) / m)];
-        double lo = Local[Verts[f.first]][axis];
-        double hi = lo;
-        for (std::uint32_t k = 1; k < f.count; ++k)
-        {
-          const double c = Local[Verts[f.first + k]][axis];
-          lo = std::min(lo, c);
-          hi = std::max(hi, c);
-        }
+        const double lo = SweepBox[2 * j][axis];
+        const double hi = SweepBox[2 * j + 1][axis];
         SweepLo[j] = lo;
         SweepHi[j] = hi;
         if (hi - lo <= 2.0 * Tol)
@@ -888,12 +926,6 @@ Builder::Choice Builder::chooseScored(const Task& task, std::uint32_t n)
       std::size_t belowLo = 0;
       std::size_t flatBelow = 0;
       std::size_t flatUpTo = 0;
-      SweepCost.resize(m + 1);
-      for (std::uint32_t k = 0; k <= m; ++k)
-      {
-        SweepCost[k] = subtree ? subtreeCost(static_cast<double>(k) * n / m)
-                               : static_cast<double>(k) * sampleSize / m;
-      }
       while (iLo < m || iHi < m)
       {
         const bool takeLo = iHi >= m || (iLo < m && SweepLo[iLo] <= SweepHi[iHi]);
@@ -958,7 +990,7 @@ Builder::Choice Builder::chooseScored(const Task& task, std::uint32_t n)
   double bestPolygon = kInfinity;
   bool bestOneSided = false;
   const std::uint32_t listCandidates =
-    n <= kMinFreePlaneList ? candidates * kSmallListCandidateFactor : candidates;
+    n <= Effort.extraCandidateList ? candidates * Effort.candidateFactor : candidates;
   const std::uint32_t polygonCandidates = std::min(listCandidates, n);
   for (std::uint32_t c = 0; c < polygonCandidates; ++c)
   {
@@ -988,13 +1020,44 @@ Builder::Choice Builder::chooseScored(const Task& task, std::uint32_t n)
   return choice;
 }
 
+/// Bounds of the points of polygons that can take part (finite, in range, >= 3 distinct ids).
+/// Unused points and points of dropped polygons must not set the origin or the tolerance: one
+/// stray point 1e7 away would otherwise make the tolerance swallow real features (fuzzer finding
+/// "stray-point-inflates-tolerance").
+Box usableBounds(const PolygonMesh& mesh)
+{
+  Box box;
+  const std::size_t numPoints = mesh.points.size();
+  for (std::size_t i = 0; i < mesh.polygonCount(); ++i)
+  {
+    const std::uint32_t* ids = mesh.polygon(i);
+    const std::uint32_t count = mesh.polygonSize(i);
+    bool usable = count >= 3;
+    std::uint32_t distinct = 0;
+    for (std::uint32_t k = 0; k < count && usable; ++k)
+    {
+      usable = ids[k] < numPoints && std::isfinite(mesh.points[ids[k]].x) &&
+        std::isfinite(mesh.points[ids[k]].y) && std::isfinite(mesh.points[ids[k]].z);
+      distinct += (k == 0 || ids[k] != ids[k - 1]) ? 1 : 0;
+    }
+    if (usable && distinct >= 3)
+    {
+      for (std::uint32_t k = 0; k < count; ++k)
+      {
+        box.extend(mesh.points[ids[k]]);
+      }
+    }
+  }
+  return box;
+}
+
 Tree Builder::run()
 {
   const auto startTime = std::chrono::steady_clock::now();
   BuildStatistics& st = Out.statistics;
   st.inputPolygons = Mesh.polygonCount();
 
-  const Box bounds = Mesh.bounds();
+  const Box bounds = usableBounds(Mesh);
   Out.origin = bounds.empty() ? glm::dvec3(0.0) : bounds.center();
   const double diagonal = bounds.diagonal();
   // The larger of the requested tolerance and the coordinate resolution (kResolutionSteps): far
