@@ -189,6 +189,7 @@ int vtkBSPSortFilter::RequestData(vtkInformation* vtkNotUsed(request),
   config.splitWeight = this->SplitWeight;
   config.seed = this->Seed;
   config.relativeTolerance = this->RelativeTolerance;
+  config.threads = 0; // the tree is identical for any thread count; use every core
   const bool configChanged = !internal.Tree || config.partition != internal.Config.partition ||
     config.candidates != internal.Config.candidates ||
     config.splitWeight != internal.Config.splitWeight || config.seed != internal.Config.seed ||

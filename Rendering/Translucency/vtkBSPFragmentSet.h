@@ -17,7 +17,8 @@
 #include "vtkPolyData.h"
 #include "vtkSmartPointer.h"
 
-#include "scenevis/BspTree.h" // For scenevis::bsp::SplitPoint
+#include "scenevis/BspBuilder.h" // For scenevis::bsp::BuildConfig
+#include "scenevis/BspTree.h"    // For scenevis::bsp::SplitPoint
 
 #include <cstdint>
 #include <vector>
@@ -35,6 +36,15 @@ struct vtkBSPFragmentSet
   std::vector<vtkIdType> Cells;
 
   std::size_t FragmentCount() const { return this->Offsets.size() - 1; }
+
+  /// How the mapper and the pass build their trees: the default partition on every core (the
+  /// tree is identical for any thread count).
+  static scenevis::bsp::BuildConfig BuildConfig()
+  {
+    scenevis::bsp::BuildConfig config;
+    config.threads = 0;
+    return config;
+  }
 };
 
 #endif

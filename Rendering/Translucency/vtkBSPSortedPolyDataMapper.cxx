@@ -466,7 +466,7 @@ void vtkBSPSortedPolyDataMapper::UpdateCameraShiftScale(vtkRenderer* ren, vtkAct
     scenevis::PolygonMesh mesh;
     std::vector<vtkIdType> cellOf;
     vtkBSPSortUtilities::AppendPolygons(input, nullptr, mesh, cellOf);
-    auto tree = std::make_unique<bsp::Tree>(bsp::build(mesh));
+    auto tree = std::make_unique<bsp::Tree>(bsp::build(mesh, vtkBSPFragmentSet::BuildConfig()));
     auto fragments = std::make_shared<vtkBSPFragmentSet>();
     fragments->Input = input;
     fragments->Splits = tree->splitPoints;

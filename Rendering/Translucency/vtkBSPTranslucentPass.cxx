@@ -175,7 +175,7 @@ void vtkBSPTranslucentPass::Internals::Build()
     pointStart.push_back(static_cast<std::uint32_t>(mesh.points.size()));
     polygonStart.push_back(static_cast<std::uint32_t>(mesh.polygonCount()));
   }
-  auto tree = std::make_unique<bsp::Tree>(bsp::build(mesh));
+  auto tree = std::make_unique<bsp::Tree>(bsp::build(mesh, vtkBSPFragmentSet::BuildConfig()));
 
   // Which actor every point belongs to, and its id within that actor's fragment set.
   const std::size_t inputPoints = tree->inputPointCount;
