@@ -2,7 +2,6 @@
 
 #include "vtkBSPSortUtilities.h"
 
-#include "vtkCamera.h"
 #include "vtkCellArray.h"
 #include "vtkCellData.h"
 #include "vtkDataArray.h"
@@ -15,7 +14,6 @@
 #include "vtkPointData.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
-#include "vtkProp3D.h"
 #include "vtkSmartPointer.h"
 #include "vtkSMPTools.h"
 #include "vtkWeakPointer.h"
@@ -29,7 +27,6 @@
 #include <sstream>
 
 vtkStandardNewMacro(vtkBSPSortFilter);
-vtkCxxSetObjectMacro(vtkBSPSortFilter, Camera, vtkCamera);
 
 namespace
 {
@@ -44,7 +41,6 @@ double SecondsSince(std::chrono::steady_clock::time_point start)
 
 struct vtkBSPSortFilter::Internals
 {
-  vtkWeakPointer<vtkProp3D> Prop3D;
 
   // What the current tree was built from.
   bsp::BuildConfig Config;
@@ -77,41 +73,7 @@ vtkBSPSortFilter::vtkBSPSortFilter()
 }
 
 //------------------------------------------------------------------------------
-vtkBSPSortFilter::~vtkBSPSortFilter()
-{
-  this->SetCamera(nullptr);
-}
-
-//------------------------------------------------------------------------------
-void vtkBSPSortFilter::SetProp3D(vtkProp3D* prop)
-{
-  if (this->Internal->Prop3D != prop)
-  {
-    this->Internal->Prop3D = prop;
-    this->Modified();
-  }
-}
-
-//------------------------------------------------------------------------------
-vtkProp3D* vtkBSPSortFilter::GetProp3D()
-{
-  return this->Internal->Prop3D;
-}
-
-//------------------------------------------------------------------------------
-vtkMTimeType vtkBSPSortFilter::GetMTime()
-{
-  vtkMTimeType mTime = this->Superclass::GetMTime();
-  if (this->Camera)
-  {
-    mTime = std::max(mTime, this->Camera->GetMTime());
-  }
-  if (vtkProp3D* prop = this->Internal->Prop3D)
-  {
-    mTime = std::max(mTime, prop->GetMTime());
-  }
-  return mTime;
-}
+vtkBSPSortFilter::~vtkBSPSortFilter() = default;
 
 //------------------------------------------------------------------------------
 vtkIdType vtkBSPSortFilter::GetNumberOfFragments() const
@@ -162,21 +124,10 @@ int vtkBSPSortFilter::RequestData(vtkInformation* vtkNotUsed(request),
   vtkPolyData* output = vtkPolyData::GetData(outputVector);
   Internals& internal = *this->Internal;
 
-  if (!this->Camera)
-  {
-    vtkErrorMacro("No camera set: passing the input through unsorted.");
-    output->ShallowCopy(input);
-    return 1;
-  }
-
-  // The view, in the input's coordinates.
+  // The view, in the input's coordinates (or an error and pass-through).
   scenevis::View view;
-  vtkProp3D* prop = internal.Prop3D;
-  if (!vtkBSPSortUtilities::ViewFromCamera(this->Camera, prop ? prop->GetMatrix() : nullptr, view))
+  if (!this->ViewForInput(input, output, view))
   {
-    vtkErrorMacro("The camera has a non-finite position or no view direction: passing the input "
-                  "through unsorted.");
-    output->ShallowCopy(input);
     return 1;
   }
 
@@ -350,17 +301,12 @@ int vtkBSPSortFilter::RequestData(vtkInformation* vtkNotUsed(request),
 void vtkBSPSortFilter::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
-  os << indent << "Camera: " << this->Camera << "\n";
-  os << indent << "Prop3D: " << this->Internal->Prop3D.GetPointer() << "\n";
-  os << indent << "Direction: "
-     << (this->Direction == VTK_DIRECTION_BACK_TO_FRONT ? "BackToFront" : "FrontToBack") << "\n";
   os << indent << "PartitionMode: "
      << (this->PartitionMode == PARTITION_FIRST_IN_LIST ? "FirstInList" : "Scored") << "\n";
   os << indent << "CandidateCount: " << this->CandidateCount << "\n";
   os << indent << "SplitWeight: " << this->SplitWeight << "\n";
   os << indent << "Seed: " << this->Seed << "\n";
   os << indent << "RelativeTolerance: " << this->RelativeTolerance << "\n";
-  os << indent << "GenerateOrderArrays: " << (this->GenerateOrderArrays ? "On" : "Off") << "\n";
   os << indent << "NumberOfFragments: " << this->GetNumberOfFragments() << "\n";
   os << indent << "NumberOfSplits: " << this->GetNumberOfSplits() << "\n";
   os << indent << "TreeDepth: " << this->GetTreeDepth() << "\n";

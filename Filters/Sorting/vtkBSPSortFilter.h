@@ -38,58 +38,23 @@
 #define vtkBSPSortFilter_h
 
 #include "SceneVisFiltersSortingModule.h" // For export macro
-#include "vtkPolyDataAlgorithm.h"
+#include "vtkVisibilityOrderFilter.h"
 
 #include <memory> // For std::unique_ptr
 
-class vtkCamera;
-class vtkProp3D;
-
-class SCENEVISFILTERSSORTING_EXPORT vtkBSPSortFilter : public vtkPolyDataAlgorithm
+class SCENEVISFILTERSSORTING_EXPORT vtkBSPSortFilter : public vtkVisibilityOrderFilter
 {
 public:
   static vtkBSPSortFilter* New();
-  vtkTypeMacro(vtkBSPSortFilter, vtkPolyDataAlgorithm);
+  vtkTypeMacro(vtkBSPSortFilter, vtkVisibilityOrderFilter);
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
-  enum Directions
-  {
-    VTK_DIRECTION_BACK_TO_FRONT = 0,
-    VTK_DIRECTION_FRONT_TO_BACK = 1
-  };
 
   enum PartitionModes
   {
     PARTITION_FIRST_IN_LIST = 0, ///< The textbook choice; convex meshes become deep chains.
     PARTITION_SCORED = 1         ///< Sampled candidates scored by splits and balance (default).
   };
-
-  ///@{
-  /**
-   * The camera that defines the order. Required.
-   */
-  virtual void SetCamera(vtkCamera*);
-  vtkGetObjectMacro(Camera, vtkCamera);
-  ///@}
-
-  ///@{
-  /**
-   * Optional prop whose matrix maps the input's coordinates to world coordinates; the camera is
-   * then taken into data coordinates through the inverse of that matrix.
-   */
-  void SetProp3D(vtkProp3D*);
-  vtkProp3D* GetProp3D();
-  ///@}
-
-  ///@{
-  /**
-   * Back to front (default) or front to back.
-   */
-  vtkSetClampMacro(Direction, int, VTK_DIRECTION_BACK_TO_FRONT, VTK_DIRECTION_FRONT_TO_BACK);
-  vtkGetMacro(Direction, int);
-  void SetDirectionToBackToFront() { this->SetDirection(VTK_DIRECTION_BACK_TO_FRONT); }
-  void SetDirectionToFrontToBack() { this->SetDirection(VTK_DIRECTION_FRONT_TO_BACK); }
-  ///@}
 
   ///@{
   /**
@@ -110,15 +75,6 @@ public:
 
   ///@{
   /**
-   * Whether to add the OriginalCellId and SortRank cell-data arrays (default on).
-   */
-  vtkSetMacro(GenerateOrderArrays, vtkTypeBool);
-  vtkGetMacro(GenerateOrderArrays, vtkTypeBool);
-  vtkBooleanMacro(GenerateOrderArrays, vtkTypeBool);
-  ///@}
-
-  ///@{
-  /**
    * Statistics of the last build and update.
    */
   vtkIdType GetNumberOfFragments() const;
@@ -131,25 +87,17 @@ public:
   vtkIdType GetLastNodesVisited() const;
   ///@}
 
-  vtkMTimeType GetMTime() override;
-
-  static const char* OriginalCellIdArrayName() { return "OriginalCellId"; }
-  static const char* SortRankArrayName() { return "SortRank"; }
-
 protected:
   vtkBSPSortFilter();
   ~vtkBSPSortFilter() override;
 
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 
-  vtkCamera* Camera = nullptr;
-  int Direction = VTK_DIRECTION_BACK_TO_FRONT;
   int PartitionMode = PARTITION_SCORED;
   int CandidateCount = 16;
   double SplitWeight = 4.0;
   unsigned int Seed = 1;
   double RelativeTolerance = 1e-10;
-  vtkTypeBool GenerateOrderArrays = true;
 
 private:
   vtkBSPSortFilter(const vtkBSPSortFilter&) = delete;

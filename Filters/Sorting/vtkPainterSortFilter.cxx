@@ -2,7 +2,6 @@
 
 #include "vtkBSPSortUtilities.h"
 
-#include "vtkCamera.h"
 #include "vtkCellArray.h"
 #include "vtkCellData.h"
 #include "vtkIdTypeArray.h"
@@ -14,7 +13,6 @@
 #include "vtkPointData.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
-#include "vtkProp3D.h"
 #include "vtkSmartPointer.h"
 #include "vtkWeakPointer.h"
 
@@ -25,7 +23,6 @@
 #include <numeric>
 
 vtkStandardNewMacro(vtkPainterSortFilter);
-vtkCxxSetObjectMacro(vtkPainterSortFilter, Camera, vtkCamera);
 
 namespace
 {
@@ -39,7 +36,6 @@ double SecondsSince(std::chrono::steady_clock::time_point start)
 
 struct vtkPainterSortFilter::Internals
 {
-  vtkWeakPointer<vtkProp3D> Prop3D;
 
   // What the current sorter was built from.
   painter::Config Config;
@@ -67,41 +63,7 @@ vtkPainterSortFilter::vtkPainterSortFilter()
 }
 
 //------------------------------------------------------------------------------
-vtkPainterSortFilter::~vtkPainterSortFilter()
-{
-  this->SetCamera(nullptr);
-}
-
-//------------------------------------------------------------------------------
-void vtkPainterSortFilter::SetProp3D(vtkProp3D* prop)
-{
-  if (this->Internal->Prop3D != prop)
-  {
-    this->Internal->Prop3D = prop;
-    this->Modified();
-  }
-}
-
-//------------------------------------------------------------------------------
-vtkProp3D* vtkPainterSortFilter::GetProp3D()
-{
-  return this->Internal->Prop3D;
-}
-
-//------------------------------------------------------------------------------
-vtkMTimeType vtkPainterSortFilter::GetMTime()
-{
-  vtkMTimeType mTime = this->Superclass::GetMTime();
-  if (this->Camera)
-  {
-    mTime = std::max(mTime, this->Camera->GetMTime());
-  }
-  if (vtkProp3D* prop = this->Internal->Prop3D)
-  {
-    mTime = std::max(mTime, prop->GetMTime());
-  }
-  return mTime;
-}
+vtkPainterSortFilter::~vtkPainterSortFilter() = default;
 
 //------------------------------------------------------------------------------
 vtkIdType vtkPainterSortFilter::GetNumberOfFragments() const
@@ -163,21 +125,10 @@ int vtkPainterSortFilter::RequestData(vtkInformation* vtkNotUsed(request),
   vtkPolyData* output = vtkPolyData::GetData(outputVector);
   Internals& internal = *this->Internal;
 
-  if (!this->Camera)
-  {
-    vtkErrorMacro("No camera set: passing the input through unsorted.");
-    output->ShallowCopy(input);
-    return 1;
-  }
-
-  // The view, in the input's coordinates.
+  // The view, in the input's coordinates (or an error and pass-through).
   scenevis::View view;
-  vtkProp3D* prop = internal.Prop3D;
-  if (!vtkBSPSortUtilities::ViewFromCamera(this->Camera, prop ? prop->GetMatrix() : nullptr, view))
+  if (!this->ViewForInput(input, output, view))
   {
-    vtkErrorMacro("The camera has a non-finite position or no view direction: passing the input "
-                  "through unsorted.");
-    output->ShallowCopy(input);
     return 1;
   }
 
@@ -317,13 +268,8 @@ int vtkPainterSortFilter::RequestData(vtkInformation* vtkNotUsed(request),
 void vtkPainterSortFilter::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
-  os << indent << "Camera: " << this->Camera << "\n";
-  os << indent << "Prop3D: " << this->Internal->Prop3D.GetPointer() << "\n";
-  os << indent << "Direction: "
-     << (this->Direction == VTK_DIRECTION_BACK_TO_FRONT ? "BackToFront" : "FrontToBack") << "\n";
   os << indent << "RelativeTolerance: " << this->RelativeTolerance << "\n";
   os << indent << "MaxSplitsPerPolygon: " << this->MaxSplitsPerPolygon << "\n";
-  os << indent << "GenerateOrderArrays: " << (this->GenerateOrderArrays ? "On" : "Off") << "\n";
   os << indent << "NumberOfFragments: " << this->GetNumberOfFragments() << "\n";
   os << indent << "NumberOfSplits: " << this->GetNumberOfSplits() << "\n";
   os << indent << "NumberOfBuilds: " << this->GetNumberOfBuilds() << "\n";

@@ -36,52 +36,17 @@
 #define vtkPainterSortFilter_h
 
 #include "SceneVisFiltersSortingModule.h" // For export macro
-#include "vtkPolyDataAlgorithm.h"
+#include "vtkVisibilityOrderFilter.h"
 
 #include <memory> // For std::unique_ptr
 
-class vtkCamera;
-class vtkProp3D;
-
-class SCENEVISFILTERSSORTING_EXPORT vtkPainterSortFilter : public vtkPolyDataAlgorithm
+class SCENEVISFILTERSSORTING_EXPORT vtkPainterSortFilter : public vtkVisibilityOrderFilter
 {
 public:
   static vtkPainterSortFilter* New();
-  vtkTypeMacro(vtkPainterSortFilter, vtkPolyDataAlgorithm);
+  vtkTypeMacro(vtkPainterSortFilter, vtkVisibilityOrderFilter);
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
-  enum Directions
-  {
-    VTK_DIRECTION_BACK_TO_FRONT = 0,
-    VTK_DIRECTION_FRONT_TO_BACK = 1
-  };
-
-  ///@{
-  /**
-   * The camera that defines the order. Required.
-   */
-  virtual void SetCamera(vtkCamera*);
-  vtkGetObjectMacro(Camera, vtkCamera);
-  ///@}
-
-  ///@{
-  /**
-   * Optional prop whose matrix maps the input's coordinates to world coordinates; the camera is
-   * then taken into data coordinates through the inverse of that matrix.
-   */
-  void SetProp3D(vtkProp3D*);
-  vtkProp3D* GetProp3D();
-  ///@}
-
-  ///@{
-  /**
-   * Back to front (default) or front to back.
-   */
-  vtkSetClampMacro(Direction, int, VTK_DIRECTION_BACK_TO_FRONT, VTK_DIRECTION_FRONT_TO_BACK);
-  vtkGetMacro(Direction, int);
-  void SetDirectionToBackToFront() { this->SetDirection(VTK_DIRECTION_BACK_TO_FRONT); }
-  void SetDirectionToFrontToBack() { this->SetDirection(VTK_DIRECTION_FRONT_TO_BACK); }
-  ///@}
 
   ///@{
   /**
@@ -92,15 +57,6 @@ public:
   vtkGetMacro(RelativeTolerance, double);
   vtkSetClampMacro(MaxSplitsPerPolygon, double, 0.0, 1e6);
   vtkGetMacro(MaxSplitsPerPolygon, double);
-  ///@}
-
-  ///@{
-  /**
-   * Whether to add the OriginalCellId and SortRank cell-data arrays (default on).
-   */
-  vtkSetMacro(GenerateOrderArrays, vtkTypeBool);
-  vtkGetMacro(GenerateOrderArrays, vtkTypeBool);
-  vtkBooleanMacro(GenerateOrderArrays, vtkTypeBool);
   ///@}
 
   ///@{
@@ -118,22 +74,14 @@ public:
   vtkIdType GetNumberOfSorts() const;           ///< Sorts since construction.
   ///@}
 
-  vtkMTimeType GetMTime() override;
-
-  static const char* OriginalCellIdArrayName() { return "OriginalCellId"; }
-  static const char* SortRankArrayName() { return "SortRank"; }
-
 protected:
   vtkPainterSortFilter();
   ~vtkPainterSortFilter() override;
 
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 
-  vtkCamera* Camera = nullptr;
-  int Direction = VTK_DIRECTION_BACK_TO_FRONT;
   double RelativeTolerance = 1e-10;
   double MaxSplitsPerPolygon = 16.0;
-  vtkTypeBool GenerateOrderArrays = true;
 
 private:
   vtkPainterSortFilter(const vtkPainterSortFilter&) = delete;
