@@ -5,7 +5,6 @@
 #include "vtkCellArray.h"
 #include "vtkCellData.h"
 #include "vtkDataArray.h"
-#include "vtkIdTypeArray.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
 #include "vtkMatrix4x4.h"
@@ -15,14 +14,12 @@
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
 #include "vtkSmartPointer.h"
-#include "vtkSMPTools.h"
 #include "vtkWeakPointer.h"
 
 #include "scenevis/BspBuilder.h"
 #include "scenevis/BspTraversal.h"
 
 #include <chrono>
-#include <numeric>
 #include <cmath>
 #include <sstream>
 
@@ -56,7 +53,8 @@ struct vtkBSPSortFilter::Internals
   // data of verts/lines followed by one tuple per fragment (in fragment id order).
   vtkSmartPointer<vtkPolyData> Cache;
   vtkSmartPointer<vtkCellData> FragmentCellData;
-  vtkSmartPointer<vtkIdTypeArray> FragmentOriginalIds;
+  std::vector<std::uint32_t> CellOfFragment; // input cell of every fragment (fragment id order)
+  std::vector<std::uint32_t> CellOfRank;     // the same in output order (per frame scratch)
   vtkIdType NumberOfPassThroughCells = 0;
 
   vtkIdType Builds = 0;
@@ -202,14 +200,13 @@ int vtkBSPSortFilter::RequestData(vtkInformation* vtkNotUsed(request),
     const vtkIdType numFragments = static_cast<vtkIdType>(tree->fragments.size());
     internal.FragmentCellData = vtkSmartPointer<vtkCellData>::New();
     internal.FragmentCellData->CopyAllocate(inCD, numFragments);
-    internal.FragmentOriginalIds = vtkSmartPointer<vtkIdTypeArray>::New();
-    internal.FragmentOriginalIds->SetNumberOfTuples(numFragments);
+    internal.CellOfFragment.resize(tree->fragments.size());
     for (vtkIdType f = 0; f < numFragments; ++f)
     {
       const vtkIdType cell =
         internal.CellOfSource[tree->fragments[static_cast<std::size_t>(f)].source];
       internal.FragmentCellData->CopyData(inCD, cell, f);
-      internal.FragmentOriginalIds->SetValue(f, cell);
+      internal.CellOfFragment[static_cast<std::size_t>(f)] = static_cast<std::uint32_t>(cell);
     }
 
     internal.Tree = std::move(tree);
@@ -237,7 +234,6 @@ int vtkBSPSortFilter::RequestData(vtkInformation* vtkNotUsed(request),
   // Emit the fragments in order. This runs on every camera change, so it works on raw arrays
   // (32-bit cell storage when the ids fit) and in parallel.
   const bsp::Tree& tree = *internal.Tree;
-  const vtkIdType numFragments = static_cast<vtkIdType>(order.size());
   output->SetPoints(internal.Cache->GetPoints());
   output->GetPointData()->ShallowCopy(internal.Cache->GetPointData());
   output->SetVerts(internal.Cache->GetVerts());
@@ -247,51 +243,14 @@ int vtkBSPSortFilter::RequestData(vtkInformation* vtkNotUsed(request),
     order.size()));
 
   // Cell data: pass-through cells keep their data, fragments take their source cell's.
-  const vtkIdType passThrough = internal.NumberOfPassThroughCells;
-  vtkCellData* inCD = input->GetCellData();
-  vtkCellData* outCD = output->GetCellData();
-  vtkCellData* fragmentCD = internal.FragmentCellData;
-  outCD->CopyAllocate(inCD, passThrough + numFragments);
-  for (int a = 0; a < fragmentCD->GetNumberOfArrays(); ++a)
+  internal.CellOfRank.resize(order.size());
+  for (std::size_t r = 0; r < order.size(); ++r)
   {
-    vtkAbstractArray* source = fragmentCD->GetAbstractArray(a);
-    vtkAbstractArray* target = outCD->GetAbstractArray(source->GetName());
-    if (!target || target->GetDataType() != source->GetDataType() ||
-      target->GetNumberOfComponents() != source->GetNumberOfComponents())
-    {
-      continue;
-    }
-    target->SetNumberOfTuples(passThrough + numFragments);
-    for (vtkIdType c = 0; c < passThrough; ++c)
-    {
-      target->SetTuple(c, c, inCD->GetAbstractArray(source->GetName()));
-    }
-    vtkBSPSortUtilities::PermuteTuples(source, order.data(), order.size(), target, passThrough);
+    internal.CellOfRank[r] = internal.CellOfFragment[order[r]];
   }
-
-  if (this->GenerateOrderArrays)
-  {
-    vtkNew<vtkIdTypeArray> originalIds;
-    originalIds->SetName(OriginalCellIdArrayName());
-    originalIds->SetNumberOfTuples(passThrough + numFragments);
-    vtkNew<vtkIdTypeArray> ranks;
-    ranks->SetName(SortRankArrayName());
-    ranks->SetNumberOfTuples(passThrough + numFragments);
-    vtkIdType* idPtr = originalIds->GetPointer(0);
-    vtkIdType* rankPtr = ranks->GetPointer(0);
-    std::iota(idPtr, idPtr + passThrough, vtkIdType(0));
-    std::fill(rankPtr, rankPtr + passThrough, vtkIdType(-1));
-    const vtkIdType* fragmentIds = internal.FragmentOriginalIds->GetPointer(0);
-    vtkSMPTools::For(0, numFragments, [&](vtkIdType begin, vtkIdType end) {
-      for (vtkIdType r = begin; r < end; ++r)
-      {
-        idPtr[passThrough + r] = fragmentIds[order[static_cast<std::size_t>(r)]];
-        rankPtr[passThrough + r] = r;
-      }
-    });
-    outCD->AddArray(originalIds);
-    outCD->AddArray(ranks);
-  }
+  this->EmitCellData(input->GetCellData(), internal.NumberOfPassThroughCells,
+    internal.FragmentCellData, order.data(), internal.CellOfRank.data(), order.size(),
+    output->GetCellData());
   internal.LastOrderTime = SecondsSince(orderStart);
   this->UpdateProgress(1.0);
   return 1;

@@ -4,7 +4,6 @@
 
 #include "vtkCellArray.h"
 #include "vtkCellData.h"
-#include "vtkIdTypeArray.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
 #include "vtkMatrix4x4.h"
@@ -217,49 +216,9 @@ int vtkPainterSortFilter::RequestData(vtkInformation* vtkNotUsed(request),
     count));
 
   // Cell data: pass-through cells keep their data, fragments take their source cell's.
-  const vtkIdType passThrough = input->GetNumberOfVerts() + input->GetNumberOfLines();
-  const vtkIdType numFragments = static_cast<vtkIdType>(count);
-  vtkCellData* inCD = input->GetCellData();
-  vtkCellData* outCD = output->GetCellData();
-  outCD->CopyAllocate(inCD, passThrough + numFragments);
-  for (int a = 0; a < inCD->GetNumberOfArrays(); ++a)
-  {
-    vtkAbstractArray* source = inCD->GetAbstractArray(a);
-    vtkAbstractArray* target = source->GetName() ? outCD->GetAbstractArray(source->GetName()) : nullptr;
-    if (!target || target->GetDataType() != source->GetDataType() ||
-      target->GetNumberOfComponents() != source->GetNumberOfComponents())
-    {
-      continue;
-    }
-    target->SetNumberOfTuples(passThrough + numFragments);
-    for (vtkIdType c = 0; c < passThrough; ++c)
-    {
-      target->SetTuple(c, c, source);
-    }
-    vtkBSPSortUtilities::PermuteTuples(
-      source, internal.CellOfFragment.data(), count, target, passThrough);
-  }
-
-  if (this->GenerateOrderArrays)
-  {
-    vtkNew<vtkIdTypeArray> originalIds;
-    originalIds->SetName(OriginalCellIdArrayName());
-    originalIds->SetNumberOfTuples(passThrough + numFragments);
-    vtkNew<vtkIdTypeArray> ranks;
-    ranks->SetName(SortRankArrayName());
-    ranks->SetNumberOfTuples(passThrough + numFragments);
-    vtkIdType* idPtr = originalIds->GetPointer(0);
-    vtkIdType* rankPtr = ranks->GetPointer(0);
-    std::iota(idPtr, idPtr + passThrough, vtkIdType(0));
-    std::fill(rankPtr, rankPtr + passThrough, vtkIdType(-1));
-    for (vtkIdType r = 0; r < numFragments; ++r)
-    {
-      idPtr[passThrough + r] = internal.CellOfFragment[static_cast<std::size_t>(r)];
-      rankPtr[passThrough + r] = r;
-    }
-    outCD->AddArray(originalIds);
-    outCD->AddArray(ranks);
-  }
+  this->EmitCellData(input->GetCellData(), input->GetNumberOfVerts() + input->GetNumberOfLines(),
+    input->GetCellData(), internal.CellOfFragment.data(), internal.CellOfFragment.data(), count,
+    output->GetCellData());
   internal.LastOrderTime = SecondsSince(orderStart);
   return 1;
 }

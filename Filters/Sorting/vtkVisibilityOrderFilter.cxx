@@ -3,11 +3,15 @@
 #include "vtkBSPSortUtilities.h"
 
 #include "vtkCamera.h"
+#include "vtkCellData.h"
+#include "vtkIdTypeArray.h"
+#include "vtkNew.h"
 #include "vtkObjectFactory.h"
 #include "vtkPolyData.h"
 #include "vtkProp3D.h"
 
 #include <algorithm>
+#include <numeric>
 
 vtkCxxSetObjectMacro(vtkVisibilityOrderFilter, Camera, vtkCamera);
 
@@ -67,6 +71,51 @@ bool vtkVisibilityOrderFilter::ViewForInput(
     return false;
   }
   return true;
+}
+
+//------------------------------------------------------------------------------
+void vtkVisibilityOrderFilter::EmitCellData(vtkCellData* input, vtkIdType passThrough,
+  vtkCellData* source, const std::uint32_t* sourceIndex, const std::uint32_t* cellOfRank,
+  std::size_t count, vtkCellData* output)
+{
+  const vtkIdType total = passThrough + static_cast<vtkIdType>(count);
+  output->CopyAllocate(input, total);
+  for (int a = 0; a < source->GetNumberOfArrays(); ++a)
+  {
+    vtkAbstractArray* from = source->GetAbstractArray(a);
+    const char* name = from->GetName();
+    vtkAbstractArray* to = name ? output->GetAbstractArray(name) : nullptr;
+    vtkAbstractArray* inputArray = name ? input->GetAbstractArray(name) : nullptr;
+    if (!to || !inputArray || to->GetDataType() != from->GetDataType() ||
+      to->GetNumberOfComponents() != from->GetNumberOfComponents())
+    {
+      continue;
+    }
+    to->SetNumberOfTuples(total);
+    for (vtkIdType c = 0; c < passThrough; ++c)
+    {
+      to->SetTuple(c, c, inputArray);
+    }
+    vtkBSPSortUtilities::PermuteTuples(from, sourceIndex, count, to, passThrough);
+  }
+  if (!this->GenerateOrderArrays)
+  {
+    return;
+  }
+  vtkNew<vtkIdTypeArray> originalIds;
+  originalIds->SetName(OriginalCellIdArrayName());
+  originalIds->SetNumberOfTuples(total);
+  vtkNew<vtkIdTypeArray> ranks;
+  ranks->SetName(SortRankArrayName());
+  ranks->SetNumberOfTuples(total);
+  vtkIdType* idPtr = originalIds->GetPointer(0);
+  vtkIdType* rankPtr = ranks->GetPointer(0);
+  std::iota(idPtr, idPtr + passThrough, vtkIdType(0));
+  std::fill(rankPtr, rankPtr + passThrough, vtkIdType(-1));
+  std::copy(cellOfRank, cellOfRank + count, idPtr + passThrough);
+  std::iota(rankPtr + passThrough, rankPtr + total, vtkIdType(0));
+  output->AddArray(originalIds);
+  output->AddArray(ranks);
 }
 
 //------------------------------------------------------------------------------

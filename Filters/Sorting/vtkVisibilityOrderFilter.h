@@ -19,7 +19,11 @@
 
 #include "scenevis/View.h" // For scenevis::View
 
+#include <cstddef> // For std::size_t
+#include <cstdint> // For std::uint32_t
+
 class vtkCamera;
+class vtkCellData;
 class vtkProp3D;
 
 class SCENEVISFILTERSSORTING_EXPORT vtkVisibilityOrderFilter : public vtkPolyDataAlgorithm
@@ -87,6 +91,16 @@ protected:
    * @p output unsorted and returns false.
    */
   bool ViewForInput(vtkPolyData* input, vtkPolyData* output, scenevis::View& view);
+
+  /**
+   * Fills @p output's cell data for @p passThrough verts/lines (copied from @p input) followed by
+   * @p count fragments, fragment r taking tuple @p sourceIndex[r] of @p source, and adds the
+   * OriginalCellId / SortRank arrays when GenerateOrderArrays is on (fragment r comes from input
+   * cell @p cellOfRank[r]; verts and lines keep their ids and get rank -1).
+   */
+  void EmitCellData(vtkCellData* input, vtkIdType passThrough, vtkCellData* source,
+    const std::uint32_t* sourceIndex, const std::uint32_t* cellOfRank, std::size_t count,
+    vtkCellData* output);
 
   vtkCamera* Camera = nullptr;
   vtkWeakPointer<vtkProp3D> Prop3D;
