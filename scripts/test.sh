@@ -8,6 +8,13 @@ build=${SCENEVIS_BUILD_DIR:-$root/build}
 start=$(date +%s)
 bash "$root/scripts/install-deps.sh"
 bash "$root/scripts/build.sh"
+# Real third-party models (Debian's assimp-testmodels, npm's stl-models and bunny; ~120 MB in
+# ~/.cache/scenevis-data, not the 1.2 GB KiCad library): the reader and real-model tests use them.
+# Without them those tests are skipped, so a failed fetch is reported loudly, not hidden.
+if ! bash "$root/scripts/fetch-data.sh" > "$build.fetch-data.log" 2>&1; then
+  cat "$build.fetch-data.log" >&2
+  echo "test: WARNING: fetching the real models failed; tests that need them will be SKIPPED" >&2
+fi
 cd "$build"
 export LP_NUM_THREADS=1
 xvfb-run -a -s "-screen 0 1280x1024x24" \

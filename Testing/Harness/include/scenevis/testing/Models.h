@@ -28,11 +28,24 @@ std::string DataDirectory();
 std::string DataFile(const std::string& key);
 
 /**
- * Read a surface model as one polydata: .vtp, .vtk (legacy polydata), .ply, .stl, .obj, and
- * .glb/.gltf (all meshes of the default scene merged, node transforms applied).
+ * Read a surface model as one polydata: .vtp, .vtk (legacy polydata), .ply, .stl, .obj, and the
+ * scene formats .glb/.gltf and .wrl (VRML 2.0), which go through VTK's importers: every imported
+ * actor becomes one part, its matrix applied, and the merged output gets two cell arrays:
+ * "PartId" (vtkIdTypeArray, the actor's index in import order) and "Colors" (RGBA unsigned char
+ * cell scalars from the actor's diffuse colour and opacity). VRML files are first passed through
+ * InlineVrmlMaterialUses(), because VTK 9.1's importer ignores `material USE NAME`.
  * @return nullptr when the file cannot be read; @p error then says why in one line.
  */
 vtkSmartPointer<vtkPolyData> LoadModel(const std::string& path, std::string* error = nullptr);
+
+/**
+ * VRML text with every `material USE NAME` replaced by a copy of the `material DEF NAME
+ * Material { ... }` node defined earlier in the text (VTK 9.1's vtkVRMLImporter ignores USE for
+ * materials, so KiCad parts, which define each material once and USE it for every shape, would
+ * come out white and opaque). Unknown names are left as they are. Text without USE is returned
+ * unchanged.
+ */
+std::string InlineVrmlMaterialUses(const std::string& text);
 
 } // namespace testing
 } // namespace scenevis
