@@ -1,10 +1,9 @@
 #include "scenevis/BspBuilder.h"
 
-#include "Triangulate.h"
+#include "PolygonPieces.h"
 
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
-#include <glm/vec2.hpp>
 
 #include <algorithm>
 #include <atomic>
@@ -22,8 +21,6 @@ namespace bsp
 {
 namespace
 {
-
-constexpr double kTwoPi = 6.28318530717958647692;
 
 /// Free planes are tried only on lists longer than this. Below it the scored polygon planes
 /// decide alone, which on a convex patch means a chain at most this deep: much cheaper than the
@@ -233,11 +230,6 @@ private:
   std::size_t Used = 0;
 };
 
-using detail::cross2;
-
-using detail::earClip;
-using detail::planeBasis;
-
 class Builder
 {
 public:
@@ -279,8 +271,6 @@ private:
     return static_cast<Side>((front ? Front : On) | (back ? Back : On));
   }
 
-  void normalise();
-  bool addIfValid(std::uint32_t source, const std::uint32_t* ids, std::size_t count);
 
   struct Choice
   {
@@ -341,162 +331,7 @@ private:
   std::vector<glm::dvec3> SamplePoints;
   EdgeCache Cache;
 
-  // normalisation scratch
-  std::vector<std::uint32_t> PolyIds;
-  std::vector<glm::dvec2> Poly2d;
-  std::vector<std::uint32_t> Ring;
-  std::vector<std::uint32_t> Triangles;
 };
-
-bool Builder::addIfValid(std::uint32_t source, const std::uint32_t* ids, std::size_t count)
-{
-  const glm::dvec3 n = newellNormal(Local.data(), ids, count);
-  const double len = glm::length(n);
-  double maxEdge = 0.0;
-  for (std::size_t k = 0; k < count; ++k)
-  {
-    maxEdge = std::max(maxEdge, glm::length(Local[ids[(k + 1) % count]] - Local[ids[k]]));
-  }
-  // |n| = 2 * area, so this asks whether the polygon is thinner than the tolerance: such a sliver
-  // has no meaningful plane and cannot be classified consistently.
-  if (!(len > Tol * maxEdge) || len == 0.0)
-  {
-    return false;
-  }
-  const glm::dvec3 unit = n / len;
-  glm::dvec3 centroid(0.0);
-  for (std::size_t k = 0; k < count; ++k)
-  {
-    centroid += Local[ids[k]];
-  }
-  centroid /= static_cast<double>(count);
-  PiecePlane.emplace_back(unit, -glm::dot(unit, centroid));
-  PieceSource.push_back(source);
-  PieceCount.push_back(static_cast<std::uint32_t>(count));
-  Verts.insert(Verts.end(), ids, ids + count);
-  return true;
-}
-
-void Builder::normalise()
-{
-  const std::size_t pointCount = Mesh.points.size();
-  const std::size_t polygons = Mesh.polygonCount();
-  BuildStatistics& st = Out.statistics;
-  PiecePlane.reserve(polygons);
-  PieceSource.reserve(polygons);
-  Verts.reserve(Mesh.indices.size());
-  for (std::size_t i = 0; i < polygons; ++i)
-  {
-    const std::uint32_t* ids = Mesh.polygon(i);
-    const std::uint32_t count = Mesh.polygonSize(i);
-    const auto source = static_cast<std::uint32_t>(i);
-    bool valid = true;
-    PolyIds.clear();
-    for (std::uint32_t k = 0; k < count; ++k)
-    {
-      const std::uint32_t id = ids[k];
-      if (id >= pointCount)
-      {
-        valid = false;
-        break;
-      }
-      const glm::dvec3& p = Mesh.points[id];
-      if (!(std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z)))
-      {
-        valid = false;
-        break;
-      }
-      if (PolyIds.empty() || PolyIds.back() != id)
-      {
-        PolyIds.push_back(id);
-      }
-    }
-    if (!valid)
-    {
-      ++st.invalidPolygons;
-      continue;
-    }
-    while (PolyIds.size() > 1 && PolyIds.back() == PolyIds.front())
-    {
-      PolyIds.pop_back();
-    }
-    const std::size_t m = PolyIds.size();
-    if (m < 3)
-    {
-      ++st.degeneratePolygons;
-      continue;
-    }
-    if (m == 3)
-    {
-      if (!addIfValid(source, PolyIds.data(), 3))
-      {
-        ++st.degeneratePolygons;
-      }
-      continue;
-    }
-    const glm::dvec3 n = newellNormal(Local.data(), PolyIds.data(), m);
-    const double len = glm::length(n);
-    double maxEdge = 0.0;
-    glm::dvec3 centroid(0.0);
-    for (std::size_t k = 0; k < m; ++k)
-    {
-      maxEdge = std::max(maxEdge, glm::length(Local[PolyIds[(k + 1) % m]] - Local[PolyIds[k]]));
-      centroid += Local[PolyIds[k]];
-    }
-    if (!(len > Tol * maxEdge) || len == 0.0)
-    {
-      ++st.degeneratePolygons;
-      continue;
-    }
-    centroid /= static_cast<double>(m);
-    const glm::dvec3 unit = n / len;
-    const double d = -glm::dot(unit, centroid);
-    bool planar = true;
-    for (std::size_t k = 0; k < m && planar; ++k)
-    {
-      planar = std::abs(glm::dot(unit, Local[PolyIds[k]]) + d) <= Tol;
-    }
-    glm::dvec3 u;
-    glm::dvec3 v;
-    planeBasis(unit, u, v);
-    Poly2d.resize(m);
-    for (std::size_t k = 0; k < m; ++k)
-    {
-      const glm::dvec3 q = Local[PolyIds[k]] - centroid;
-      Poly2d[k] = glm::dvec2(glm::dot(q, u), glm::dot(q, v));
-    }
-    bool convex = planar;
-    if (convex)
-    {
-      // Left turns everywhere (up to the tolerance) and one full turn in total: the latter rejects
-      // star polygons, whose turns are all left too.
-      double turning = 0.0;
-      for (std::size_t k = 0; k < m && convex; ++k)
-      {
-        const glm::dvec2 e1 = Poly2d[k] - Poly2d[(k + m - 1) % m];
-        const glm::dvec2 e2 = Poly2d[(k + 1) % m] - Poly2d[k];
-        const double c = cross2(e1, e2);
-        convex = c >= -Tol * std::max(glm::length(e1), glm::length(e2));
-        turning += std::atan2(c, glm::dot(e1, e2));
-      }
-      convex = convex && std::abs(turning - kTwoPi) < 1e-6;
-    }
-    if (convex)
-    {
-      addIfValid(source, PolyIds.data(), m);
-      continue;
-    }
-    ++st.triangulatedPolygons;
-    Triangles.clear();
-    earClip(Poly2d, Ring, Triangles);
-    for (std::size_t t = 0; t + 2 < Triangles.size(); t += 3)
-    {
-      const std::uint32_t tri[3] = { PolyIds[Triangles[t]], PolyIds[Triangles[t + 1]],
-        PolyIds[Triangles[t + 2]] };
-      addIfValid(source, tri, 3);
-    }
-  }
-}
 
 std::uint32_t Builder::splitPoint(const glm::dvec4& plane, std::uint32_t a, std::uint32_t b)
 {
@@ -969,7 +804,18 @@ Tree Builder::run()
     Local[i] = Mesh.points[i] - Out.origin;
   }
 
-  normalise();
+  {
+    detail::PolygonPieces input;
+    detail::PieceCounts counts;
+    detail::splitIntoPieces(Mesh, Local, Tol, input, counts);
+    st.invalidPolygons += counts.invalid;
+    st.degeneratePolygons += counts.degenerate;
+    st.triangulatedPolygons += counts.triangulated;
+    PiecePlane = std::move(input.plane);
+    PieceSource = std::move(input.source);
+    PieceCount = std::move(input.count);
+    Verts = std::move(input.verts);
+  }
   const auto pieces = static_cast<std::uint32_t>(PieceSource.size());
   Arena.reserve(pieces + pieces / 4);
   {

@@ -1,5 +1,6 @@
 #include "scenevis/PainterSort.h"
 
+#include "PolygonPieces.h"
 #include "Triangulate.h"
 
 #include <glm/geometric.hpp>
@@ -19,7 +20,6 @@ namespace painter
 namespace
 {
 
-constexpr double kTwoPi = 6.28318530717958647692;
 constexpr double kHalfPi = 1.57079632679489661923;
 constexpr std::uint32_t kNone = 0xffffffffu;
 /// Cones wider than this half-angle are unbounded (cos(89.9 degrees)).
@@ -29,9 +29,6 @@ constexpr double kMaxProjectionAngle = kHalfPi - 0.02;
 /// A cycle search looks at most at this many fragments of the chain of moves.
 constexpr std::size_t kMaxCycleSearch = 32;
 
-using detail::cross2;
-
-using detail::earClip;
 using detail::planeBasis;
 
 /// A live or dead convex fragment of a piece, with its per-view data.
@@ -136,7 +133,6 @@ struct Sorter::Impl
   std::vector<glm::dvec2> ProjB;
 
   void normalise(const PolygonMesh& mesh);
-  bool addIfValid(std::uint32_t source, const std::uint32_t* ids, std::size_t count);
   void run(const View& view, Result& result);
 
   double distance(const glm::dvec4& plane, std::uint32_t id) const
@@ -187,34 +183,6 @@ struct Sorter::Impl
   std::uint32_t head();
 };
 
-bool Sorter::Impl::addIfValid(std::uint32_t source, const std::uint32_t* ids, std::size_t count)
-{
-  const glm::dvec3 n = newellNormal(InputLocal.data(), ids, count);
-  const double len = glm::length(n);
-  double maxEdge = 0.0;
-  for (std::size_t k = 0; k < count; ++k)
-  {
-    maxEdge = std::max(maxEdge, glm::length(InputLocal[ids[(k + 1) % count]] - InputLocal[ids[k]]));
-  }
-  if (!(len > Tol * maxEdge) || len == 0.0)
-  {
-    return false;
-  }
-  const glm::dvec3 unit = n / len;
-  glm::dvec3 centroid(0.0);
-  for (std::size_t k = 0; k < count; ++k)
-  {
-    centroid += InputLocal[ids[k]];
-  }
-  centroid /= static_cast<double>(count);
-  PiecePlane.emplace_back(unit, -glm::dot(unit, centroid));
-  PieceSource.push_back(source);
-  PieceFirst.push_back(static_cast<std::uint32_t>(PieceVerts.size()));
-  PieceCount.push_back(static_cast<std::uint32_t>(count));
-  PieceVerts.insert(PieceVerts.end(), ids, ids + count);
-  return true;
-}
-
 void Sorter::Impl::normalise(const PolygonMesh& mesh)
 {
   const Box bounds = mesh.bounds();
@@ -228,122 +196,23 @@ void Sorter::Impl::normalise(const PolygonMesh& mesh)
   {
     InputLocal[i] = InputPoints[i] - Origin;
   }
-  const std::size_t pointCount = mesh.points.size();
-  const std::size_t polygons = mesh.polygonCount();
-  Norm.inputPolygons = polygons;
-  std::vector<std::uint32_t> ids;
-  std::vector<glm::dvec2> poly2d;
-  std::vector<std::uint32_t> ring;
-  std::vector<std::uint32_t> triangles;
-  for (std::size_t i = 0; i < polygons; ++i)
+  detail::PolygonPieces pieces;
+  detail::PieceCounts counts;
+  detail::splitIntoPieces(mesh, InputLocal, Tol, pieces, counts);
+  Norm.inputPolygons = mesh.polygonCount();
+  Norm.invalidPolygons = counts.invalid;
+  Norm.degeneratePolygons = counts.degenerate;
+  Norm.triangulatedPolygons = counts.triangulated;
+  PiecePlane = std::move(pieces.plane);
+  PieceSource = std::move(pieces.source);
+  PieceCount = std::move(pieces.count);
+  PieceVerts = std::move(pieces.verts);
+  PieceFirst.resize(PieceCount.size());
+  std::uint32_t first = 0;
+  for (std::size_t p = 0; p < PieceCount.size(); ++p)
   {
-    const std::uint32_t* polygon = mesh.polygon(i);
-    const std::uint32_t count = mesh.polygonSize(i);
-    const auto source = static_cast<std::uint32_t>(i);
-    bool valid = true;
-    ids.clear();
-    for (std::uint32_t k = 0; k < count; ++k)
-    {
-      const std::uint32_t id = polygon[k];
-      if (id >= pointCount)
-      {
-        valid = false;
-        break;
-      }
-      const glm::dvec3& p = mesh.points[id];
-      if (!(std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z)))
-      {
-        valid = false;
-        break;
-      }
-      if (ids.empty() || ids.back() != id)
-      {
-        ids.push_back(id);
-      }
-    }
-    if (!valid)
-    {
-      ++Norm.invalidPolygons;
-      continue;
-    }
-    while (ids.size() > 1 && ids.back() == ids.front())
-    {
-      ids.pop_back();
-    }
-    const std::size_t m = ids.size();
-    if (m < 3)
-    {
-      ++Norm.degeneratePolygons;
-      continue;
-    }
-    if (m == 3)
-    {
-      if (!addIfValid(source, ids.data(), 3))
-      {
-        ++Norm.degeneratePolygons;
-      }
-      continue;
-    }
-    const glm::dvec3 n = newellNormal(InputLocal.data(), ids.data(), m);
-    const double len = glm::length(n);
-    double maxEdge = 0.0;
-    glm::dvec3 centroid(0.0);
-    for (std::size_t k = 0; k < m; ++k)
-    {
-      maxEdge = std::max(maxEdge, glm::length(InputLocal[ids[(k + 1) % m]] - InputLocal[ids[k]]));
-      centroid += InputLocal[ids[k]];
-    }
-    if (!(len > Tol * maxEdge) || len == 0.0)
-    {
-      ++Norm.degeneratePolygons;
-      continue;
-    }
-    centroid /= static_cast<double>(m);
-    const glm::dvec3 unit = n / len;
-    const double d = -glm::dot(unit, centroid);
-    bool planar = true;
-    for (std::size_t k = 0; k < m && planar; ++k)
-    {
-      planar = std::abs(glm::dot(unit, InputLocal[ids[k]]) + d) <= Tol;
-    }
-    glm::dvec3 u;
-    glm::dvec3 v;
-    planeBasis(unit, u, v);
-    poly2d.resize(m);
-    for (std::size_t k = 0; k < m; ++k)
-    {
-      const glm::dvec3 q = InputLocal[ids[k]] - centroid;
-      poly2d[k] = glm::dvec2(glm::dot(q, u), glm::dot(q, v));
-    }
-    bool convex = planar;
-    if (convex)
-    {
-      // Left turns everywhere (up to the tolerance) and one full turn in total (no star shapes).
-      double turning = 0.0;
-      for (std::size_t k = 0; k < m && convex; ++k)
-      {
-        const glm::dvec2 e1 = poly2d[k] - poly2d[(k + m - 1) % m];
-        const glm::dvec2 e2 = poly2d[(k + 1) % m] - poly2d[k];
-        const double c = cross2(e1, e2);
-        convex = c >= -Tol * std::max(glm::length(e1), glm::length(e2));
-        turning += std::atan2(c, glm::dot(e1, e2));
-      }
-      convex = convex && std::abs(turning - kTwoPi) < 1e-6;
-    }
-    if (convex)
-    {
-      addIfValid(source, ids.data(), m);
-      continue;
-    }
-    ++Norm.triangulatedPolygons;
-    triangles.clear();
-    earClip(poly2d, ring, triangles);
-    for (std::size_t t = 0; t + 2 < triangles.size(); t += 3)
-    {
-      const std::uint32_t tri[3] = { ids[triangles[t]], ids[triangles[t + 1]],
-        ids[triangles[t + 2]] };
-      addIfValid(source, tri, 3);
-    }
+    PieceFirst[p] = first;
+    first += PieceCount[p];
   }
   Norm.pieces = PieceSource.size();
 }
