@@ -7,6 +7,8 @@
 #include "scenevis/OrderOracle.h"
 #include "scenevis/Scenes.h"
 
+#include "PolygonSoups.h"
+
 #include <gtest/gtest.h>
 
 #include <glm/geometric.hpp>
@@ -32,58 +34,18 @@ using scenevis::oracle::OracleConfig;
 using scenevis::oracle::OracleReport;
 using scenevis::oracle::Polygon;
 
+using scenevis::testsupport::boundsOf;
+using scenevis::testsupport::cyclicSticks;
+using scenevis::testsupport::describe;
+using scenevis::testsupport::kPi;
+using scenevis::testsupport::meshOf;
+using scenevis::testsupport::randomPolygon;
+using scenevis::testsupport::randomSoup;
+using scenevis::testsupport::randomViews;
+using scenevis::testsupport::rectZ;
+
 namespace
 {
-
-const double kPi = 3.14159265358979323846;
-
-PolygonMesh meshOf(const std::vector<Polygon>& polygons)
-{
-  PolygonMesh mesh;
-  for (const Polygon& poly : polygons)
-  {
-    std::vector<std::uint32_t> ids;
-    for (const glm::dvec3& p : poly)
-    {
-      ids.push_back(mesh.addPoint(p));
-    }
-    mesh.addPolygon(ids.data(), ids.size());
-  }
-  return mesh;
-}
-
-Polygon rectZ(double z, double x0, double x1, double y0, double y1)
-{
-  return { { x0, y0, z }, { x1, y0, z }, { x1, y1, z }, { x0, y1, z } };
-}
-
-/// Three sticks in a cycle: stick k lies above stick k+1 where they cross (see TestOrderOracle).
-std::vector<Polygon> cyclicSticks()
-{
-  std::vector<glm::dvec3> corner;
-  for (int k = 0; k < 3; ++k)
-  {
-    const double angle = kPi / 2 + k * 2 * kPi / 3;
-    corner.emplace_back(std::cos(angle), std::sin(angle), 0.0);
-  }
-  std::vector<Polygon> sticks;
-  for (int k = 0; k < 3; ++k)
-  {
-    const glm::dvec3 a = corner[k];
-    const glm::dvec3 b = corner[(k + 1) % 3];
-    const double length = glm::length(b - a);
-    const glm::dvec3 d = (b - a) / length;
-    const glm::dvec3 m(-d.y, d.x, 0.0);
-    auto at = [&](double s, double side)
-    {
-      glm::dvec3 p = a + d * s + m * (side * 0.1);
-      p.z = 0.1 + 0.8 * (s + 0.2) / (length + 0.4);
-      return p;
-    };
-    sticks.push_back({ at(-0.2, -1), at(length + 0.2, -1), at(length + 0.2, 1), at(-0.2, 1) });
-  }
-  return sticks;
-}
 
 struct NamedConfig
 {
@@ -101,56 +63,6 @@ std::vector<NamedConfig> partitions()
   scoredNoFree.config.partition = BuildConfig::Partition::Scored;
   scoredNoFree.config.allowFreePlanes = false;
   return { first, scored, scoredNoFree };
-}
-
-std::string describe(const View& view)
-{
-  std::ostringstream out;
-  out.precision(17);
-  out << (view.isParallel() ? "parallel(" : "perspective(") << view.eye.x << ", " << view.eye.y
-      << ", " << view.eye.z << ")";
-  return out.str();
-}
-
-/// Perspective eyes around (and some inside) the bounds at random directions and distances, then
-/// parallel views along random directions.
-std::vector<View> randomViews(const Box& bounds, std::uint64_t seed, int perspective, int parallel)
-{
-  std::mt19937_64 rng(seed);
-  std::normal_distribution<double> gauss;
-  std::uniform_real_distribution<double> unit(0.0, 1.0);
-  const double diagonal = bounds.diagonal();
-  std::vector<View> views;
-  auto direction = [&]
-  {
-    glm::dvec3 d(gauss(rng), gauss(rng), gauss(rng));
-    return glm::normalize(d);
-  };
-  for (int i = 0; i < perspective; ++i)
-  {
-    // Distances from deep inside to well outside, uniform in log scale.
-    const double distance = diagonal * 0.02 * std::pow(150.0, unit(rng));
-    views.push_back(View::perspective(bounds.center() + direction() * distance));
-  }
-  for (int i = 0; i < parallel; ++i)
-  {
-    views.push_back(View::parallel(direction()));
-  }
-  return views;
-}
-
-/// Bounds of a list of polygons.
-Box boundsOf(const std::vector<Polygon>& polygons)
-{
-  Box box;
-  for (const Polygon& poly : polygons)
-  {
-    for (const glm::dvec3& p : poly)
-    {
-      box.extend(p);
-    }
-  }
-  return box;
 }
 
 /**
@@ -277,51 +189,6 @@ void expectCorrectOrders(const std::vector<Polygon>& polygons, const std::vector
       ASSERT_TRUE(orderIsCorrect(tree, fragments, views[i], oracleConfig, i % 3 == 0));
     }
   }
-}
-
-/// A random convex polygon (triangle or planar quad) of size about `size` centred at `c`.
-Polygon randomPolygon(std::mt19937_64& rng, const glm::dvec3& c, double size)
-{
-  std::normal_distribution<double> gauss;
-  std::uniform_real_distribution<double> unit(0.0, 1.0);
-  if (unit(rng) < 0.5)
-  {
-    Polygon tri;
-    for (int k = 0; k < 3; ++k)
-    {
-      tri.push_back(c + glm::dvec3(gauss(rng), gauss(rng), gauss(rng)) * (0.5 * size));
-    }
-    return tri;
-  }
-  // A convex quad: four points on an ellipse in a random plane, angles a quarter turn apart.
-  const glm::dvec3 normal = glm::normalize(glm::dvec3(gauss(rng), gauss(rng), gauss(rng)));
-  const glm::dvec3 helper = std::abs(normal.x) < 0.6 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0);
-  const glm::dvec3 u = glm::normalize(glm::cross(helper, normal));
-  const glm::dvec3 v = glm::cross(normal, u);
-  const double ru = size * (0.3 + 0.7 * unit(rng));
-  const double rv = size * (0.3 + 0.7 * unit(rng));
-  const double start = unit(rng) * 2 * kPi;
-  Polygon quad;
-  for (int k = 0; k < 4; ++k)
-  {
-    const double angle = start + k * kPi / 2 + (unit(rng) - 0.5) * 0.8;
-    quad.push_back(c + u * (ru * std::cos(angle)) + v * (rv * std::sin(angle)));
-  }
-  return quad;
-}
-
-/// `count` random triangles and quads inside the unit cube.
-std::vector<Polygon> randomSoup(std::uint64_t seed, int count, double size = 0.35)
-{
-  std::mt19937_64 rng(seed);
-  std::uniform_real_distribution<double> unit(0.0, 1.0);
-  std::vector<Polygon> soup;
-  for (int i = 0; i < count; ++i)
-  {
-    const glm::dvec3 c(unit(rng), unit(rng), unit(rng));
-    soup.push_back(randomPolygon(rng, c, size * (0.3 + unit(rng))));
-  }
-  return soup;
 }
 
 } // namespace

@@ -2,6 +2,8 @@
 // on right ones, and to impose no constraint where no ray sees both polygons.
 #include "scenevis/OrderOracle.h"
 
+#include "PolygonSoups.h"
+
 #include <gtest/gtest.h>
 
 #include <glm/geometric.hpp>
@@ -23,16 +25,12 @@ using scenevis::oracle::Polygon;
 using scenevis::oracle::Relation;
 using scenevis::oracle::Violation;
 
+using scenevis::testsupport::cyclicSticks;
+using scenevis::testsupport::kPi;
+using scenevis::testsupport::rectZ;
+
 namespace
 {
-
-const double kPi = 3.14159265358979323846;
-
-/// Axis-aligned rectangle at height z.
-Polygon rectZ(double z, double x0, double x1, double y0, double y1)
-{
-  return { { x0, y0, z }, { x1, y0, z }, { x1, y1, z }, { x0, y1, z } };
-}
 
 Polygon translated(Polygon poly, const glm::dvec3& offset)
 {
@@ -41,39 +39,6 @@ Polygon translated(Polygon poly, const glm::dvec3& offset)
     p += offset;
   }
   return poly;
-}
-
-/// Three planar sticks along the sides of a triangle, each rising along its length, so that
-/// stick k lies above stick k+1 where they cross: a cycle no order of the three can satisfy.
-std::vector<Polygon> cyclicSticks()
-{
-  std::vector<glm::dvec3> corner;
-  for (int k = 0; k < 3; ++k)
-  {
-    const double angle = kPi / 2 + k * 2 * kPi / 3;
-    corner.emplace_back(std::cos(angle), std::sin(angle), 0.0);
-  }
-  std::vector<Polygon> sticks;
-  const double extension = 0.2;
-  const double halfWidth = 0.1;
-  for (int k = 0; k < 3; ++k)
-  {
-    const glm::dvec3 a = corner[k];
-    const glm::dvec3 b = corner[(k + 1) % 3];
-    const double length = glm::length(b - a);
-    const glm::dvec3 d = (b - a) / length;
-    const glm::dvec3 m(-d.y, d.x, 0.0);
-    auto at = [&](double s, double side)
-    {
-      glm::dvec3 p = a + d * s + m * (side * halfWidth);
-      p.z = 0.1 + 0.8 * (s + extension) / (length + 2 * extension);
-      return p;
-    };
-    const double s0 = -extension;
-    const double s1 = length + extension;
-    sticks.push_back({ at(s0, -1), at(s1, -1), at(s1, 1), at(s0, 1) });
-  }
-  return sticks;
 }
 
 /// The six faces of the box [-1, 1]^3.

@@ -6,6 +6,8 @@
 #include "scenevis/PainterSort.h"
 #include "scenevis/Scenes.h"
 
+#include "PolygonSoups.h"
+
 #include <gtest/gtest.h>
 
 #include <glm/geometric.hpp>
@@ -32,64 +34,15 @@ using scenevis::oracle::Polygon;
 namespace painter = scenevis::painter;
 namespace scenes = scenevis::scenes;
 
+using scenevis::testsupport::describe;
+using scenevis::testsupport::kPi;
+using scenevis::testsupport::meshOf;
+using scenevis::testsupport::randomSoup;
+using scenevis::testsupport::randomViews;
+using scenevis::testsupport::rectZ;
+
 namespace
 {
-
-const double kPi = 3.14159265358979323846;
-
-PolygonMesh meshOf(const std::vector<Polygon>& polygons)
-{
-  PolygonMesh mesh;
-  for (const Polygon& poly : polygons)
-  {
-    std::vector<std::uint32_t> ids;
-    for (const glm::dvec3& p : poly)
-    {
-      ids.push_back(mesh.addPoint(p));
-    }
-    mesh.addPolygon(ids.data(), ids.size());
-  }
-  return mesh;
-}
-
-Polygon rectZ(double z, double x0, double x1, double y0, double y1)
-{
-  return { { x0, y0, z }, { x1, y0, z }, { x1, y1, z }, { x0, y1, z } };
-}
-
-std::string describe(const View& view)
-{
-  std::ostringstream out;
-  out.precision(17);
-  out << (view.isParallel() ? "parallel(" : "perspective(") << view.eye.x << ", " << view.eye.y
-      << ", " << view.eye.z << ")";
-  return out.str();
-}
-
-/// Perspective eyes around (and some inside) the bounds, then parallel views (as TestBspOrder).
-std::vector<View> randomViews(const Box& bounds, std::uint64_t seed, int perspective, int parallel)
-{
-  std::mt19937_64 rng(seed);
-  std::normal_distribution<double> gauss;
-  std::uniform_real_distribution<double> unit(0.0, 1.0);
-  const double diagonal = bounds.diagonal();
-  std::vector<View> views;
-  auto direction = [&]
-  {
-    glm::dvec3 d(gauss(rng), gauss(rng), gauss(rng));
-    return glm::normalize(d);
-  };
-  for (int i = 0; i < perspective; ++i)
-  {
-    const double distance = diagonal * 0.02 * std::pow(150.0, unit(rng));
-    views.push_back(View::perspective(bounds.center() + direction() * distance));
-  }
-  for (int i = 0; i < parallel; ++i)
-  {
-    views.push_back(View::parallel(direction()));
-  }
-  return views;
-}
 
 /// The fragments of a result as point loops, in the result's (back-to-front) order.
 std::vector<Polygon> fragmentPolygons(const painter::Result& result)
@@ -196,49 +149,6 @@ void expectCorrectOrders(const PolygonMesh& mesh, const std::vector<View>& views
   {
     ASSERT_TRUE(sortIsCorrect(sorter, view, oracleConfig));
   }
-}
-
-/// A random convex polygon (triangle or planar quad) of size about `size` centred at `c`.
-Polygon randomPolygon(std::mt19937_64& rng, const glm::dvec3& c, double size)
-{
-  std::normal_distribution<double> gauss;
-  std::uniform_real_distribution<double> unit(0.0, 1.0);
-  if (unit(rng) < 0.5)
-  {
-    Polygon tri;
-    for (int k = 0; k < 3; ++k)
-    {
-      tri.push_back(c + glm::dvec3(gauss(rng), gauss(rng), gauss(rng)) * (0.5 * size));
-    }
-    return tri;
-  }
-  const glm::dvec3 normal = glm::normalize(glm::dvec3(gauss(rng), gauss(rng), gauss(rng)));
-  const glm::dvec3 helper = std::abs(normal.x) < 0.6 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0);
-  const glm::dvec3 u = glm::normalize(glm::cross(helper, normal));
-  const glm::dvec3 v = glm::cross(normal, u);
-  const double ru = size * (0.3 + 0.7 * unit(rng));
-  const double rv = size * (0.3 + 0.7 * unit(rng));
-  const double start = unit(rng) * 2 * kPi;
-  Polygon quad;
-  for (int k = 0; k < 4; ++k)
-  {
-    const double angle = start + k * kPi / 2 + (unit(rng) - 0.5) * 0.8;
-    quad.push_back(c + u * (ru * std::cos(angle)) + v * (rv * std::sin(angle)));
-  }
-  return quad;
-}
-
-std::vector<Polygon> randomSoup(std::uint64_t seed, int count, double size = 0.35)
-{
-  std::mt19937_64 rng(seed);
-  std::uniform_real_distribution<double> unit(0.0, 1.0);
-  std::vector<Polygon> soup;
-  for (int i = 0; i < count; ++i)
-  {
-    const glm::dvec3 c(unit(rng), unit(rng), unit(rng));
-    soup.push_back(randomPolygon(rng, c, size * (0.3 + unit(rng))));
-  }
-  return soup;
 }
 
 const View kTopView = View::perspective({ 0.1, 0.05, 6 });
