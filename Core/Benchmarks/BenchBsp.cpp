@@ -14,6 +14,8 @@
 #include "scenevis/BspTraversal.h"
 #include "scenevis/Scenes.h"
 
+#include "../Testing/PolygonSoups.h"
+
 #include <benchmark/benchmark.h>
 
 #include <array>
@@ -31,42 +33,7 @@ namespace
 
 using namespace scenevis;
 
-/// Closed UV sphere of about `triangles` triangles (slices = 2 * stacks, single pole points).
-PolygonMesh uvSphere(std::size_t triangles)
-{
-  const int stacks = std::max(2, static_cast<int>(std::lround(std::sqrt(triangles / 4.0))));
-  const int slices = 2 * stacks;
-  const double pi = 3.14159265358979323846;
-  PolygonMesh mesh;
-  const std::uint32_t north = mesh.addPoint({ 0, 0, 1 });
-  for (int i = 1; i < stacks; ++i)
-  {
-    const double theta = pi * i / stacks;
-    for (int j = 0; j < slices; ++j)
-    {
-      const double phi = 2 * pi * j / slices;
-      mesh.addPoint({ std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi),
-        std::cos(theta) });
-    }
-  }
-  const std::uint32_t south = mesh.addPoint({ 0, 0, -1 });
-  auto ring = [&](int i, int j)
-  { return static_cast<std::uint32_t>(1 + (i - 1) * slices + (j % slices)); };
-  for (int j = 0; j < slices; ++j)
-  {
-    mesh.addPolygon({ north, ring(1, j), ring(1, j + 1) });
-    mesh.addPolygon({ south, ring(stacks - 1, j + 1), ring(stacks - 1, j) });
-  }
-  for (int i = 1; i + 1 < stacks; ++i)
-  {
-    for (int j = 0; j < slices; ++j)
-    {
-      mesh.addPolygon({ ring(i, j), ring(i + 1, j), ring(i + 1, j + 1) });
-      mesh.addPolygon({ ring(i, j), ring(i + 1, j + 1), ring(i, j + 1) });
-    }
-  }
-  return mesh;
-}
+using testsupport::uvSphere;
 
 /// Path of manifest key `key` in the data cache, or "" when the manifest lacks it.
 std::string dataFile(const std::string& key)

@@ -1,7 +1,8 @@
 #pragma once
-// Test support shared by the order tests (TestBspOrder, TestPainterSort, TestOrderOracle): small
-// hand-made polygon sets, random soups and random viewers. Header-only; every function is
-// deterministic for its seed, so a failing case can be replayed.
+// Test geometry shared by the core tests and benchmarks (TestBspOrder, TestPainterSort,
+// TestOrderOracle, TestBspBuilder, TestBspTraversal, BenchBsp): small hand-made polygon sets, the
+// UV sphere, random soups and random viewers. Header-only; every function is deterministic (for
+// its seed), so a failing case can be replayed.
 
 #include "scenevis/OrderOracle.h"
 #include "scenevis/PolygonMesh.h"
@@ -9,7 +10,9 @@
 
 #include <glm/geometric.hpp>
 
+#include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <cstdint>
 #include <random>
 #include <sstream>
@@ -37,6 +40,46 @@ inline PolygonMesh meshOf(const std::vector<Polygon>& polygons)
       ids.push_back(mesh.addPoint(p));
     }
     mesh.addPolygon(ids.data(), ids.size());
+  }
+  return mesh;
+}
+
+/**
+ * Closed unit UV sphere of about `triangles` triangles: stacks = round(sqrt(triangles / 4)),
+ * slices = 2 * stacks, single pole points. (scenes::sphere() picks its resolution differently;
+ * the BSP figures in BENCHMARKS.md were measured on this one.)
+ */
+inline PolygonMesh uvSphere(std::size_t triangles)
+{
+  const int stacks = std::max(2, static_cast<int>(std::lround(std::sqrt(triangles / 4.0))));
+  const int slices = 2 * stacks;
+  PolygonMesh mesh;
+  const std::uint32_t north = mesh.addPoint({ 0, 0, 1 });
+  for (int i = 1; i < stacks; ++i)
+  {
+    const double theta = kPi * i / stacks;
+    for (int j = 0; j < slices; ++j)
+    {
+      const double phi = 2 * kPi * j / slices;
+      mesh.addPoint({ std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi),
+        std::cos(theta) });
+    }
+  }
+  const std::uint32_t south = mesh.addPoint({ 0, 0, -1 });
+  auto ring = [&](int i, int j)
+  { return static_cast<std::uint32_t>(1 + (i - 1) * slices + (j % slices)); };
+  for (int j = 0; j < slices; ++j)
+  {
+    mesh.addPolygon({ north, ring(1, j), ring(1, j + 1) });
+    mesh.addPolygon({ south, ring(stacks - 1, j + 1), ring(stacks - 1, j) });
+  }
+  for (int i = 1; i + 1 < stacks; ++i)
+  {
+    for (int j = 0; j < slices; ++j)
+    {
+      mesh.addPolygon({ ring(i, j), ring(i + 1, j), ring(i + 1, j + 1) });
+      mesh.addPolygon({ ring(i, j), ring(i + 1, j + 1), ring(i, j + 1) });
+    }
   }
   return mesh;
 }

@@ -5,6 +5,8 @@
 #include "scenevis/OrderOracle.h"
 #include "scenevis/Scenes.h"
 
+#include "PolygonSoups.h"
+
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>
 
@@ -19,6 +21,7 @@ namespace
 
 using namespace scenevis;
 using bsp::Direction;
+using testsupport::uvSphere;
 
 constexpr double kPi = 3.14159265358979323846;
 
@@ -47,41 +50,6 @@ PolygonMesh randomSoup(int triangles, std::uint64_t seed)
     mesh.addPoint(c + random.vector() * 0.4);
     mesh.addPoint(c + random.vector() * 0.4);
     mesh.addPolygon({ i, i + 1, i + 2 });
-  }
-  return mesh;
-}
-
-PolygonMesh uvSphere(std::size_t triangles)
-{
-  const int stacks = std::max(2, static_cast<int>(std::lround(std::sqrt(triangles / 4.0))));
-  const int slices = 2 * stacks;
-  PolygonMesh mesh;
-  const std::uint32_t north = mesh.addPoint({ 0, 0, 1 });
-  for (int i = 1; i < stacks; ++i)
-  {
-    const double theta = kPi * i / stacks;
-    for (int j = 0; j < slices; ++j)
-    {
-      const double phi = 2 * kPi * j / slices;
-      mesh.addPoint({ std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi),
-        std::cos(theta) });
-    }
-  }
-  const std::uint32_t south = mesh.addPoint({ 0, 0, -1 });
-  auto ring = [&](int i, int j)
-  { return static_cast<std::uint32_t>(1 + (i - 1) * slices + (j % slices)); };
-  for (int j = 0; j < slices; ++j)
-  {
-    mesh.addPolygon({ north, ring(1, j), ring(1, j + 1) });
-    mesh.addPolygon({ south, ring(stacks - 1, j + 1), ring(stacks - 1, j) });
-  }
-  for (int i = 1; i + 1 < stacks; ++i)
-  {
-    for (int j = 0; j < slices; ++j)
-    {
-      mesh.addPolygon({ ring(i, j), ring(i + 1, j), ring(i + 1, j + 1) });
-      mesh.addPolygon({ ring(i, j), ring(i + 1, j + 1), ring(i, j + 1) });
-    }
   }
   return mesh;
 }
