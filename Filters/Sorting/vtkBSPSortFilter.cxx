@@ -151,12 +151,8 @@ int vtkBSPSortFilter::RequestData(vtkInformation* vtkNotUsed(request),
     internal.Tree.reset();
     internal.CellOfSource.clear();
     scenevis::PolygonMesh mesh;
-    vtkBSPSortUtilities::AppendPolygons(input, nullptr, mesh, internal.CellOfSource);
-
-    if (mesh.polygonCount() == 0)
+    if (!this->PolygonsForInput(input, output, mesh, internal.CellOfSource))
     {
-      vtkWarningMacro("The input has no polygons to sort: passing it through.");
-      output->ShallowCopy(input);
       return 1;
     }
 
@@ -171,19 +167,8 @@ int vtkBSPSortFilter::RequestData(vtkInformation* vtkNotUsed(request),
       return 1;
     }
     const bsp::BuildStatistics& stats = tree->statistics;
-    internal.Removed = static_cast<vtkIdType>(stats.invalidPolygons + stats.degeneratePolygons);
-    if (stats.invalidPolygons > 0)
-    {
-      vtkWarningMacro("Removed " << stats.invalidPolygons
-                                 << " polygon(s) with non-finite (NaN/Inf) points or invalid "
-                                    "point ids; they cannot be drawn.");
-    }
-    if (stats.degeneratePolygons > 0)
-    {
-      vtkWarningMacro("Removed " << stats.degeneratePolygons
-                                 << " degenerate polygon(s) (fewer than 3 distinct points or "
-                                    "zero area).");
-    }
+    internal.Removed =
+      this->ReportRemovedPolygons(stats.invalidPolygons, stats.degeneratePolygons);
 
     // View-independent part of the output: points and interpolated point data.
     internal.Cache = vtkSmartPointer<vtkPolyData>::New();

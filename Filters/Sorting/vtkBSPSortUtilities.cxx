@@ -186,8 +186,8 @@ bool vtkBSPSortUtilities::ViewFromCamera(
       }
     }
   }
-  const double length =
-    std::sqrt(direction[0] * direction[0] + direction[1] * direction[1] + direction[2] * direction[2]);
+  const double length = std::sqrt(
+    direction[0] * direction[0] + direction[1] * direction[1] + direction[2] * direction[2]);
   const bool parallel = camera->GetParallelProjection() != 0;
   if (!IsFinite(eye) || !IsFinite(direction) || (parallel && !(length > 0.0)))
   {

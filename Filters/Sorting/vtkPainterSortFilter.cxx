@@ -145,28 +145,14 @@ int vtkPainterSortFilter::RequestData(vtkInformation* vtkNotUsed(request),
     internal.Sorter.reset();
     internal.CellOfSource.clear();
     scenevis::PolygonMesh mesh;
-    vtkBSPSortUtilities::AppendPolygons(input, nullptr, mesh, internal.CellOfSource);
-    if (mesh.polygonCount() == 0)
+    if (!this->PolygonsForInput(input, output, mesh, internal.CellOfSource))
     {
-      vtkWarningMacro("The input has no polygons to sort: passing it through.");
-      output->ShallowCopy(input);
       return 1;
     }
     internal.Sorter = std::make_unique<painter::Sorter>(mesh, config);
     const painter::Statistics& stats = internal.Sorter->normalisation();
-    internal.Removed = static_cast<vtkIdType>(stats.invalidPolygons + stats.degeneratePolygons);
-    if (stats.invalidPolygons > 0)
-    {
-      vtkWarningMacro("Removed " << stats.invalidPolygons
-                                 << " polygon(s) with non-finite (NaN/Inf) points or invalid "
-                                    "point ids; they cannot be drawn.");
-    }
-    if (stats.degeneratePolygons > 0)
-    {
-      vtkWarningMacro("Removed " << stats.degeneratePolygons
-                                 << " degenerate polygon(s) (fewer than 3 distinct points or "
-                                    "zero area).");
-    }
+    internal.Removed =
+      this->ReportRemovedPolygons(stats.invalidPolygons, stats.degeneratePolygons);
     internal.Config = config;
     internal.Input = input;
     internal.InputMTime = input->GetMTime();

@@ -74,6 +74,39 @@ bool vtkVisibilityOrderFilter::ViewForInput(
 }
 
 //------------------------------------------------------------------------------
+bool vtkVisibilityOrderFilter::PolygonsForInput(vtkPolyData* input, vtkPolyData* output,
+  scenevis::PolygonMesh& mesh, std::vector<vtkIdType>& cellOf)
+{
+  vtkBSPSortUtilities::AppendPolygons(input, nullptr, mesh, cellOf);
+  if (mesh.polygonCount() == 0)
+  {
+    vtkWarningMacro("The input has no polygons to sort: passing it through.");
+    output->ShallowCopy(input);
+    return false;
+  }
+  return true;
+}
+
+//------------------------------------------------------------------------------
+vtkIdType vtkVisibilityOrderFilter::ReportRemovedPolygons(
+  std::size_t invalid, std::size_t degenerate)
+{
+  if (invalid > 0)
+  {
+    vtkWarningMacro("Removed " << invalid
+                               << " polygon(s) with non-finite (NaN/Inf) points or invalid "
+                                  "point ids; they cannot be drawn.");
+  }
+  if (degenerate > 0)
+  {
+    vtkWarningMacro("Removed " << degenerate
+                               << " degenerate polygon(s) (fewer than 3 distinct points or "
+                                  "zero area).");
+  }
+  return static_cast<vtkIdType>(invalid + degenerate);
+}
+
+//------------------------------------------------------------------------------
 void vtkVisibilityOrderFilter::EmitCellData(vtkCellData* input, vtkIdType passThrough,
   vtkCellData* source, const std::uint32_t* sourceIndex, const std::uint32_t* cellOfRank,
   std::size_t count, vtkCellData* output)

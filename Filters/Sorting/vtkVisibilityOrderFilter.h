@@ -17,10 +17,12 @@
 #include "vtkPolyDataAlgorithm.h"
 #include "vtkWeakPointer.h" // For vtkWeakPointer
 
-#include "scenevis/View.h" // For scenevis::View
+#include "scenevis/PolygonMesh.h" // For scenevis::PolygonMesh
+#include "scenevis/View.h"        // For scenevis::View
 
 #include <cstddef> // For std::size_t
 #include <cstdint> // For std::uint32_t
+#include <vector>  // For std::vector
 
 class vtkCamera;
 class vtkCellData;
@@ -91,6 +93,20 @@ protected:
    * @p output unsorted and returns false.
    */
   bool ViewForInput(vtkPolyData* input, vtkPolyData* output, scenevis::View& view);
+
+  /**
+   * The input's polygons and strips (as triangles) appended to @p mesh, with the input cell id of
+   * each in @p cellOf. When the input has none, warns, passes @p input through to @p output and
+   * returns false.
+   */
+  bool PolygonsForInput(vtkPolyData* input, vtkPolyData* output, scenevis::PolygonMesh& mesh,
+    std::vector<vtkIdType>& cellOf);
+
+  /**
+   * Warns about the polygons the sorter removed (@p invalid: non-finite points or bad point ids;
+   * @p degenerate: fewer than 3 distinct points or zero area); returns their sum.
+   */
+  vtkIdType ReportRemovedPolygons(std::size_t invalid, std::size_t degenerate);
 
   /**
    * Fills @p output's cell data for @p passThrough verts/lines (copied from @p input) followed by
