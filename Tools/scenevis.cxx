@@ -5,9 +5,14 @@
 #include "vtkBSPSortFilter.h"
 #include "vtkBSPSortedPolyDataMapper.h"
 #include "vtkBSPTranslucentPass.h"
+#include "vtkChunkedPolyDataMapper.h"
 #include "vtkDemoSceneSource.h"
+#include "vtkOctreeCuller.h"
 #include "vtkOrderedTranslucentPass.h"
 #include "vtkPainterSortFilter.h"
+#include "vtkPortalCuller.h"
+
+#include "scenevis/Scenes.h"
 
 #include "scenevis/testing/IdBuffer.h"
 #include "scenevis/testing/ImageCompare.h"
@@ -26,11 +31,17 @@
 #include <vtkCommand.h>
 #include <vtkContextScene.h>
 #include <vtkContextView.h>
+#include <vtkCuller.h>
+#include <vtkCullerCollection.h>
 #include <vtkDataArray.h>
 #include <vtkDepthSortPolyData.h>
 #include <vtkDoubleArray.h>
+#include <vtkFrustumCoverageCuller.h>
 #include <vtkImageData.h>
+#include <vtkIntArray.h>
+#include <vtkLogger.h>
 #include <vtkNew.h>
+#include <vtkOutputWindow.h>
 #include <vtkPen.h>
 #include <vtkPlot.h>
 #include <vtkPlotPoints.h>
@@ -64,6 +75,7 @@
 #include <iostream>
 #include <map>
 #include <numeric>
+#include <regex>
 #include <set>
 #include <sstream>
 #include <stdexcept>
@@ -82,12 +94,14 @@ namespace
 constexpr int kExitUsage = 2;
 constexpr int kExitFailure = 1;
 
-const char* const kHelp = R"(scenevis - exact translucency ordering for VTK scenes, headless
+const char* const kHelp = R"(scenevis - exact translucency order and culling of VTK scenes, headless
 
 Usage:
   scenevis render [options]   render offscreen to PNG, print (and optionally write) a report
   scenevis sort [options]     write the polydata sorted for a camera (VTK XML .vtp) with
                               OriginalCellId and SortRank cell arrays
+  scenevis cull [options]     print as JSON what a culling mode keeps for a camera: visible
+                              props, parts, rooms, chunks and triangles
   scenevis bench [options]    accuracy versus time of every translucency method: a CSV table
                               and a plot (PNG) of frame time against image error
   scenevis --help | --version
@@ -96,13 +110,34 @@ Scene (all commands):
   --scene NAME|KEY|FILE embedded demo: spheres (default: 64 overlapping translucent spheres),
                         cyclic-quads, triangles, cad, building; or a key of the data cache
                         (scripts/fetch-data.sh), e.g. bunny-stl; or a model file
-                        (.vtp .vtk .ply .stl .obj .glb .gltf). bench: repeatable
+                        (.vtp .vtk .ply .stl .obj .glb .gltf .wrl; glTF and VRML parts
+                        become PartId parts with their own colours). bench: repeatable
+  --portals FILE.vtp    portals of a model file: one polygon per portal with integer cell
+                        arrays RoomA and RoomB; the model needs a RoomId cell array (-1 =
+                        outside). The building demo brings its own portals
   --triangles N         approximate triangle count of the spheres/cad demos (default 20000)
   --parts N             parts of the cad demo (default 1000)
   --opacity A           opacity given to a model file's surface (default 0.4)
   --camera EX,EY,EZ[,FX,FY,FZ]   eye (and focal point; default: the scene's centre);
                         default camera: a three-quarter view that fits the scene
   --parallel            parallel projection
+  --up X,Y,Z            camera view-up (default: +z for the cad and building demos, else +y)
+
+render and cull:
+  --cull MODE           auto (default), none, frustum (VTK's vtkFrustumCoverageCuller),
+                        octree (vtkOctreeCuller: BVH frustum culling), normal-cones (octree +
+                        normal-cone back-face culling; actors drawn with back-face culling),
+                        small:N (octree + small-feature culling below N pixels: APPROXIMATE),
+                        chunked (one mesh through vtkChunkedPolyDataMapper: chunks culled
+                        inside it), portals (vtkPortalCuller, exact frustum narrowing), pvs
+                        (vtkPortalCuller with precomputed potentially visible sets).
+                        Prop culling modes draw one actor per part (PartId, and RoomId where
+                        present); with those, --sort takes none, oit, multi-actor or peel:N.
+                        auto: rooms and portals -> portals; 100+ parts, at most 25 %
+                        translucent, under 90 % of the triangles in the first view -> octree;
+                        an opaque mesh of 500k+ triangles -> chunked; otherwise none. The
+                        report says why, in numbers. A frame whose camera did not move
+                        re-uses the last visible set and order
 
 render:
   --sort METHOD         auto (default), none (unsorted alpha), oit (VTK's default weighted
@@ -118,6 +153,15 @@ render:
   --out FILE.png        output image (default scenevis.png)
   --report FILE.json    also write the report as JSON
   --backend osmesa|x11  rendering back-end (default osmesa, or $SCENEVIS_BACKEND)
+
+cull:
+  --size WxH            viewport whose aspect the camera uses (default 800x600)
+  --report FILE.json    also write the JSON to a file
+  --export-scene PREFIX write the scene as PREFIX.vtp (with its PartId/RoomId cell arrays) and
+                        its portals as PREFIX-portals.vtp: the portal scene format
+  --exact               also render the exact visible set (ID buffer, depth-tested, every
+                        surface opaque) and report the cells and props the mode culled
+                        although visible (false negatives) and drew although hidden
 
 sort:
   --out FILE.vtp        output polydata (required)
@@ -139,6 +183,7 @@ bench:
   --size WxH            image size (default 640x480)
   --out-dir DIR         where accuracy-vs-time.csv and accuracy-vs-time.png go (default .)
 
+A progress bar (BSP build, PVS precompute, frames) is drawn on stderr when it is a terminal.
 Exit codes: 0 success, 1 failure (unreadable file, rendering failed), 2 bad usage.
 )";
 
@@ -165,7 +210,13 @@ struct Options
   double eye[3] = { 0, 0, 0 };
   double focal[3] = { 0, 0, 0 };
   bool parallel = false;
+  bool hasUp = false;
+  double up[3] = { 0, 1, 0 };
   std::string sort = "auto";
+  std::string cull = "auto";
+  std::string portals;      ///< --portals FILE.vtp
+  std::string exportScene;  ///< cull --export-scene PREFIX
+  bool exact = false;       ///< cull --exact: compare with the ID-buffer visible set
   int width = 800;
   int height = 600;
   int frames = 1;
@@ -222,10 +273,11 @@ Options ParseOptions(int argc, char* argv[])
   Options options;
   if (argc < 2)
   {
-    throw UsageError("missing command (render, sort or bench); see scenevis --help");
+    throw UsageError("missing command (render, sort, cull or bench); see scenevis --help");
   }
   options.command = argv[1];
-  if (options.command != "render" && options.command != "sort" && options.command != "bench")
+  if (options.command != "render" && options.command != "sort" && options.command != "bench" &&
+    options.command != "cull")
   {
     throw UsageError("unknown command '" + options.command + "'; see scenevis --help");
   }
@@ -272,6 +324,22 @@ Options ParseOptions(int argc, char* argv[])
     }
     else if (flag == "--parallel")
       options.parallel = true;
+    else if (flag == "--up")
+    {
+      const std::vector<double> v = ParseList(flag, value());
+      if (v.size() != 3 || (v[0] == 0.0 && v[1] == 0.0 && v[2] == 0.0))
+        throw UsageError("--up expects a non-zero vector X,Y,Z");
+      std::copy_n(v.begin(), 3, options.up);
+      options.hasUp = true;
+    }
+    else if (flag == "--cull")
+      options.cull = value();
+    else if (flag == "--portals")
+      options.portals = value();
+    else if (flag == "--export-scene")
+      options.exportScene = value();
+    else if (flag == "--exact")
+      options.exact = true;
     else if (flag == "--sort")
       options.sort = value();
     else if (flag == "--size")
@@ -318,6 +386,25 @@ Options ParseOptions(int argc, char* argv[])
   {
     ParseCount("--sort peel:N", s.substr(5), 1, 10000);
   }
+  const std::string& c = options.cull;
+  if (c != "auto" && c != "none" && c != "frustum" && c != "octree" && c != "normal-cones" &&
+    c != "chunked" && c != "portals" && c != "pvs" && c.rfind("small:", 0) != 0)
+  {
+    throw UsageError("--cull expects auto, none, frustum, octree, normal-cones, small:N, "
+                     "chunked, portals or pvs, got '" + c + "'");
+  }
+  if (c.rfind("small:", 0) == 0)
+  {
+    const double pixels = ParseNumber("--cull small:N", c.substr(6));
+    if (pixels <= 0.0 || pixels > 10000.0)
+      throw UsageError("--cull small:N expects a size in pixels in (0, 10000], got '" +
+        c.substr(6) + "'");
+  }
+  if ((!options.exportScene.empty() || options.exact) && options.command != "cull")
+  {
+    throw UsageError(std::string(options.exact ? "--exact" : "--export-scene") +
+      " belongs to the cull command");
+  }
   if (options.command == "sort" && options.out.empty())
   {
     throw UsageError("sort needs --out FILE.vtp");
@@ -349,15 +436,21 @@ double Milliseconds(std::chrono::steady_clock::time_point start)
     .count();
 }
 
-/// Prints a progress bar on stderr while a filter runs, only when stderr is a terminal.
+/// Prints a progress bar on stderr, as an observer of ProgressEvent (BSP build, PVS precompute)
+/// or called directly (frames). Callers attach it only when stderr is a terminal, so that logs
+/// and pipes stay clean.
 class ProgressBar : public vtkCommand
 {
 public:
   static ProgressBar* New() { return new ProgressBar; }
+  static bool OnTerminal() { return isatty(STDERR_FILENO) != 0; }
   void Execute(vtkObject*, unsigned long, void* data) override
   {
-    const double fraction = *static_cast<double*>(data);
-    const int percent = static_cast<int>(fraction * 100.0);
+    this->Show(*static_cast<double*>(data));
+  }
+  void Show(double fraction)
+  {
+    const int percent = static_cast<int>(std::clamp(fraction, 0.0, 1.0) * 100.0);
     if (percent != LastPercent)
     {
       LastPercent = percent;
@@ -376,9 +469,98 @@ public:
 struct LoadedScene
 {
   vtkSmartPointer<vtkPolyData> polydata;
+  /// Portals (RoomA/RoomB cell arrays) of a building: the demo's own or --portals; else null.
+  vtkSmartPointer<vtkPolyData> portals;
   std::string description;
+  bool zUp = false; ///< the cad and building demos are z-up
   double loadMs = 0.0;
 };
+
+/// While alive, VTK's output window prints nothing: readers of bad files print multi-line
+/// errors (their XML parsers' too, which LoadModel's error observers cannot see), while the
+/// tool's contract is one line; LoadModel's own message says what went wrong.
+class QuietVtkOutput
+{
+public:
+  QuietVtkOutput()
+    : Previous(vtkOutputWindow::GetInstance())
+    , PreviousVerbosity(vtkLogger::GetCurrentVerbosityCutoff())
+  {
+    vtkOutputWindow::SetInstance(this->Silent);
+    // VTK 9 also logs every error through vtkLogger (to stderr) before the output window.
+    vtkLogger::SetStderrVerbosity(vtkLogger::VERBOSITY_OFF);
+  }
+  ~QuietVtkOutput()
+  {
+    vtkOutputWindow::SetInstance(this->Previous);
+    vtkLogger::SetStderrVerbosity(this->PreviousVerbosity);
+  }
+  QuietVtkOutput(const QuietVtkOutput&) = delete;
+  QuietVtkOutput& operator=(const QuietVtkOutput&) = delete;
+
+private:
+  class SilentWindow : public vtkOutputWindow
+  {
+  public:
+    static SilentWindow* New() { return new SilentWindow; }
+    void DisplayText(const char*) override {}
+  };
+  vtkSmartPointer<vtkOutputWindow> Previous;
+  vtkLogger::Verbosity PreviousVerbosity;
+  vtkNew<SilentWindow> Silent;
+};
+
+/// The portal scene format (vtkPortalCuller.h): one polygon per portal, RoomA/RoomB cell data.
+vtkSmartPointer<vtkPolyData> PortalPolyData(const scenevis::scenes::BuildingScene& building)
+{
+  vtkNew<vtkPoints> points;
+  vtkNew<vtkCellArray> polys;
+  vtkNew<vtkIntArray> roomA;
+  vtkNew<vtkIntArray> roomB;
+  roomA->SetName("RoomA");
+  roomB->SetName("RoomB");
+  for (const auto& portal : building.portals)
+  {
+    polys->InsertNextCell(static_cast<vtkIdType>(portal.polygon.size()));
+    for (const auto& q : portal.polygon)
+    {
+      polys->InsertCellPoint(points->InsertNextPoint(q.x, q.y, q.z));
+    }
+    roomA->InsertNextValue(portal.roomA);
+    roomB->InsertNextValue(portal.roomB);
+  }
+  auto pd = vtkSmartPointer<vtkPolyData>::New();
+  pd->SetPoints(points);
+  pd->SetPolys(polys);
+  pd->GetCellData()->AddArray(roomA);
+  pd->GetCellData()->AddArray(roomB);
+  return pd;
+}
+
+/// Reads --portals; a missing file or one without RoomA/RoomB arrays is an error (exit 1).
+vtkSmartPointer<vtkPolyData> LoadPortals(const std::string& path)
+{
+  std::string error;
+  vtkSmartPointer<vtkPolyData> portals;
+  {
+    QuietVtkOutput quiet;
+    portals = scenevis::testing::LoadModel(path, &error);
+  }
+  if (!portals)
+  {
+    throw std::runtime_error("--portals: " + error);
+  }
+  for (const char* name : { "RoomA", "RoomB" })
+  {
+    vtkDataArray* array = portals->GetCellData()->GetArray(name);
+    if (!array || array->GetNumberOfComponents() != 1)
+    {
+      throw std::runtime_error("--portals: '" + path + "' has no one-component cell array '" +
+        name + "' (see vtkPortalCuller.h for the format)");
+    }
+  }
+  return portals;
+}
 
 LoadedScene LoadScene(const Options& options)
 {
@@ -392,6 +574,18 @@ LoadedScene LoadScene(const Options& options)
     demo->Update();
     loaded.polydata = demo->GetOutput();
     loaded.description = "embedded demo '" + options.scene + "'";
+    loaded.zUp = demo->GetScene() == vtkDemoSceneSource::SCENE_CAD_ASSEMBLY ||
+      demo->GetScene() == vtkDemoSceneSource::SCENE_BUILDING;
+    if (demo->GetScene() == vtkDemoSceneSource::SCENE_BUILDING)
+    {
+      // The same generator call as the source's, for the portals it does not output.
+      loaded.portals = PortalPolyData(scenevis::scenes::building(
+        demo->GetFloors(), demo->GetRoomsX(), demo->GetRoomsY(), demo->GetSeed()));
+    }
+    if (!options.portals.empty())
+    {
+      loaded.portals = LoadPortals(options.portals);
+    }
     loaded.loadMs = Milliseconds(start);
     return loaded;
   }
@@ -405,54 +599,56 @@ LoadedScene LoadScene(const Options& options)
       throw UsageError("--scene '" + name +
         "' is neither a demo scene (spheres, cyclic-quads, triangles, cad, building), nor a "
         "fetched data key (scripts/fetch-data.sh), nor a model file (.vtp .vtk .ply .stl .obj "
-        ".glb .gltf)");
+        ".glb .gltf .wrl)");
     }
     description = "data '" + name + "' (" + cached + ")";
     name = cached;
   }
   std::string error;
-  loaded.polydata = scenevis::testing::LoadModel(name, &error);
+  {
+    QuietVtkOutput quiet;
+    loaded.polydata = scenevis::testing::LoadModel(name, &error);
+  }
   if (!loaded.polydata)
   {
     throw std::runtime_error(error);
   }
-  // A uniform translucent colour, as RGBA cell scalars like the demo scenes.
+  // A translucent colour as RGBA cell scalars like the demo scenes: the parts' own colours of
+  // imported scenes (glTF, VRML: a "Colors" array) with --opacity, else one uniform colour.
   const vtkIdType cells = loaded.polydata->GetNumberOfCells();
+  auto* own =
+    vtkUnsignedCharArray::SafeDownCast(loaded.polydata->GetCellData()->GetArray("Colors"));
+  if (own && (own->GetNumberOfComponents() < 3 || own->GetNumberOfTuples() != cells))
+  {
+    own = nullptr;
+  }
   vtkNew<vtkUnsignedCharArray> colors;
   colors->SetName("Colors");
   colors->SetNumberOfComponents(4);
   colors->SetNumberOfTuples(cells);
-  const unsigned char rgba[4] = { 200, 170, 120,
-    static_cast<unsigned char>(std::lround(options.opacity * 255.0)) };
+  const auto alpha = static_cast<unsigned char>(std::lround(options.opacity * 255.0));
+  unsigned char rgba[4] = { 200, 170, 120, alpha };
   for (vtkIdType c = 0; c < cells; ++c)
   {
+    if (own)
+    {
+      for (int k = 0; k < 3; ++k)
+        rgba[k] = own->GetTypedComponent(c, k);
+    }
     colors->SetTypedTuple(c, rgba);
   }
+  loaded.polydata->GetCellData()->RemoveArray("Colors");
   loaded.polydata->GetCellData()->SetScalars(colors);
   loaded.description = description;
+  if (!options.portals.empty())
+  {
+    loaded.portals = LoadPortals(options.portals);
+  }
   loaded.loadMs = Milliseconds(start);
   return loaded;
 }
 
-/// Whether any cell's RGBA scalar has alpha < 255.
-bool HasTranslucency(vtkPolyData* pd)
-{
-  auto* colors = vtkUnsignedCharArray::SafeDownCast(pd->GetCellData()->GetScalars());
-  if (!colors || colors->GetNumberOfComponents() != 4)
-  {
-    return false;
-  }
-  for (vtkIdType c = 0; c < colors->GetNumberOfTuples(); ++c)
-  {
-    if (colors->GetTypedComponent(c, 3) < 255)
-    {
-      return true;
-    }
-  }
-  return false;
-}
-
-void SetUpCamera(const Options& options, vtkRenderer* renderer, vtkPolyData* pd)
+void SetUpCamera(const Options& options, vtkRenderer* renderer, vtkPolyData* pd, bool zUp = false)
 {
   vtkCamera* camera = renderer->GetActiveCamera();
   camera->SetParallelProjection(options.parallel);
@@ -460,16 +656,25 @@ void SetUpCamera(const Options& options, vtkRenderer* renderer, vtkPolyData* pd)
   pd->GetBounds(bounds);
   const double center[3] = { (bounds[0] + bounds[1]) / 2, (bounds[2] + bounds[3]) / 2,
     (bounds[4] + bounds[5]) / 2 };
+  const double defaultUp[3] = { 0.0, zUp ? 0.0 : 1.0, zUp ? 1.0 : 0.0 };
+  const double* up = options.hasUp ? options.up : defaultUp;
   if (options.hasCamera)
   {
     camera->SetPosition(options.eye);
     camera->SetFocalPoint(options.hasFocal ? options.focal : center);
+    camera->SetViewUp(up[0], up[1], up[2]);
+    camera->OrthogonalizeViewUp();
     renderer->ResetCameraClippingRange();
     return;
   }
   camera->SetFocalPoint(center);
-  camera->SetPosition(center[0], center[1], center[2] + 1.0);
-  camera->SetViewUp(0, 1, 0);
+  // Start looking along -up x (the horizontal axis) so that azimuth and elevation give a
+  // three-quarter view from above whatever the up axis.
+  if (std::abs(up[2]) > 0.9 * std::sqrt(up[0] * up[0] + up[1] * up[1] + up[2] * up[2]))
+    camera->SetPosition(center[0], center[1] - 1.0, center[2]);
+  else
+    camera->SetPosition(center[0], center[1], center[2] + 1.0);
+  camera->SetViewUp(up[0], up[1], up[2]);
   camera->Azimuth(30.0);
   camera->Elevation(25.0);
   camera->OrthogonalizeViewUp();
@@ -505,14 +710,21 @@ std::string FrameFileName(const std::string& out, int frame, int frames)
   return name.str();
 }
 
-/// The scene's polygons split into one polydata per value of its PartId cell array (points
+/// The scene's polygons split into one polydata per distinct combination of values of the cell
+/// arrays @p keys that it has (e.g. PartId, or RoomId and PartId), in ascending key order (points
 /// compacted, point and cell data copied). Only polygons are kept (the demo scenes and models have
-/// nothing else). One entry (the input itself) when there is no PartId array or a single part.
-std::vector<vtkSmartPointer<vtkPolyData>> SplitByPart(vtkPolyData* pd)
+/// nothing else). One entry (the input itself) when it has none of the arrays or a single group.
+std::vector<vtkSmartPointer<vtkPolyData>> SplitByKeys(
+  vtkPolyData* pd, const std::vector<std::string>& keys)
 {
-  vtkDataArray* partIds = pd->GetCellData()->GetArray("PartId");
+  std::vector<vtkDataArray*> keyArrays;
+  for (const std::string& key : keys)
+  {
+    if (vtkDataArray* array = pd->GetCellData()->GetArray(key.c_str()))
+      keyArrays.push_back(array);
+  }
   const vtkIdType cells = pd->GetNumberOfCells();
-  if (!partIds || cells == 0 || cells != pd->GetNumberOfPolys())
+  if (keyArrays.empty() || cells == 0 || cells != pd->GetNumberOfPolys())
   {
     return { pd };
   }
@@ -523,7 +735,8 @@ std::vector<vtkSmartPointer<vtkPolyData>> SplitByPart(vtkPolyData* pd)
     vtkSmartPointer<vtkCellArray> polys;
     std::unordered_map<vtkIdType, vtkIdType> pointMap; // input point id -> part point id
   };
-  std::map<long long, Part> parts;
+  std::map<std::vector<long long>, Part> parts;
+  std::vector<long long> key(keyArrays.size());
   std::vector<vtkIdType> ids;
   vtkIdType npts = 0;
   const vtkIdType* pts = nullptr;
@@ -531,7 +744,9 @@ std::vector<vtkSmartPointer<vtkPolyData>> SplitByPart(vtkPolyData* pd)
   vtkIdType c = 0;
   for (polys->InitTraversal(); polys->GetNextCell(npts, pts); ++c)
   {
-    Part& part = parts[static_cast<long long>(partIds->GetTuple1(c))];
+    for (std::size_t k = 0; k < keyArrays.size(); ++k)
+      key[k] = static_cast<long long>(keyArrays[k]->GetTuple1(c));
+    Part& part = parts[key];
     if (!part.polydata)
     {
       part.polydata = vtkSmartPointer<vtkPolyData>::New();
@@ -572,19 +787,39 @@ std::vector<vtkSmartPointer<vtkPolyData>> SplitByPart(vtkPolyData* pd)
   return result;
 }
 
-/// One translucency method set up on a renderer: what `render` and `bench` share. The caller
-/// owns the renderer (background, camera); the pipeline adds its actors and pass.
+std::vector<vtkSmartPointer<vtkPolyData>> SplitByPart(vtkPolyData* pd)
+{
+  return SplitByKeys(pd, { "PartId" });
+}
+
+/// One translucency method set up on a renderer: what `render`, `cull` and `bench` share. The
+/// caller owns the renderer (background, camera, cullers); the pipeline adds its actors and pass.
+/// With @p groups of more than one polydata, one actor per group is drawn (for prop culling; the
+/// method must then be none, oit, multi-actor or peel:N); @p chunked draws the one mesh through
+/// vtkChunkedPolyDataMapper (method none, oit or peel:N).
 class MethodPipeline
 {
 public:
   MethodPipeline(const std::string& method, vtkPolyData* pd, vtkRenderer* renderer,
-    bool showProgress)
+    bool showProgress, const std::vector<vtkSmartPointer<vtkPolyData>>* groups = nullptr,
+    bool chunked = false)
     : Method(method)
     , Input(pd)
     , Renderer(renderer)
   {
+    if (chunked)
+    {
+      this->Chunked = vtkSmartPointer<vtkChunkedPolyDataMapper>::New();
+      this->Mapper = this->Chunked;
+    }
+    else
+    {
+      this->Mapper = vtkSmartPointer<vtkPolyDataMapper>::New();
+    }
+    const bool split = groups && groups->size() > 1;
     vtkCamera* camera = renderer->GetActiveCamera();
-    auto makeActor = [&](vtkPolyDataMapper* mapper) {
+    auto makeActor = [&](vtkPolyDataMapper* mapper)
+    {
       mapper->SetScalarModeToUseCellData();
       mapper->SetColorModeToDirectScalars();
       auto actor = vtkSmartPointer<vtkActor>::New();
@@ -598,15 +833,16 @@ public:
       this->BspMapper->SetInputData(pd);
       makeActor(this->BspMapper);
     }
-    else if (method == "multi-actor")
+    else if (method == "multi-actor" || split)
     {
-      for (const auto& part : SplitByPart(pd))
+      for (const auto& part : split ? *groups : SplitByPart(pd))
       {
         auto mapper = vtkSmartPointer<vtkPolyDataMapper>::New();
         mapper->SetInputData(part);
         makeActor(mapper);
       }
-      this->OrderedPass->SetTranslucentPass(this->BspPass);
+      if (method == "multi-actor")
+        this->OrderedPass->SetTranslucentPass(this->BspPass);
     }
     else
     {
@@ -674,6 +910,10 @@ public:
     return this->LastUpdateMs;
   }
 
+  /// Whether the last frame computed a new order (false for methods without one and for frames
+  /// whose camera did not move). Call after rendering it.
+  bool Sorted() const { return this->OrderCount() != this->OrderCountBefore; }
+
   /// Whether the per-frame sort happens inside the render (the mapper and the pass).
   bool SortsInRender() const { return this->Method == "bsp-mapper" || this->Method == "multi-actor"; }
 
@@ -726,6 +966,8 @@ public:
   }
 
   int Parts() const { return static_cast<int>(this->Actors.size()); }
+  const std::vector<vtkSmartPointer<vtkActor>>& GetActors() const { return this->Actors; }
+  vtkChunkedPolyDataMapper* GetChunkedMapper() const { return this->Chunked; }
 
   /**
    * The polygons in the order they were drawn in the last frame, for the ID-buffer oracle, or
@@ -814,7 +1056,8 @@ private:
   vtkSmartPointer<vtkPolyData> Input;
   vtkRenderer* Renderer;
   std::vector<vtkSmartPointer<vtkActor>> Actors;
-  vtkNew<vtkPolyDataMapper> Mapper;
+  vtkSmartPointer<vtkPolyDataMapper> Mapper;
+  vtkSmartPointer<vtkChunkedPolyDataMapper> Chunked;
   vtkNew<vtkBSPSortedPolyDataMapper> BspMapper;
   vtkNew<vtkBSPSortFilter> Bsp;
   vtkNew<vtkPainterSortFilter> Painter;
@@ -846,6 +1089,553 @@ LoadedScene LoadSceneWithNormals(const Options& options)
 constexpr double kBackground[3] = { 26 / 255.0, 26 / 255.0, 31 / 255.0 }; // exact in 8 bits
 const scenevis::testing::Rgb kBackgroundRgb = { 26, 26, 31 };
 
+// ---------------------------------------------------------------------------------------------
+// Culling: the modes of --cull, what auto looks at, and one wrapper that measures every mode.
+// ---------------------------------------------------------------------------------------------
+
+vtkIdType CountTriangles(vtkPolyData* pd);
+
+/// Above this many parts, culling whole props pays for its hierarchy (auto -> octree).
+constexpr std::size_t kManyProps = 100;
+/// Above this many triangles in one opaque mesh, culling chunks inside it pays (auto -> chunked):
+/// the 64 spheres at 1M triangles seen from inside the grid draw 10x faster chunked (19k of 1M
+/// triangles drawn), and a full view costs about the same either way.
+constexpr vtkIdType kHugeMesh = 500000;
+/// Prop culling draws one actor per part, which translucency then orders across actors
+/// (vtkBSPTranslucentPass); above this fraction of translucent polygons that sort interleaves
+/// the parts' fragments into thousands of draw calls (2CylinderEngine at opacity 0.4: 32k draw
+/// calls, 4.3 s a frame), so auto keeps one mesh with the BSP order instead.
+constexpr double kMaxTranslucentForActors = 0.25;
+/// Prop culling draws one actor per part, which costs VTK per-actor work every frame; when the
+/// first camera sees at least this fraction of the triangles, culling cannot pay for that (the
+/// cad demo in full view: 1.2-1.5x slower than one mesh; seen from close up: 1.4-1.7x faster).
+constexpr double kMinInViewForNoCulling = 0.9;
+
+/// What auto mode decides on, and what the reports quote as the reason.
+struct SceneFacts
+{
+  vtkIdType polygons = 0;
+  vtkIdType triangles = 0;
+  std::size_t parts = 1;            ///< distinct PartId values (1 without the array)
+  double translucentFraction = 0.0; ///< of the polygons: RGBA alpha < 255
+  int rooms = 0;                    ///< distinct RoomId values >= 0
+  vtkIdType portals = 0;
+  /// Fraction of the triangles in parts whose bounds meet the first camera's view (the side
+  /// planes of its frustum); < 0 when not measured.
+  double inView = -1.0;
+
+  std::string Summary() const
+  {
+    std::ostringstream text;
+    text << parts << (parts == 1 ? " part, " : " parts, ") << triangles << " triangles, "
+         << std::setprecision(3) << 100.0 * translucentFraction << " % translucent, " << rooms
+         << " rooms, " << portals << " portals";
+    if (inView >= 0.0)
+      text << ", " << 100.0 * inView << " % of the triangles in view";
+    return text.str();
+  }
+};
+
+/// The distinct values of the one-component cell array @p name (all cells, or @p cells only).
+std::set<long long> DistinctValues(
+  vtkPolyData* pd, const char* name, const std::vector<vtkIdType>* cells = nullptr)
+{
+  std::set<long long> values;
+  vtkDataArray* array = pd->GetCellData()->GetArray(name);
+  if (!array || array->GetNumberOfComponents() != 1)
+  {
+    return values;
+  }
+  if (cells)
+  {
+    for (const vtkIdType c : *cells)
+      values.insert(static_cast<long long>(array->GetTuple1(c)));
+    return values;
+  }
+  for (vtkIdType c = 0; c < array->GetNumberOfTuples(); ++c)
+    values.insert(static_cast<long long>(array->GetTuple1(c)));
+  return values;
+}
+
+SceneFacts InspectScene(vtkPolyData* pd, vtkPolyData* portals)
+{
+  SceneFacts facts;
+  facts.polygons = pd->GetNumberOfCells();
+  facts.triangles = CountTriangles(pd);
+  facts.parts = std::max<std::size_t>(1, DistinctValues(pd, "PartId").size());
+  if (auto* colors = vtkUnsignedCharArray::SafeDownCast(pd->GetCellData()->GetScalars()))
+  {
+    if (colors->GetNumberOfComponents() == 4 && facts.polygons > 0)
+    {
+      vtkIdType translucent = 0;
+      for (vtkIdType c = 0; c < colors->GetNumberOfTuples(); ++c)
+        translucent += colors->GetTypedComponent(c, 3) < 255 ? 1 : 0;
+      facts.translucentFraction =
+        static_cast<double>(translucent) / static_cast<double>(facts.polygons);
+    }
+  }
+  for (const long long room : DistinctValues(pd, "RoomId"))
+    facts.rooms += room >= 0 ? 1 : 0;
+  facts.portals = portals ? portals->GetNumberOfCells() : 0;
+  return facts;
+}
+
+/// The fraction of the triangles of @p pd in PartId parts whose bounding box meets the side
+/// planes of @p camera's frustum (near and far ignored: the clipping range follows the props).
+double TrianglesInView(vtkPolyData* pd, vtkCamera* camera, double aspect)
+{
+  struct PartBox
+  {
+    double box[6] = { VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX, VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX,
+      VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX };
+    vtkIdType triangles = 0;
+  };
+  vtkDataArray* partIds = pd->GetCellData()->GetArray("PartId");
+  std::unordered_map<long long, PartBox> parts;
+  vtkCellArray* polys = pd->GetPolys();
+  vtkIdType npts = 0;
+  const vtkIdType* pts = nullptr;
+  vtkIdType total = 0;
+  vtkIdType c = 0;
+  for (polys->InitTraversal(); polys->GetNextCell(npts, pts); ++c)
+  {
+    PartBox& part = parts[partIds ? static_cast<long long>(partIds->GetTuple1(c)) : 0];
+    part.triangles += std::max<vtkIdType>(npts - 2, 0);
+    total += std::max<vtkIdType>(npts - 2, 0);
+    for (vtkIdType k = 0; k < npts; ++k)
+    {
+      double p[3];
+      pd->GetPoint(pts[k], p);
+      for (int a = 0; a < 3; ++a)
+      {
+        part.box[2 * a] = std::min(part.box[2 * a], p[a]);
+        part.box[2 * a + 1] = std::max(part.box[2 * a + 1], p[a]);
+      }
+    }
+  }
+  if (total == 0)
+  {
+    return 1.0;
+  }
+  double planes[24]; // left, right, bottom, top, near, far: ax + by + cz + d >= 0 inside
+  camera->GetFrustumPlanes(aspect, planes);
+  vtkIdType inView = 0;
+  for (const auto& entry : parts)
+  {
+    const PartBox& part = entry.second;
+    bool outside = false;
+    for (int k = 0; k < 4 && !outside; ++k)
+    {
+      const double* plane = planes + 4 * k;
+      double distance = plane[3];
+      for (int a = 0; a < 3; ++a)
+        distance += plane[a] * (plane[a] >= 0.0 ? part.box[2 * a + 1] : part.box[2 * a]);
+      outside = distance < 0.0;
+    }
+    inView += outside ? 0 : part.triangles;
+  }
+  return static_cast<double>(inView) / static_cast<double>(total);
+}
+
+bool IsPropCulling(const std::string& mode)
+{
+  return mode == "frustum" || mode == "octree" || mode == "normal-cones" ||
+    mode.rfind("small:", 0) == 0 || mode == "portals" || mode == "pvs";
+}
+
+/// The culling mode to use and why.
+struct CullPlan
+{
+  std::string method;
+  std::string reason;
+  bool needsActors = false; ///< a prop culler: one actor per part / room
+  bool chunked = false;
+  double smallPixels = 0.0;
+};
+
+CullPlan PlanCulling(const std::string& requested, const SceneFacts& facts)
+{
+  CullPlan plan;
+  plan.method = requested;
+  plan.reason = "requested with --cull (" + facts.Summary() + ")";
+  const bool rooms = facts.rooms > 0 && facts.portals > 0;
+  if (requested == "auto")
+  {
+    const bool opaque = facts.translucentFraction == 0.0;
+    std::ostringstream why;
+    if (rooms)
+    {
+      plan.method = "portals";
+      why << facts.rooms << " rooms and " << facts.portals
+          << " portals: cells and portals skip the rooms the eye cannot see through them";
+    }
+    else if (facts.parts >= kManyProps && facts.translucentFraction <= kMaxTranslucentForActors &&
+      facts.inView < kMinInViewForNoCulling)
+    {
+      plan.method = "octree";
+      why << facts.parts << " parts (>= " << kManyProps
+          << "): one actor per part, culled by the BVH a whole subtree at a time";
+    }
+    else if (facts.triangles >= kHugeMesh && opaque)
+    {
+      plan.method = "chunked";
+      why << facts.triangles << " triangles (>= " << kHugeMesh << ") in " << facts.parts
+          << (facts.parts == 1 ? " part" : " parts")
+          << ", opaque: chunks of the one mesh are culled inside its buffers";
+    }
+    else
+    {
+      plan.method = "none";
+      if (facts.parts >= kManyProps && facts.inView >= kMinInViewForNoCulling)
+        why << facts.parts << " parts, but the first camera sees " << std::setprecision(3)
+            << 100.0 * facts.inView << " % of the triangles (>= " << 100.0 * kMinInViewForNoCulling
+            << " %): culling would draw nearly all of them as many actors";
+      else if (facts.parts >= kManyProps)
+        why << facts.parts << " parts but " << std::setprecision(3)
+            << 100.0 * facts.translucentFraction << " % translucent (> "
+            << 100.0 * kMaxTranslucentForActors
+            << " %): one mesh in BSP order draws faster than sorting that many actors' "
+               "fragments across actors";
+      else if (facts.triangles >= kHugeMesh)
+        why << facts.triangles << " triangles but translucent (" << std::setprecision(3)
+            << 100.0 * facts.translucentFraction
+            << " %): chunked drawing would break the sorted order, so everything is drawn";
+      else
+        why << facts.parts << (facts.parts == 1 ? " part" : " parts") << " (< " << kManyProps
+            << ") and " << facts.triangles << " triangles (< " << kHugeMesh << ")"
+            << (opaque ? ", opaque" : "") << ": drawing everything costs less than culling";
+    }
+    plan.reason = why.str() + " (" + facts.Summary() + ")";
+  }
+  if ((plan.method == "portals" || plan.method == "pvs") && !rooms)
+  {
+    throw UsageError("--cull " + plan.method +
+      " needs rooms and portals: the building demo, or a "
+      "model with a RoomId cell array and --portals FILE.vtp");
+  }
+  plan.needsActors = IsPropCulling(plan.method);
+  plan.chunked = plan.method == "chunked";
+  if (plan.method.rfind("small:", 0) == 0)
+  {
+    plan.smallPixels = std::stod(plan.method.substr(6));
+  }
+  return plan;
+}
+
+/// The translucency method given the culling plan: prop culling draws one actor per group, which
+/// only methods that work across actors can order; chunked drawing reorders the polygons chunk by
+/// chunk, which only order-independent methods survive.
+std::string ChooseSort(const std::string& requested, bool translucent, const CullPlan& cull,
+  bool split, std::size_t actors, std::string& reason)
+{
+  reason = "requested with --sort";
+  const bool independent =
+    requested == "none" || requested == "oit" || requested.rfind("peel:", 0) == 0;
+  if (requested != "auto")
+  {
+    if (cull.chunked && !independent)
+      throw UsageError("--cull chunked reorders the polygons chunk by chunk: --sort takes auto, "
+                       "none, oit or peel:N with it");
+    if (split && !independent && requested != "multi-actor")
+      throw UsageError("--cull " + cull.method +
+        " draws one actor per part: --sort takes auto, "
+        "none, oit, multi-actor or peel:N with it");
+    return requested;
+  }
+  if (!translucent)
+  {
+    reason = "the scene is opaque: no sorting needed";
+    return "none";
+  }
+  if (cull.chunked)
+  {
+    reason = "translucent, but chunked drawing reorders the polygons: VTK's weighted OIT "
+             "(order independent, approximate)";
+    return "oit";
+  }
+  if (split)
+  {
+    reason = "translucent polygons in " + std::to_string(actors) +
+      " actors (prop culling): exact order across actors with vtkBSPTranslucentPass";
+    return "multi-actor";
+  }
+  reason = "the scene has translucent polygons: exact order with the BSP tree";
+  return "bsp";
+}
+
+/**
+ * Wraps the culler of a mode (vtkFrustumCoverageCuller, vtkOctreeCuller, vtkPortalCuller): times
+ * it, records what it kept, and while the camera, the viewport and the props are unchanged
+ * re-uses the last visible set instead of culling again (auto's "camera unchanged: no re-cull").
+ * It honours the vtkCuller contract itself on re-used frames.
+ */
+class CullStage : public vtkCuller
+{
+public:
+  static CullStage* New() { return new CullStage; }
+  vtkTypeMacro(CullStage, vtkCuller);
+
+  double Cull(vtkRenderer* ren, vtkProp** propList, int& listLength, int& initialized) override
+  {
+    const auto start = std::chrono::steady_clock::now();
+    const std::vector<double> key = ViewKey(ren);
+    const std::vector<vtkProp*> input(propList, propList + listLength);
+    double total = 0.0;
+    this->Reused = this->HaveLast && key == this->LastKey && input == this->LastInput;
+    if (this->Reused)
+    {
+      std::vector<vtkProp*> culled;
+      int kept = 0;
+      for (vtkProp* prop : input)
+      {
+        if (this->VisibleSet.count(prop))
+          propList[kept++] = prop;
+        else
+          culled.push_back(prop);
+      }
+      std::copy(culled.begin(), culled.end(), propList + kept);
+      listLength = kept;
+      for (int i = 0; i < kept; ++i)
+      {
+        if (!initialized)
+          propList[i]->SetRenderTimeMultiplier(1.0);
+        total += propList[i]->GetRenderTimeMultiplier();
+      }
+      initialized = 1;
+    }
+    else
+    {
+      total = this->Inner->Cull(ren, propList, listLength, initialized);
+      this->LastKey = key;
+      this->LastInput = input;
+      this->HaveLast = true;
+      this->VisibleSet = std::set<vtkProp*>(propList, propList + listLength);
+    }
+    this->Visible.assign(propList, propList + listLength);
+    this->LastMs = Milliseconds(start);
+    return total;
+  }
+
+  vtkSmartPointer<vtkCuller> Inner;
+  std::vector<vtkProp*> Visible; ///< props kept by the last Cull()
+  bool Reused = false;           ///< the last Cull() re-used the previous visible set
+  double LastMs = 0.0;
+
+private:
+  /// Everything the visible set depends on apart from the props: camera and viewport.
+  static std::vector<double> ViewKey(vtkRenderer* ren)
+  {
+    vtkCamera* camera = ren->GetActiveCamera();
+    std::vector<double> key;
+    auto add = [&key](const double* v, int n) { key.insert(key.end(), v, v + n); };
+    add(camera->GetPosition(), 3);
+    add(camera->GetFocalPoint(), 3);
+    add(camera->GetViewUp(), 3);
+    add(camera->GetClippingRange(), 2);
+    add(camera->GetWindowCenter(), 2);
+    key.push_back(camera->GetViewAngle());
+    key.push_back(camera->GetParallelScale());
+    key.push_back(camera->GetParallelProjection());
+    key.push_back(ren->GetTiledAspectRatio());
+    const int* size = ren->GetSize();
+    key.push_back(size[0]);
+    key.push_back(size[1]);
+    return key;
+  }
+
+  std::vector<double> LastKey;
+  std::vector<vtkProp*> LastInput;
+  std::set<vtkProp*> VisibleSet;
+  bool HaveLast = false;
+};
+
+/// A --cull mode installed on a renderer whose pipeline (actors) exists.
+class CullSetup
+{
+public:
+  CullSetup(const CullPlan& plan, const MethodPipeline& pipeline, vtkRenderer* renderer,
+    vtkPolyData* scene, vtkPolyData* portals, bool showProgress)
+    : Plan(plan)
+    , Pipeline(pipeline)
+  {
+    // "none" really draws everything: not even VTK's default frustum coverage culler.
+    renderer->GetCullers()->RemoveAllItems();
+    // Triangles per actor, of the scene's polygons before any sorting splits them (one actor:
+    // the whole scene, whose mapper may read a sorter that has not run yet).
+    const auto& actors = pipeline.GetActors();
+    for (const auto& actor : actors)
+    {
+      auto* input = vtkPolyData::SafeDownCast(actor->GetMapper()->GetInputDataObject(0, 0));
+      this->TrianglesOf[actor] =
+        actors.size() == 1 ? CountTriangles(scene) : (input ? CountTriangles(input) : 0);
+      this->TotalTriangles += this->TrianglesOf[actor];
+    }
+    vtkSmartPointer<vtkCuller> inner;
+    const std::string& m = plan.method;
+    if (m == "frustum")
+    {
+      inner = vtkSmartPointer<vtkFrustumCoverageCuller>::New();
+    }
+    else if (m == "octree" || m == "normal-cones" || plan.smallPixels > 0.0)
+    {
+      this->Octree = vtkSmartPointer<vtkOctreeCuller>::New();
+      if (m == "normal-cones")
+      {
+        // Normal cones only apply to actors drawn with back-face culling.
+        this->Octree->NormalConeCullingOn();
+        for (const auto& actor : pipeline.GetActors())
+          actor->GetProperty()->BackfaceCullingOn();
+      }
+      this->Octree->SetMinimumPixelSize(plan.smallPixels);
+      inner = this->Octree;
+    }
+    else if (m == "portals" || m == "pvs")
+    {
+      this->Portal = vtkSmartPointer<vtkPortalCuller>::New();
+      this->Portal->SetPortals(portals);
+      this->Portal->SetMode(
+        m == "pvs" ? vtkPortalCuller::MODE_PVS : vtkPortalCuller::MODE_EXACT_FRUSTUM);
+      inner = this->Portal;
+      if (m == "pvs")
+      {
+        vtkNew<ProgressBar> progress;
+        progress->Label = "computing PVS";
+        if (showProgress)
+          this->Portal->AddObserver(vtkCommand::ProgressEvent, progress);
+        const auto start = std::chrono::steady_clock::now();
+        const bool computed = this->Portal->ComputePVS(renderer);
+        this->PvsMs = Milliseconds(start);
+        this->Portal->RemoveObservers(vtkCommand::ProgressEvent);
+        if (!computed)
+          throw std::runtime_error("cannot compute the PVS of the portal scene");
+      }
+    }
+    if (inner)
+    {
+      this->Stage = vtkSmartPointer<CullStage>::New();
+      this->Stage->Inner = inner;
+      renderer->AddCuller(this->Stage);
+    }
+  }
+
+  /// After a render: props drawn, input triangles of what was drawn, cull milliseconds, and
+  /// whether the visible set was re-used.
+  vtkIdType PropsDrawn() const
+  {
+    return this->Stage ? static_cast<vtkIdType>(this->Stage->Visible.size())
+                       : this->Pipeline.Parts();
+  }
+  vtkIdType TrianglesDrawn() const
+  {
+    if (vtkChunkedPolyDataMapper* chunked = this->Pipeline.GetChunkedMapper())
+      return chunked->GetNumberOfTrianglesDrawn();
+    if (!this->Stage)
+      return this->TotalTriangles;
+    vtkIdType triangles = 0;
+    for (vtkProp* prop : this->Stage->Visible)
+    {
+      auto found = this->TrianglesOf.find(prop);
+      triangles += found == this->TrianglesOf.end() ? 0 : found->second;
+    }
+    return triangles;
+  }
+  vtkIdType TrianglesTotal() const { return this->TotalTriangles; }
+  double CullMs() const
+  {
+    if (vtkChunkedPolyDataMapper* chunked = this->Pipeline.GetChunkedMapper())
+      return chunked->GetLastCullTime() * 1e3;
+    return this->Stage ? this->Stage->LastMs : 0.0;
+  }
+  bool Reused() const { return this->Stage && this->Stage->Reused; }
+  const std::vector<vtkProp*>* Visible() const
+  {
+    return this->Stage ? &this->Stage->Visible : nullptr;
+  }
+  double SetupMs() const { return this->PvsMs; }
+
+  /// JSON members (with a leading comma) of the mode's own statistics (of its last real cull).
+  void Describe(std::ostream& json) const
+  {
+    json << ", \"approximate\": " << (this->Plan.smallPixels > 0.0 ? "true" : "false");
+    if (this->Plan.smallPixels > 0.0)
+      json << ", \"minimum_pixels\": " << this->Plan.smallPixels;
+    json << ", \"actors\": " << this->Pipeline.Parts()
+         << ", \"triangles_total\": " << this->TotalTriangles;
+    if (this->Octree)
+    {
+      vtkOctreeCuller* oc = this->Octree;
+      json << ", \"octree\": {\"nodes_visited\": " << oc->GetNumberOfNodesVisited()
+           << ", \"props_tested\": " << oc->GetNumberOfPropsTested()
+           << ", \"culled_by_frustum\": " << oc->GetNumberOfPropsCulledByFrustum()
+           << ", \"culled_by_size\": " << oc->GetNumberOfPropsCulledBySize()
+           << ", \"culled_by_normal_cone\": " << oc->GetNumberOfPropsCulledByNormalCone()
+           << ", \"rebuilds\": " << oc->GetNumberOfRebuilds() << "}";
+    }
+    if (this->Portal)
+    {
+      vtkPortalCuller* p = this->Portal;
+      json << ", \"portals\": {\"rooms\": " << p->GetNumberOfRooms()
+           << ", \"rooms_visited\": " << p->GetNumberOfRoomsVisited()
+           << ", \"portals_traversed\": " << p->GetNumberOfPortalsTraversed()
+           << ", \"frustum_only\": " << (p->GetFrustumOnly() ? "true" : "false")
+           << ", \"fallback\": " << JsonString(p->GetFallbackReason())
+           << ", \"pvs_ms\": " << this->PvsMs << "}";
+    }
+    if (vtkChunkedPolyDataMapper* c = this->Pipeline.GetChunkedMapper())
+    {
+      json << ", \"chunked\": {\"chunks\": " << c->GetNumberOfChunks()
+           << ", \"chunks_drawn\": " << c->GetNumberOfChunksDrawn()
+           << ", \"culled_by_frustum\": " << c->GetNumberOfChunksCulledByFrustum()
+           << ", \"culled_by_normal_cone\": " << c->GetNumberOfChunksCulledByNormalCone()
+           << ", \"culled_by_size\": " << c->GetNumberOfChunksCulledBySize()
+           << ", \"draw_calls\": " << c->GetNumberOfDrawCalls()
+           << ", \"partition_ms\": " << c->GetLastPartitionTime() * 1e3 << "}";
+    }
+  }
+
+private:
+  CullPlan Plan;
+  const MethodPipeline& Pipeline;
+  vtkSmartPointer<CullStage> Stage;
+  vtkSmartPointer<vtkOctreeCuller> Octree;
+  vtkSmartPointer<vtkPortalCuller> Portal;
+  std::unordered_map<vtkProp*, vtkIdType> TrianglesOf;
+  vtkIdType TotalTriangles = 0;
+  double PvsMs = 0.0;
+};
+
+/// The --cull plan applied to a loaded scene: the groups drawn as actors and the sort method.
+struct ScenePlan
+{
+  SceneFacts facts;
+  CullPlan cull;
+  std::vector<vtkSmartPointer<vtkPolyData>> groups;
+  std::string sort;
+  std::string sortReason;
+};
+
+/// @p renderer: its camera already set up, for what the first frame sees.
+ScenePlan PlanScene(
+  const Options& options, const LoadedScene& scene, const std::string& sort, vtkRenderer* renderer)
+{
+  ScenePlan plan;
+  plan.facts = InspectScene(scene.polydata, scene.portals);
+  if (plan.facts.parts >= kManyProps)
+  {
+    plan.facts.inView = TrianglesInView(scene.polydata, renderer->GetActiveCamera(),
+      static_cast<double>(options.width) / static_cast<double>(options.height));
+  }
+  plan.cull = PlanCulling(options.cull, plan.facts);
+  if (plan.cull.needsActors)
+  {
+    // Rooms first: an actor must lie in one room for the portal culler to cull it.
+    plan.groups = SplitByKeys(scene.polydata, { "RoomId", "PartId" });
+  }
+  plan.sort = ChooseSort(sort, plan.facts.translucentFraction > 0.0, plan.cull,
+    plan.groups.size() > 1, plan.groups.size(), plan.sortReason);
+  return plan;
+}
+
 int Render(const Options& options)
 {
   if (!options.backend.empty())
@@ -854,17 +1644,6 @@ int Render(const Options& options)
   }
   LoadedScene scene = LoadSceneWithNormals(options);
   vtkPolyData* pd = scene.polydata;
-  const bool translucent = HasTranslucency(pd);
-
-  std::string method = options.sort;
-  std::string reason = "requested with --sort";
-  if (method == "auto")
-  {
-    method = translucent ? "bsp" : "none";
-    reason = translucent
-      ? "the scene has translucent polygons: exact order with the BSP tree"
-      : "the scene is opaque: no sorting needed";
-  }
 
   const auto windowStart = std::chrono::steady_clock::now();
   const scenevis::testing::Backend backend = scenevis::testing::DefaultBackend();
@@ -874,35 +1653,69 @@ int Render(const Options& options)
   vtkNew<vtkRenderer> renderer;
   renderer->SetBackground(kBackground[0], kBackground[1], kBackground[2]);
   window->AddRenderer(renderer);
-  MethodPipeline pipeline(method, pd, renderer, isatty(STDERR_FILENO) != 0);
+  SetUpCamera(options, renderer, pd, scene.zUp); // auto looks at what the first frame sees
+  const ScenePlan plan = PlanScene(options, scene, options.sort, renderer);
+  const bool translucent = plan.facts.translucentFraction > 0.0;
+  const std::string& method = plan.sort;
+  std::string reason = plan.sortReason;
+  const bool onTerminal = ProgressBar::OnTerminal();
+  MethodPipeline pipeline(method, pd, renderer, onTerminal, &plan.groups, plan.cull.chunked);
   if (method == "multi-actor")
   {
     reason += "; " + std::to_string(pipeline.Parts()) +
-      (pipeline.Parts() == 1 ? " actor (the scene has no PartId parts)" : " actors, one per PartId");
+      (pipeline.Parts() == 1 ? " actor (the scene has no PartId parts)"
+          : plan.groups.size() > 1
+          ? (plan.facts.rooms > 0 ? " actors, one per part (PartId) and room (RoomId)"
+                                  : " actors, one per part (PartId)")
+          : " actors, one per PartId");
   }
-  SetUpCamera(options, renderer, pd);
+  SetUpCamera(options, renderer, pd, scene.zUp); // again: the clipping range from the actors
+  const CullSetup culling(plan.cull, pipeline, renderer, pd, scene.portals, onTerminal);
 
   struct Frame
   {
-    double sortMs;
-    double renderMs;
     std::string file;
+    bool cameraUnchanged = false;
+    bool sorted = false;
+    bool cullReused = false;
+    double sortMs = 0.0;
+    double cullMs = 0.0;
+    double renderMs = 0.0;
+    vtkIdType propsDrawn = 0;
+    vtkIdType trianglesDrawn = 0;
+    vtkIdType polygonsDrawn = 0;
   };
   std::vector<Frame> frames;
   double buildMs = 0.0;
+  vtkNew<ProgressBar> progress;
+  progress->Label = "rendering " + std::to_string(options.frames) + " frames";
+  const bool showFrames = onTerminal && options.frames > 1;
   for (int f = 0; f < options.frames; ++f)
   {
-    if (f > 0)
+    Frame frame;
+    frame.file = FrameFileName(options.out, f, options.frames);
+    // An orbit of 0 degrees leaves the camera as it is: nothing needs sorting or culling again.
+    frame.cameraUnchanged = f > 0 && options.orbit == 0.0;
+    if (f > 0 && !frame.cameraUnchanged)
     {
       renderer->GetActiveCamera()->Azimuth(options.orbit);
       renderer->ResetCameraClippingRange();
     }
-    Frame frame{ 0.0, 0.0, FrameFileName(options.out, f, options.frames) };
     pipeline.Update();
     const auto renderStart = std::chrono::steady_clock::now();
     vtkSmartPointer<vtkImageData> image = scenevis::testing::CaptureImage(window);
-    frame.renderMs = Milliseconds(renderStart);
+    const double totalMs = Milliseconds(renderStart);
     frame.sortMs = pipeline.LastSortMs();
+    frame.sorted = pipeline.Sorted();
+    frame.cullMs = culling.CullMs();
+    frame.cullReused = culling.Reused();
+    // The render time without what was measured inside it: the cull, and the sort of the
+    // mapper and pass methods.
+    frame.renderMs =
+      std::max(0.0, totalMs - frame.cullMs - (pipeline.SortsInRender() ? frame.sortMs : 0.0));
+    frame.propsDrawn = culling.PropsDrawn();
+    frame.trianglesDrawn = culling.TrianglesDrawn();
+    frame.polygonsDrawn = pipeline.Fragments();
     if (f == 0)
     {
       buildMs = pipeline.BuildMs();
@@ -916,55 +1729,330 @@ int Render(const Options& options)
       throw std::runtime_error("the rendered image is empty (nothing in view?)");
     }
     frames.push_back(frame);
+    if (showFrames)
+    {
+      progress->Show(static_cast<double>(f + 1) / options.frames);
+    }
   }
 
   // Report.
   const vtkIdType cells = pd->GetNumberOfCells();
-  const vtkIdType drawn = pipeline.Fragments();
   std::ostringstream json;
   std::ostringstream details;
   json << std::fixed << std::setprecision(3);
   details << std::fixed << std::setprecision(1);
   json << "{\n  \"command\": \"render\",\n  \"scene\": " << JsonString(scene.description)
-       << ",\n  \"polygons\": " << cells << ",\n  \"translucent\": " << (translucent ? "true" : "false")
+       << ",\n  \"polygons\": " << cells << ",\n  \"triangles\": " << plan.facts.triangles
+       << ",\n  \"parts\": " << plan.facts.parts
+       << ",\n  \"translucent_fraction\": " << std::setprecision(4)
+       << plan.facts.translucentFraction << std::setprecision(3)
+       << ",\n  \"rooms\": " << plan.facts.rooms << ",\n  \"portals\": " << plan.facts.portals
+       << ",\n  \"translucent\": " << (translucent ? "true" : "false")
        << ",\n  \"translucency\": {\"method\": " << JsonString(method)
-       << ", \"reason\": " << JsonString(reason) << "},\n  \"culling\": {\"method\": \"none\", "
-       << "\"reason\": \"culling is not part of this build yet\"},\n  \"backend\": "
-       << JsonString(scenevis::testing::BackendName(backend)) << ",\n  \"size\": ["
-       << options.width << ", " << options.height << "],\n  \"load_ms\": " << scene.loadMs
-       << ",\n  \"window_ms\": " << windowMs << ",\n  \"build_ms\": " << buildMs
+       << ", \"reason\": " << JsonString(reason)
+       << "},\n  \"culling\": {\"method\": " << JsonString(plan.cull.method)
+       << ", \"reason\": " << JsonString(plan.cull.reason);
+  culling.Describe(json);
+  json << "},\n  \"backend\": " << JsonString(scenevis::testing::BackendName(backend))
+       << ",\n  \"size\": [" << options.width << ", " << options.height
+       << "],\n  \"load_ms\": " << scene.loadMs << ",\n  \"window_ms\": " << windowMs
+       << ",\n  \"build_ms\": " << buildMs << ",\n  \"cull_setup_ms\": " << culling.SetupMs()
        << ",\n  \"sort_in_render\": " << (pipeline.SortsInRender() ? "true" : "false");
   pipeline.Describe(json, details);
   json << ",\n  \"frames\": [";
   for (std::size_t i = 0; i < frames.size(); ++i)
   {
-    json << (i ? "," : "") << "\n    {\"file\": " << JsonString(frames[i].file)
-         << ", \"sort_ms\": " << frames[i].sortMs << ", \"render_ms\": " << frames[i].renderMs
-         << ", \"polygons_drawn\": " << drawn << "}";
+    const Frame& frame = frames[i];
+    json << (i ? "," : "") << "\n    {\"file\": " << JsonString(frame.file)
+         << ", \"camera_unchanged\": " << (frame.cameraUnchanged ? "true" : "false")
+         << ", \"sorted\": " << (frame.sorted ? "true" : "false")
+         << ", \"cull_reused\": " << (frame.cullReused ? "true" : "false")
+         << ", \"sort_ms\": " << frame.sortMs << ", \"cull_ms\": " << frame.cullMs
+         << ", \"render_ms\": " << frame.renderMs << ", \"props_drawn\": " << frame.propsDrawn
+         << ", \"triangles_drawn\": " << frame.trianglesDrawn
+         << ", \"polygons_drawn\": " << frame.polygonsDrawn << "}";
   }
   json << "\n  ]\n}\n";
   if (!options.report.empty())
   {
-    std::ofstream(options.report) << json.str();
+    std::ofstream report(options.report);
+    report << json.str();
+    if (!report)
+    {
+      throw std::runtime_error("cannot write '" + options.report + "'");
+    }
   }
 
   std::cout << std::fixed << std::setprecision(1);
   std::cout << "scenevis render: " << scene.description << ", " << cells << " polygons"
             << (translucent ? " (translucent)" : " (opaque)") << "\n";
   std::cout << "  translucency: " << method << " - " << reason << "\n";
-  std::cout << "  back-end: " << scenevis::testing::BackendName(backend) << ", "
-            << options.width << "x" << options.height << "\n";
-  std::cout << "  load " << scene.loadMs << " ms, window " << windowMs << " ms" << details.str()
-            << "\n";
+  std::cout << "  culling: " << plan.cull.method << " - " << plan.cull.reason << "\n";
+  std::cout << "  back-end: " << scenevis::testing::BackendName(backend) << ", " << options.width
+            << "x" << options.height << "\n";
+  std::cout << "  load " << scene.loadMs << " ms, window " << windowMs << " ms" << details.str();
+  if (culling.SetupMs() > 0.0)
+    std::cout << ", PVS " << culling.SetupMs() << " ms";
+  std::cout << "\n";
   for (const Frame& frame : frames)
   {
-    std::cout << "  " << frame.file << ": sort " << std::setprecision(2) << frame.sortMs
-              << " ms" << (pipeline.SortsInRender() ? " (inside the render)" : "") << ", render "
-              << frame.renderMs << " ms\n";
+    std::cout << "  " << frame.file << ": sort " << std::setprecision(2) << frame.sortMs << " ms"
+              << (pipeline.SortsInRender() ? " (inside the render)" : "") << ", cull "
+              << frame.cullMs << " ms" << (frame.cullReused ? " (re-used)" : "") << ", render "
+              << frame.renderMs << " ms, " << frame.propsDrawn << " props, " << frame.trianglesDrawn
+              << " of " << culling.TrianglesTotal() << " triangles"
+              << (frame.cameraUnchanged ? ", camera unchanged" : "") << "\n";
   }
   if (!options.report.empty())
   {
     std::cout << "  report: " << options.report << "\n";
+  }
+  return EXIT_SUCCESS;
+}
+
+void WritePolyData(vtkPolyData* pd, const std::string& path)
+{
+  vtkNew<vtkXMLPolyDataWriter> writer;
+  writer->SetInputData(pd);
+  writer->SetFileName(path.c_str());
+  writer->SetDataModeToBinary();
+  if (writer->Write() != 1)
+  {
+    throw std::runtime_error("cannot write '" + path + "'");
+  }
+}
+
+std::string JsonIds(const std::set<long long>& ids)
+{
+  std::ostringstream out;
+  out << "[";
+  bool first = true;
+  for (const long long id : ids)
+  {
+    out << (first ? "" : ", ") << id;
+    first = false;
+  }
+  return out.str() + "]";
+}
+
+std::string JsonVector(const double* v)
+{
+  std::ostringstream out;
+  out << std::setprecision(9) << "[" << v[0] << ", " << v[1] << ", " << v[2] << "]";
+  return out.str();
+}
+
+/// The key of a cell: its values of the arrays the scene is split into actors by.
+std::vector<long long> CellKey(const std::vector<vtkDataArray*>& arrays, vtkIdType cell)
+{
+  std::vector<long long> key;
+  for (vtkDataArray* array : arrays)
+    key.push_back(static_cast<long long>(array->GetTuple1(cell)));
+  return key;
+}
+
+std::vector<vtkDataArray*> KeyArrays(vtkPolyData* pd)
+{
+  std::vector<vtkDataArray*> arrays;
+  for (const char* name : { "RoomId", "PartId" })
+  {
+    if (vtkDataArray* array = pd->GetCellData()->GetArray(name))
+      arrays.push_back(array);
+  }
+  return arrays;
+}
+
+/// cull --exact: the exact visible set (cells with a pixel in a depth-tested ID render of the
+/// whole scene) against what the mode drew. False negatives break the promise of a conservative
+/// mode; over-draw is what it costs. Translucent surfaces are opaque in the ID render, so what
+/// is seen only through glass counts as over-draw, never as a false negative.
+void DescribeExact(std::ostream& json, vtkRenderWindow* window, vtkCamera* camera, vtkPolyData* pd,
+  const MethodPipeline& pipeline, const CullSetup& culling)
+{
+  namespace st = scenevis::testing;
+  const auto start = std::chrono::steady_clock::now();
+  const std::vector<std::uint32_t> visibleCells =
+    st::VisibleSet(st::RenderVisibleIds(window, pd, camera));
+  const double exactMs = Milliseconds(start);
+
+  // Which cells of the scene were drawn: the chunked mapper's cells, the cells of the actors
+  // kept (matched by their RoomId/PartId key), or all cells of the one actor if it was kept.
+  const std::vector<vtkDataArray*> arrays = KeyArrays(pd);
+  const vtkIdType cells = pd->GetNumberOfCells();
+  std::vector<char> drawn(static_cast<std::size_t>(cells), 0);
+  std::set<std::vector<long long>> drawnKeys;
+  const bool split = pipeline.Parts() > 1;
+  if (vtkChunkedPolyDataMapper* chunked = pipeline.GetChunkedMapper())
+  {
+    std::vector<vtkIdType> ids;
+    chunked->GetDrawnCellIds(ids);
+    for (const vtkIdType id : ids)
+      drawn[static_cast<std::size_t>(id)] = 1;
+  }
+  else if (split)
+  {
+    const std::vector<vtkProp*>* kept = culling.Visible();
+    for (vtkProp* prop : kept ? *kept : std::vector<vtkProp*>())
+    {
+      auto* actor = vtkActor::SafeDownCast(prop);
+      auto* input =
+        actor ? vtkPolyData::SafeDownCast(actor->GetMapper()->GetInputDataObject(0, 0)) : nullptr;
+      if (input && input->GetNumberOfCells() > 0)
+        drawnKeys.insert(CellKey(KeyArrays(input), 0));
+    }
+    for (vtkIdType c = 0; c < cells; ++c)
+      drawn[static_cast<std::size_t>(c)] = drawnKeys.count(CellKey(arrays, c)) ? 1 : 0;
+  }
+  else if (culling.PropsDrawn() > 0)
+  {
+    std::fill(drawn.begin(), drawn.end(), 1);
+  }
+  vtkIdType falseNegativeCells = 0;
+  std::set<std::vector<long long>> visibleKeys;
+  std::set<std::vector<long long>> missedKeys;
+  for (const std::uint32_t id : visibleCells)
+  {
+    const auto cell = static_cast<vtkIdType>(id);
+    const std::vector<long long> key = CellKey(arrays, cell);
+    visibleKeys.insert(key);
+    if (!drawn[static_cast<std::size_t>(cell)])
+    {
+      ++falseNegativeCells;
+      missedKeys.insert(key);
+    }
+  }
+  const auto drawnCells = std::count(drawn.begin(), drawn.end(), 1);
+  json << ",\n  \"exact\": {\"visible_cells\": " << visibleCells.size()
+       << ", \"drawn_cells\": " << drawnCells
+       << ", \"false_negative_cells\": " << falseNegativeCells << ", \"overdraw_cells\": "
+       << drawnCells - static_cast<vtkIdType>(visibleCells.size()) + falseNegativeCells;
+  if (split)
+  {
+    vtkIdType overdrawProps = 0;
+    for (const auto& key : drawnKeys)
+      overdrawProps += visibleKeys.count(key) ? 0 : 1;
+    json << ", \"visible_props\": " << visibleKeys.size()
+         << ", \"drawn_props\": " << drawnKeys.size()
+         << ", \"false_negative_props\": " << missedKeys.size()
+         << ", \"overdraw_props\": " << overdrawProps;
+  }
+  json << ", \"id_render_ms\": " << exactMs << "}";
+}
+
+/// `scenevis cull`: what a mode keeps for one camera, as JSON on stdout. The visible set is that
+/// of a real (offscreen) render, so it is exactly what `render` would draw.
+int Cull(const Options& options)
+{
+  if (!options.backend.empty())
+  {
+    setenv("SCENEVIS_BACKEND", options.backend.c_str(), 1);
+  }
+  LoadedScene scene = LoadSceneWithNormals(options);
+  vtkPolyData* pd = scene.polydata;
+  std::vector<std::string> exported;
+  if (!options.exportScene.empty())
+  {
+    exported.push_back(options.exportScene + ".vtp");
+    WritePolyData(pd, exported.back());
+    if (scene.portals)
+    {
+      exported.push_back(options.exportScene + "-portals.vtp");
+      WritePolyData(scene.portals, exported.back());
+    }
+  }
+  vtkSmartPointer<vtkRenderWindow> window =
+    scenevis::testing::MakeRenderWindow(options.width, options.height);
+  vtkNew<vtkRenderer> renderer;
+  window->AddRenderer(renderer);
+  SetUpCamera(options, renderer, pd, scene.zUp);
+  // Visibility does not depend on the drawing order: nothing is sorted.
+  const ScenePlan plan = PlanScene(options, scene, "none", renderer);
+  MethodPipeline pipeline("none", pd, renderer, false, &plan.groups, plan.cull.chunked);
+  SetUpCamera(options, renderer, pd, scene.zUp);
+  const CullSetup culling(
+    plan.cull, pipeline, renderer, pd, scene.portals, ProgressBar::OnTerminal());
+  window->Render();
+
+  // What was drawn: the visible actors' polygons, or the chunked mapper's drawn cells.
+  std::set<long long> parts;
+  std::set<long long> rooms;
+  vtkIdType propsVisible = culling.PropsDrawn();
+  if (vtkChunkedPolyDataMapper* chunked = pipeline.GetChunkedMapper())
+  {
+    std::vector<vtkIdType> cells;
+    chunked->GetDrawnCellIds(cells);
+    parts = DistinctValues(pd, "PartId", &cells);
+    rooms = DistinctValues(pd, "RoomId", &cells);
+    propsVisible = cells.empty() ? 0 : 1;
+  }
+  else
+  {
+    std::set<vtkProp*> visible;
+    if (const std::vector<vtkProp*>* kept = culling.Visible())
+      visible.insert(kept->begin(), kept->end());
+    for (const auto& actor : pipeline.GetActors())
+    {
+      if (culling.Visible() && !visible.count(actor))
+        continue;
+      auto* input = vtkPolyData::SafeDownCast(actor->GetMapper()->GetInputDataObject(0, 0));
+      if (!input)
+        continue;
+      const std::set<long long> p = DistinctValues(input, "PartId");
+      const std::set<long long> r = DistinctValues(input, "RoomId");
+      parts.insert(p.begin(), p.end());
+      rooms.insert(r.begin(), r.end());
+    }
+  }
+  vtkCamera* camera = renderer->GetActiveCamera();
+  std::ostringstream json;
+  json << std::fixed << std::setprecision(3);
+  json << "{\n  \"command\": \"cull\",\n  \"scene\": " << JsonString(scene.description)
+       << ",\n  \"camera\": {\"position\": " << JsonVector(camera->GetPosition())
+       << ", \"focal_point\": " << JsonVector(camera->GetFocalPoint())
+       << ", \"view_up\": " << JsonVector(camera->GetViewUp())
+       << ", \"parallel\": " << (camera->GetParallelProjection() ? "true" : "false")
+       << "},\n  \"size\": [" << options.width << ", " << options.height
+       << "],\n  \"culling\": {\"method\": " << JsonString(plan.cull.method)
+       << ", \"reason\": " << JsonString(plan.cull.reason);
+  culling.Describe(json);
+  json << "},\n  \"cull_ms\": " << culling.CullMs()
+       << ",\n  \"props\": {\"total\": " << pipeline.Parts() << ", \"visible\": " << propsVisible
+       << "},\n  \"triangles\": {\"total\": " << plan.facts.triangles
+       << ", \"visible\": " << culling.TrianglesDrawn()
+       << "},\n  \"parts\": {\"total\": " << plan.facts.parts << ", \"visible\": " << parts.size()
+       << ", \"ids\": " << JsonIds(parts) << "}";
+  if (plan.facts.rooms > 0)
+  {
+    // -1 is the outside (facade, roof): listed when its props are drawn, not counted as a room.
+    const auto insideRooms =
+      std::count_if(rooms.begin(), rooms.end(), [](long long room) { return room >= 0; });
+    json << ",\n  \"rooms\": {\"total\": " << plan.facts.rooms << ", \"visible\": " << insideRooms
+         << ", \"ids\": " << JsonIds(rooms) << "}";
+  }
+  if (vtkChunkedPolyDataMapper* chunked = pipeline.GetChunkedMapper())
+  {
+    json << ",\n  \"chunks\": {\"total\": " << chunked->GetNumberOfChunks()
+         << ", \"visible\": " << chunked->GetNumberOfChunksDrawn() << "}";
+  }
+  if (options.exact)
+  {
+    DescribeExact(json, window, renderer->GetActiveCamera(), pd, pipeline, culling);
+  }
+  if (!exported.empty())
+  {
+    json << ",\n  \"exported\": [";
+    for (std::size_t i = 0; i < exported.size(); ++i)
+      json << (i ? ", " : "") << JsonString(exported[i]);
+    json << "]";
+  }
+  json << "\n}\n";
+  std::cout << json.str();
+  if (!options.report.empty())
+  {
+    std::ofstream report(options.report);
+    report << json.str();
+    if (!report)
+      throw std::runtime_error("cannot write '" + options.report + "'");
   }
   return EXIT_SUCCESS;
 }
@@ -975,15 +2063,15 @@ struct BenchRow
   std::string method;
   std::string scene;
   vtkIdType triangles = 0;
-  double fragments = 0.0;      ///< mean over the timed frames
-  double frameMs = 0.0;        ///< median of (sort + render + glFinish)
-  double sortMs = 0.0;         ///< median
-  double setupMs = 0.0;        ///< the untimed warm-up frame (builds, shader compilation)
-  double meanAbsError = 0.0;   ///< vs peel:100, mean over frames
-  double badPercent = 0.0;     ///< % of covered pixels off by > 16 levels, mean over frames
-  double misordered = -1.0;    ///< ID oracle, mean over frames; < 0: not applicable
-  double compared = 0.0;       ///< pixels the oracle compared (outside the edge mask), mean
-  double misorderedAll = 0.0;  ///< the oracle without the edge mask (every pixel), mean
+  double fragments = 0.0;     ///< mean over the timed frames
+  double frameMs = 0.0;       ///< median of (sort + render + glFinish)
+  double sortMs = 0.0;        ///< median
+  double setupMs = 0.0;       ///< the untimed warm-up frame (builds, shader compilation)
+  double meanAbsError = 0.0;  ///< vs peel:100, mean over frames
+  double badPercent = 0.0;    ///< % of covered pixels off by > 16 levels, mean over frames
+  double misordered = -1.0;   ///< ID oracle, mean over frames; < 0: not applicable
+  double compared = 0.0;      ///< pixels the oracle compared (outside the edge mask), mean
+  double misorderedAll = 0.0; ///< the oracle without the edge mask (every pixel), mean
   bool skipped = false;
   std::string note;
 };
@@ -1508,6 +2596,18 @@ int Sort(const Options& options)
             << " ms -> " << options.out << "\n";
   return EXIT_SUCCESS;
 }
+/// A message as the one line the exit-code contract promises: VTK's "ERROR: In FILE, line N"
+/// headers dropped, line breaks folded.
+std::string OneLine(const std::string& message)
+{
+  static const std::regex header(R"((ERROR|Warning): In [^\n]*, line [0-9]+\n)");
+  std::string line = std::regex_replace(message, header, "");
+  std::replace(line.begin(), line.end(), '\n', ' ');
+  line = std::regex_replace(line, std::regex(" +"), " ");
+  while (!line.empty() && line.back() == ' ')
+    line.pop_back();
+  return line;
+}
 } // namespace
 
 int main(int argc, char* argv[])
@@ -1529,16 +2629,20 @@ int main(int argc, char* argv[])
     {
       return Bench(options);
     }
+    if (options.command == "cull")
+    {
+      return Cull(options);
+    }
     return options.command == "render" ? Render(options) : Sort(options);
   }
   catch (const UsageError& e)
   {
-    std::cerr << "scenevis: " << e.what() << "\n";
+    std::cerr << "scenevis: " << OneLine(e.what()) << "\n";
     return kExitUsage;
   }
   catch (const std::exception& e)
   {
-    std::cerr << "scenevis: " << e.what() << "\n";
+    std::cerr << "scenevis: " << OneLine(e.what()) << "\n";
     return kExitFailure;
   }
 }
