@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Sanitizer run: a second build with AddressSanitizer + UndefinedBehaviorSanitizer (+ LeakSanitizer,
-# which is part of ASan on Linux) of the tests that do not render, run with leak detection on, and
+# which is part of ASan on Linux) of the core tests and of every VTK-level module test (those that
+# render use OSMesa, so no X is needed), run with leak detection on, and
 # a short libFuzzer run of Core/Fuzz/FuzzBsp on its seed corpus when clang + libFuzzer are there.
 #
 #   bash scripts/sanitize.sh            # what scripts/test.sh (and so CI) runs after the main suite
@@ -40,13 +41,17 @@ export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
 
 # gtest_discover_tests runs the test binary at build time, so the options above already apply.
 cmake --build "$build" -j"$jobs" --target scenevis_core_tests scenevis_fuzz_bsp_replay \
-  SceneVisFiltersSortingCxxTests SceneVisFiltersSourcesCxxTests
+  SceneVisFiltersSortingCxxTests SceneVisFiltersSortingRenderingCxxTests \
+  SceneVisFiltersSourcesCxxTests SceneVisRenderingCullingCxxTests \
+  SceneVisRenderingPortalsCxxTests SceneVisRenderingTranslucencyCxxTests
 echo "sanitize: asan build done in $(( $(date +%s) - start )) s ($build)"
 
 # The VTK-level tests are named after their module (SceneVis::FiltersSortingCxx-TestX), rendering
 # ones included; those live in executables not built here (left to the main run) and are skipped:
 # ctest shows an empty command for them. Fuzz.BspCorpus replays Core/Fuzz/corpus and crashes.
-tests='^(Core\.|Fuzz\.|SceneVis::FiltersSortingCxx-|SceneVis::FiltersSourcesCxx-)'
+# Every VTK-level test of the modules too (they render with OSMesa, no X needed): LeakSanitizer
+# is the leak check of the filters, mappers, passes and cullers.
+tests='^(Core\.|Fuzz\.|SceneVis::)'
 unbuilt=$(cd "$build" && ctest -N -V -R "$tests" | awk '
   /Test command:/ { cmd = $0; sub(/^[0-9]+: Test command: */, "", cmd); empty = (cmd == "" || cmd ~ /^"/) }
   /^ *Test +#[0-9]+:/ { if (empty) { sub(/^ *Test +#[0-9]+: /, ""); print } }' | paste -sd'|' -)

