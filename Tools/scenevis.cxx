@@ -37,6 +37,7 @@
 #include <vtkDepthSortPolyData.h>
 #include <vtkDoubleArray.h>
 #include <vtkFrustumCoverageCuller.h>
+#include <vtkIdList.h>
 #include <vtkImageData.h>
 #include <vtkIntArray.h>
 #include <vtkLogger.h>
@@ -59,17 +60,23 @@
 #include <vtkTable.h>
 #include <vtkTextProperty.h>
 #include <vtkUnsignedCharArray.h>
+#include <vtkXMLPolyDataReader.h>
 #include <vtkXMLPolyDataWriter.h>
 
+#include <fcntl.h>
+#include <sys/resource.h>
 #include <sys/stat.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
 #include <chrono>
+#include <cerrno>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <fstream>
 #include <iomanip>
 #include <iostream>
@@ -320,6 +327,8 @@ Options ParseOptions(int argc, char* argv[])
       {
         std::copy_n(v.begin() + 3, 3, options.focal);
         options.hasFocal = true;
+        if (std::equal(v.begin(), v.begin() + 3, v.begin() + 3))
+          throw UsageError("--camera: the eye equals the focal point (no view direction)");
       }
     }
     else if (flag == "--parallel")
@@ -510,6 +519,179 @@ private:
   vtkNew<SilentWindow> Silent;
 };
 
+/**
+ * Bounds of the finite points of @p pd (VTK's bounds skip NaN points but not infinite ones, and
+ * a camera fitted to infinite bounds sees nothing of the polygons the sorters keep). All zero
+ * when no point is finite.
+ */
+void FiniteBounds(vtkPolyData* pd, double bounds[6])
+{
+  bool any = false;
+  vtkPoints* points = pd->GetPoints();
+  const vtkIdType count = points ? points->GetNumberOfPoints() : 0;
+  for (vtkIdType i = 0; i < count; ++i)
+  {
+    double p[3];
+    points->GetPoint(i, p);
+    if (!(std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2])))
+      continue;
+    for (int k = 0; k < 3; ++k)
+    {
+      bounds[2 * k] = any ? std::min(bounds[2 * k], p[k]) : p[k];
+      bounds[2 * k + 1] = any ? std::max(bounds[2 * k + 1], p[k]) : p[k];
+    }
+    any = true;
+  }
+  if (!any)
+    std::fill_n(bounds, 6, 0.0);
+}
+
+/**
+ * LoadModel() in a child process. VTK 9.1's PLY and glTF readers crash on some malformed files
+ * (Testing/BadInput lists them); the tool reads files it cannot trust, so a reader crash must cost
+ * the child, not the tool: the child writes what it read as an uncompressed .vtp to a temporary
+ * file (a few ms per 100k triangles), or its one-line error to a pipe. Without fork, reads in
+ * this process.
+ */
+vtkSmartPointer<vtkPolyData> LoadModelIsolated(const std::string& path, std::string& error)
+{
+  const char* tmp = std::getenv("TMPDIR");
+  std::string file = std::string(tmp && *tmp ? tmp : "/tmp") + "/scenevis-load-XXXXXX.vtp";
+  const int fd = ::mkstemps(&file[0], 4);
+  int channel[2] = { -1, -1 };
+  if (fd < 0 || ::pipe(channel) != 0)
+  {
+    if (fd >= 0)
+    {
+      ::close(fd);
+      std::remove(file.c_str());
+    }
+    return scenevis::testing::LoadModel(path, &error);
+  }
+  ::close(fd);
+  std::fflush(stdout);
+  std::fflush(stderr);
+  const pid_t child = ::fork();
+  if (child == 0)
+  {
+    ::close(channel[0]);
+    const rlimit noCore{ 0, 0 };
+    ::setrlimit(RLIMIT_CORE, &noCore); // a reader crash is reported, not dumped
+    // Some readers print straight to stderr (vtkPLY: a line per missing element), and glibc
+    // reports heap corruption there: the parent says what happened, in one line.
+    const int devNull = ::open("/dev/null", O_WRONLY);
+    if (devNull >= 0)
+      ::dup2(devNull, STDERR_FILENO);
+    std::string message;
+    vtkSmartPointer<vtkPolyData> pd = scenevis::testing::LoadModel(path, &message);
+    if (pd)
+    {
+      vtkNew<vtkXMLPolyDataWriter> writer;
+      writer->SetFileName(file.c_str());
+      writer->SetInputData(pd);
+      writer->SetCompressorTypeToNone();
+      writer->SetDataModeToAppended();
+      writer->EncodeAppendedDataOff();
+      if (writer->Write() != 1)
+        message = "cannot pass '" + path + "' on: writing " + file + " failed";
+    }
+    if (!message.empty())
+    {
+      const ssize_t written = ::write(channel[1], message.data(), message.size());
+      ::_exit(written >= 0 ? 1 : 2);
+    }
+    ::_exit(0);
+  }
+  ::close(channel[1]);
+  if (child < 0)
+  {
+    ::close(channel[0]);
+    std::remove(file.c_str());
+    return scenevis::testing::LoadModel(path, &error);
+  }
+  std::string message;
+  char buffer[512];
+  for (ssize_t n; (n = ::read(channel[0], buffer, sizeof(buffer))) != 0;)
+  {
+    if (n > 0)
+      message.append(buffer, static_cast<std::size_t>(n));
+    else if (errno != EINTR)
+      break;
+  }
+  ::close(channel[0]);
+  int status = 0;
+  while (::waitpid(child, &status, 0) < 0 && errno == EINTR)
+  {
+  }
+  vtkSmartPointer<vtkPolyData> result;
+  if (WIFSIGNALED(status))
+  {
+    error = "cannot read '" + path + "': VTK's reader crashed on it (signal " +
+      std::to_string(WTERMSIG(status)) + ", " + ::strsignal(WTERMSIG(status)) + ")";
+  }
+  else if (WIFEXITED(status) && WEXITSTATUS(status) == 0)
+  {
+    vtkNew<vtkXMLPolyDataReader> reader;
+    reader->SetFileName(file.c_str());
+    reader->Update();
+    result = vtkSmartPointer<vtkPolyData>::New();
+    result->ShallowCopy(reader->GetOutput());
+  }
+  else
+  {
+    error = message.empty() ? "cannot read '" + path + "'" : message;
+  }
+  std::remove(file.c_str());
+  return result;
+}
+
+/**
+ * Removes the cells that use a NaN or infinite point and returns how many; the points themselves
+ * are moved onto a finite one (point data stays as it is). No renderer can draw such cells, and
+ * VTK's point bounds (hence camera fitting and clipping ranges) skip NaN points but not infinite
+ * ones, so one such point would leave every method an empty image.
+ */
+vtkIdType RemoveCellsWithNonFinitePoints(vtkPolyData* pd)
+{
+  vtkPoints* points = pd->GetPoints();
+  const vtkIdType count = points ? points->GetNumberOfPoints() : 0;
+  std::vector<vtkIdType> bad;
+  for (vtkIdType i = 0; i < count; ++i)
+  {
+    double p[3];
+    points->GetPoint(i, p);
+    if (!(std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2])))
+      bad.push_back(i);
+  }
+  if (bad.empty())
+    return 0;
+  pd->BuildLinks();
+  vtkNew<vtkIdList> cells;
+  std::set<vtkIdType> removed;
+  for (vtkIdType point : bad)
+  {
+    pd->GetPointCells(point, cells);
+    for (vtkIdType k = 0; k < cells->GetNumberOfIds(); ++k)
+    {
+      if (removed.insert(cells->GetId(k)).second)
+        pd->DeleteCell(cells->GetId(k));
+    }
+  }
+  pd->RemoveDeletedCells();
+  // No cell uses them now, but point bounds still would: park them on a finite point.
+  double parked[3] = { 0.0, 0.0, 0.0 };
+  for (vtkIdType i = 0; i < count; ++i)
+  {
+    points->GetPoint(i, parked);
+    if (std::isfinite(parked[0]) && std::isfinite(parked[1]) && std::isfinite(parked[2]))
+      break;
+  }
+  for (vtkIdType point : bad)
+    points->SetPoint(point, parked);
+  points->Modified();
+  return static_cast<vtkIdType>(removed.size());
+}
+
 /// The portal scene format (vtkPortalCuller.h): one polygon per portal, RoomA/RoomB cell data.
 vtkSmartPointer<vtkPolyData> PortalPolyData(const scenevis::scenes::BuildingScene& building)
 {
@@ -607,11 +789,17 @@ LoadedScene LoadScene(const Options& options)
   std::string error;
   {
     QuietVtkOutput quiet;
-    loaded.polydata = scenevis::testing::LoadModel(name, &error);
+    loaded.polydata = LoadModelIsolated(name, error);
   }
   if (!loaded.polydata)
   {
     throw std::runtime_error(error);
+  }
+  if (const vtkIdType removed = RemoveCellsWithNonFinitePoints(loaded.polydata))
+  {
+    description += ", " + std::to_string(removed) + " cell(s) with NaN/Inf points removed";
+    if (loaded.polydata->GetNumberOfCells() == 0)
+      throw std::runtime_error("cannot use '" + name + "': every cell has a NaN/Inf point");
   }
   // A translucent colour as RGBA cell scalars like the demo scenes: the parts' own colours of
   // imported scenes (glTF, VRML: a "Colors" array) with --opacity, else one uniform colour.
@@ -653,13 +841,16 @@ void SetUpCamera(const Options& options, vtkRenderer* renderer, vtkPolyData* pd,
   vtkCamera* camera = renderer->GetActiveCamera();
   camera->SetParallelProjection(options.parallel);
   double bounds[6];
-  pd->GetBounds(bounds);
+  FiniteBounds(pd, bounds);
   const double center[3] = { (bounds[0] + bounds[1]) / 2, (bounds[2] + bounds[3]) / 2,
     (bounds[4] + bounds[5]) / 2 };
   const double defaultUp[3] = { 0.0, zUp ? 0.0 : 1.0, zUp ? 1.0 : 0.0 };
   const double* up = options.hasUp ? options.up : defaultUp;
   if (options.hasCamera)
   {
+    if (!options.hasFocal && std::equal(options.eye, options.eye + 3, center))
+      throw UsageError("--camera: the eye is the scene's centre, the default focal point; give "
+                       "a focal point too (EX,EY,EZ,FX,FY,FZ)");
     camera->SetPosition(options.eye);
     camera->SetFocalPoint(options.hasFocal ? options.focal : center);
     camera->SetViewUp(up[0], up[1], up[2]);
@@ -2553,7 +2744,7 @@ int Sort(const Options& options)
   vtkNew<vtkCamera> camera;
   camera->SetParallelProjection(options.parallel);
   double bounds[6];
-  scene.polydata->GetBounds(bounds);
+  FiniteBounds(scene.polydata, bounds);
   const double center[3] = { (bounds[0] + bounds[1]) / 2, (bounds[2] + bounds[3]) / 2,
     (bounds[4] + bounds[5]) / 2 };
   if (options.hasCamera)
@@ -2563,7 +2754,8 @@ int Sort(const Options& options)
   }
   else
   {
-    const double size = std::max({ bounds[1] - bounds[0], bounds[3] - bounds[2], bounds[5] - bounds[4], 1e-12 });
+    const double size =
+      std::max({ bounds[1] - bounds[0], bounds[3] - bounds[2], bounds[5] - bounds[4], 1e-12 });
     camera->SetFocalPoint(center);
     camera->SetPosition(center[0] + size, center[1] + size, center[2] + 2 * size);
   }

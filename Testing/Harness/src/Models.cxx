@@ -34,6 +34,7 @@
 #include <fstream>
 #include <map>
 #include <sstream>
+#include <stdexcept>
 #include <unistd.h>
 
 namespace scenevis
@@ -292,7 +293,36 @@ std::string DataFile(const std::string& key)
   return std::string();
 }
 
+namespace
+{
+vtkSmartPointer<vtkPolyData> LoadModelUnguarded(const std::string& path, std::string* error);
+}
+
 vtkSmartPointer<vtkPolyData> LoadModel(const std::string& path, std::string* error)
+{
+  std::string why;
+  vtkSmartPointer<vtkPolyData> result;
+  try
+  {
+    result = LoadModelUnguarded(path, &why);
+  }
+  catch (const std::exception& e)
+  {
+    // VTK's glTF loader lets jsoncpp's exceptions through on some malformed files.
+    why = "cannot read '" + path + "': " + e.what();
+  }
+  if (!result && error)
+  {
+    // One line: reader messages can span several.
+    std::replace(why.begin(), why.end(), '\n', ' ');
+    *error = why;
+  }
+  return result;
+}
+
+namespace
+{
+vtkSmartPointer<vtkPolyData> LoadModelUnguarded(const std::string& path, std::string* error)
 {
   auto fail = [&](const std::string& why) -> vtkSmartPointer<vtkPolyData> {
     if (error)
@@ -411,6 +441,7 @@ vtkSmartPointer<vtkPolyData> LoadModel(const std::string& path, std::string* err
   result->ShallowCopy(output);
   return result;
 }
+} // namespace
 
 } // namespace testing
 } // namespace scenevis
