@@ -658,8 +658,9 @@ void vtkChunkedPolyDataMapper::RenderPieceStart(vtkRenderer* ren, vtkActor* acto
     if (!in.WarnedMismatch)
     {
       in.WarnedMismatch = true;
-      vtkWarningMacro("The triangle index buffer does not match the chunk partition (polygons "
-                      "of 7+ points triangulated differently?): drawing everything (warned once).");
+      vtkWarningMacro("The triangle index buffer does not match the chunk partition (VTK drops "
+                      "triangles with two points at the same place, and may triangulate polygons "
+                      "of 7+ points differently): drawing everything (warned once).");
     }
   }
   vtkCamera* cam = ren->GetActiveCamera();

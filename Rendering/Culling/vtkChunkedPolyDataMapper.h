@@ -36,8 +36,9 @@
  * normals through the gl_PrimitiveID offset set per range. Everything else falls back to the
  * superclass's full draw (no culling): a hardware selector (picking), representations other
  * than surface, edge visibility, an unusable camera, or a triangle index buffer whose size does
- * not match the partition (e.g. polygons of 7+ points that VTK triangulated differently; warned
- * once).
+ * not match the partition (warned once): VTK 9.1 leaves out of the index buffer every triangle
+ * with two points at the same coordinates (real CAD data has them, e.g. KiCad parts; remove them
+ * first) and may triangulate polygons of 7+ points differently.
  *
  * Limits: picking reports cell ids of the reordered copy (GetInputCellId() maps them back);
  * memory: the reordered polygon connectivity and cell data are a second copy of the input's.

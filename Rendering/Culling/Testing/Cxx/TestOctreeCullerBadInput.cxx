@@ -1,6 +1,8 @@
 // Specification: bad input to vtkOctreeCuller gives correct output or a clear VTK warning, never
 // a crash: props with empty / NaN bounds, 2D props, unusable cameras, a zero-size viewport, and
-// props added, removed and moved between frames (all three update modes).
+// props added, removed and moved between frames (all four update modes, event-driven included),
+// in every culling mode: frustum, distance, small-feature and normal-cone culling, alone and
+// together.
 #include "vtkOctreeCuller.h"
 
 #include "scenevis/testing/RenderWindow.h"
@@ -16,6 +18,7 @@
 #include <vtkPolyData.h>
 #include <vtkPolyDataMapper.h>
 #include <vtkPolyDataMapper2D.h>
+#include <vtkProperty.h>
 #include <vtkRenderWindow.h>
 #include <vtkRenderer.h>
 
@@ -50,8 +53,8 @@ vtkSmartPointer<vtkActor> Cube(double x, double y, double z)
 }
 
 /// Cull a copy of @p props; returns the drawn ones (the list's first listLength entries).
-std::vector<vtkProp*> Run(vtkOctreeCuller* culler, vtkRenderer* ren, std::vector<vtkProp*> props,
-  double* total = nullptr)
+std::vector<vtkProp*> Run(
+  vtkOctreeCuller* culler, vtkRenderer* ren, std::vector<vtkProp*> props, double* total = nullptr)
 {
   int length = static_cast<int>(props.size());
   int initialized = 0;
@@ -152,9 +155,71 @@ int TestOctreeCullerBadInput(int, char*[])
   int zero = 0, init = 0;
   ok &= Check(culler->Cull(ren, nullptr, zero, init) == 0.0 && zero == 0, "empty list");
 
-  // Moves between frames, per update mode.
+  // Every culling mode, alone and all together, on the same bad props and bad cameras: the
+  // unbounded (empty, NaN, 2D, no mapper) props are always kept, unusable cameras and viewports
+  // cull nothing, and the contract holds. Normal cones see back-face-culled actors, including
+  // the NaN one (its cone test must not cull on NaN arithmetic).
+  {
+    struct Mode
+    {
+      const char* name;
+      bool normalCones;
+      double minimumPixels;
+      double maximumDistance;
+    };
+    const Mode modes[] = { { "normal cones", true, 0.0, VTK_DOUBLE_MAX },
+      { "small features 4 px", false, 4.0, VTK_DOUBLE_MAX }, { "distance 100", false, 0.0, 100.0 },
+      { "all modes", true, 4.0, 100.0 } };
+    for (vtkActor* a : { visible.GetPointer(), behind.GetPointer(), empty.GetPointer(),
+           nanActor.GetPointer(), noMapper.GetPointer() })
+    {
+      a->GetProperty()->BackfaceCullingOn();
+    }
+    for (const Mode& m : modes)
+    {
+      const std::string name = m.name;
+      vtkNew<vtkOctreeCuller> c;
+      c->SetNormalConeCulling(m.normalCones);
+      c->SetMinimumPixelSize(m.minimumPixels);
+      c->SetMaximumDistance(m.maximumDistance);
+      drawn = Run(c, ren, all);
+      ok &= Check(drawn.size() == 5 && !Has(drawn, behind) && Has(drawn, visible) &&
+          Has(drawn, empty) && Has(drawn, nanActor) && Has(drawn, flat) && Has(drawn, noMapper),
+        name + ": unbounded props kept, the one behind culled, the visible one drawn");
+      cam->SetPosition(std::nan(""), 0, 10);
+      drawn = Run(c, ren, all);
+      ok &= Check(drawn.size() == all.size() && c->GetCullingSkipped(), name + ": NaN camera");
+      cam->SetPosition(0, 0, 10);
+      cam->SetViewAngle(0.0);
+      drawn = Run(c, ren, all);
+      ok &= Check(!Has(drawn, behind) && Has(drawn, flat), name + ": zero view angle");
+      cam->SetViewAngle(30.0);
+      cam->ParallelProjectionOn();
+      cam->SetParallelScale(0.0);
+      drawn = Run(c, ren, all);
+      ok &= Check(drawn.size() >= 4 && Has(drawn, flat), name + ": zero parallel scale");
+      cam->ParallelProjectionOff();
+      ren->SetViewport(0.5, 0.5, 0.5, 0.5);
+      drawn = Run(c, ren, all);
+      ok &= Check(drawn.size() == all.size(), name + ": zero-size viewport");
+      ren->SetViewport(0, 0, 1, 1);
+      ren->GetCullers()->RemoveAllItems();
+      ren->AddCuller(c);
+      window->Render();
+      ok &= Check(c->GetNumberOfPropsDrawn() == 5, name + ": render: 5 drawn");
+      ren->GetCullers()->RemoveAllItems();
+      ren->AddCuller(culler);
+    }
+    for (vtkActor* a : { visible.GetPointer(), behind.GetPointer(), empty.GetPointer(),
+           nanActor.GetPointer(), noMapper.GetPointer() })
+    {
+      a->GetProperty()->BackfaceCullingOff();
+    }
+  }
+
+  // Moves between frames, per update mode (UPDATE_ON_EVENTS last: it is the default).
   for (int mode = vtkOctreeCuller::UPDATE_BOUNDS_EVERY_FRAME;
-       mode <= vtkOctreeCuller::UPDATE_MANUAL; ++mode)
+       mode <= vtkOctreeCuller::UPDATE_ON_EVENTS; ++mode)
   {
     culler->SetUpdateMode(mode);
     std::vector<vtkProp*> two{ visible, behind };
@@ -199,8 +264,8 @@ int TestOctreeCullerBadInput(int, char*[])
       "front-to-back: 2D prop first, then near, mid, far");
     culler->SetSortingStyle(VTK_CULLER_SORT_BACK_TO_FRONT);
     drawn = Run(culler, ren, { farCube, flat, nearCube, midCube });
-    ok &= Check(drawn.size() == 4 && drawn[0] == farCube && drawn[2] == nearCube,
-      "back-to-front: far first");
+    ok &= Check(
+      drawn.size() == 4 && drawn[0] == farCube && drawn[2] == nearCube, "back-to-front: far first");
     culler->SetSortingStyle(VTK_CULLER_SORT_NONE);
   }
 
