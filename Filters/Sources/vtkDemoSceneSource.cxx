@@ -120,11 +120,80 @@ const char* vtkDemoSceneSource::GetSceneName(int scene)
 }
 
 //------------------------------------------------------------------------------
+namespace
+{
+/// Fewest triangles a CAD part gets (a 100-part assembly asked for 100 triangles has 4,848).
+constexpr vtkIdType kMinTrianglesPerPart = 40;
+/// Triangles per room of the building, about (3 x 4 x 3 rooms: 5,252 triangles).
+constexpr vtkIdType kTrianglesPerRoom = 150;
+
+/// @p value clamped to [lo, hi]; @p clamped says whether it had to be.
+template <typename T>
+T Clamped(T value, T lo, T hi, bool& clamped)
+{
+  clamped = value < lo || value > hi;
+  return value < lo ? lo : (value > hi ? hi : value);
+}
+} // namespace
+
+#define SCENEVIS_CLAMPED_SETTER(Name, Type, Lo, Hi)                                              \
+  void vtkDemoSceneSource::Set##Name(Type count)                                               \
+  {                                                                                             \
+    bool clamped = false;                                                                       \
+    const Type value = Clamped<Type>(count, Lo, Hi, clamped);                                  \
+    if (clamped)                                                                                \
+    {                                                                                           \
+      vtkWarningMacro(#Name " " << count << " is outside [" << (Lo) << ", " << (Hi)             \
+                                << "]: using " << value << ".");                                \
+    }                                                                                           \
+    if (this->Name != value)                                                                    \
+    {                                                                                           \
+      this->Name = value;                                                                       \
+      this->Modified();                                                                         \
+    }                                                                                           \
+  }
+
+SCENEVIS_CLAMPED_SETTER(TriangleCount, vtkIdType, 64, VTK_ID_MAX)
+SCENEVIS_CLAMPED_SETTER(PartCount, vtkIdType, 1, 10000000)
+SCENEVIS_CLAMPED_SETTER(Floors, int, 1, 1000)
+SCENEVIS_CLAMPED_SETTER(RoomsX, int, 1, 1000)
+SCENEVIS_CLAMPED_SETTER(RoomsY, int, 1, 1000)
+#undef SCENEVIS_CLAMPED_SETTER
+
+//------------------------------------------------------------------------------
+vtkIdType vtkDemoSceneSource::EstimatedTriangleCount() const
+{
+  switch (this->Scene)
+  {
+    case SCENE_SPHERE_GRID:
+      return this->TriangleCount;
+    case SCENE_CAD_ASSEMBLY:
+      // Every part has at least a few dozen triangles, whatever TriangleCount says.
+      return std::max(this->TriangleCount, this->PartCount * kMinTrianglesPerPart);
+    case SCENE_BUILDING:
+      return static_cast<vtkIdType>(this->Floors) * this->RoomsX * this->RoomsY *
+        kTrianglesPerRoom;
+    default:
+      return 0;
+  }
+}
+
+//------------------------------------------------------------------------------
 int vtkDemoSceneSource::RequestData(
   vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
 {
   vtkPolyData* output = vtkPolyData::GetData(outputVector);
   namespace scenes = scenevis::scenes;
+  const vtkIdType estimate = this->EstimatedTriangleCount();
+  if (estimate > this->MaximumTriangleCount)
+  {
+    vtkErrorMacro("Cannot generate the " << GetSceneName(this->Scene) << " scene: about "
+                                         << estimate << " triangles, more than "
+                                         << "MaximumTriangleCount (" << this->MaximumTriangleCount
+                                         << "; about 100 bytes each at the peak).");
+    output->Initialize();
+    return 1;
+  }
   try
   {
     switch (this->Scene)

@@ -48,19 +48,33 @@ public:
   bool SetSceneByName(const char* name);
   static const char* GetSceneName(int scene);
 
-  /// Approximate total triangles (spheres, CAD). Default 20,000.
-  vtkSetClampMacro(TriangleCount, vtkIdType, 64, VTK_ID_MAX);
+  ///@{
+  /**
+   * Scene size. Values below the minimum (or above the maximum) are clamped, with a warning.
+   * TriangleCount: approximate total triangles of the spheres and CAD scenes (>= 64, default
+   * 20,000). PartCount: parts of the CAD assembly (1 to 10^7, default 1,000). Floors, RoomsX,
+   * RoomsY: building size (1 to 1000 each, defaults 3 x 4 x 3).
+   */
+  virtual void SetTriangleCount(vtkIdType count);
   vtkGetMacro(TriangleCount, vtkIdType);
-  /// Parts of the CAD assembly. Default 1,000.
-  vtkSetClampMacro(PartCount, vtkIdType, 1, 10000000);
+  virtual void SetPartCount(vtkIdType count);
   vtkGetMacro(PartCount, vtkIdType);
-  /// Building size. Defaults 3 x 4 x 3.
-  vtkSetClampMacro(Floors, int, 1, 1000);
+  virtual void SetFloors(int count);
   vtkGetMacro(Floors, int);
-  vtkSetClampMacro(RoomsX, int, 1, 1000);
+  virtual void SetRoomsX(int count);
   vtkGetMacro(RoomsX, int);
-  vtkSetClampMacro(RoomsY, int, 1, 1000);
+  virtual void SetRoomsY(int count);
   vtkGetMacro(RoomsY, int);
+  ///@}
+
+  /**
+   * The largest scene generated, in (estimated) triangles: a larger request is refused up front
+   * with one error and an empty output, instead of running the machine out of memory (a
+   * generated triangle costs about 100 bytes at its peak). Default 100,000,000.
+   */
+  vtkSetClampMacro(MaximumTriangleCount, vtkIdType, 1, VTK_ID_MAX);
+  vtkGetMacro(MaximumTriangleCount, vtkIdType);
+
   vtkSetMacro(Seed, unsigned int);
   vtkGetMacro(Seed, unsigned int);
   /// Translation of the CAD assembly (to test precision far from the origin).
@@ -73,6 +87,9 @@ protected:
 
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 
+  /// The size of the scene the settings ask for, in triangles (an estimate for CAD and building).
+  vtkIdType EstimatedTriangleCount() const;
+
   int Scene = SCENE_SPHERE_GRID;
   vtkIdType TriangleCount = 20000;
   vtkIdType PartCount = 1000;
@@ -80,6 +97,7 @@ protected:
   int RoomsX = 4;
   int RoomsY = 3;
   unsigned int Seed = 1;
+  vtkIdType MaximumTriangleCount = 100000000;
   double Origin[3] = { 0.0, 0.0, 0.0 };
 
 private:

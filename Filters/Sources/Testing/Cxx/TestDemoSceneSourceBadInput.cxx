@@ -1,14 +1,11 @@
 // Specification: vtkDemoSceneSource with bad parameters (issue 8).
 // - Zero or negative counts are clamped to the documented minimum (64 triangles, 1 part, 1 floor
-//   and 1 room per row) and give an ordinary, non-empty scene. (Silently: the setters are
-//   vtkSetClampMacro; see the note in the report of issue 8.)
+//   and 1 room per row), with a warning from the setter, and give an ordinary, non-empty scene.
 // - Scene ids out of range are clamped; unknown scene names are refused and change nothing.
-// - Counts too large to generate (more than 32-bit point ids, or more rooms than the generator
-//   accepts) give ONE clear error naming the scene and the reason, and an empty output; the next
-//   update with sane counts gives the ordinary scene again.
-// Only counts that the generator refuses up front are used here: counts that are accepted but
-// exhaust memory (e.g. 10^7 CAD parts) take tens of seconds and gigabytes before failing with
-// std::bad_alloc, which is no test for a shared machine.
+// - Scenes larger than MaximumTriangleCount (default 10^8, about 10 GB at the peak) are refused
+//   up front: ONE clear error naming the scene and the reason, an empty output, no time spent;
+//   the next update with sane counts gives the ordinary scene again. Below that limit, the
+//   generator's own limits (32-bit point ids, rooms) give the same kind of error.
 #include "vtkDemoSceneSource.h"
 
 #include "vtkCommand.h"
@@ -77,6 +74,7 @@ int TestDemoSceneSourceBadInput(int, char*[])
     Observed spheres;
     spheres.source->SetScene(vtkDemoSceneSource::SCENE_SPHERE_GRID);
     spheres.source->SetTriangleCount(bad);
+    EXPECT(spheres.observer->GetWarning());
     EXPECT(spheres.source->GetTriangleCount() == 64);
     EXPECT(spheres.Update() > 0);
     EXPECT(spheres.Quiet());
@@ -84,6 +82,7 @@ int TestDemoSceneSourceBadInput(int, char*[])
     Observed cad;
     cad.source->SetScene(vtkDemoSceneSource::SCENE_CAD_ASSEMBLY);
     cad.source->SetPartCount(bad);
+    EXPECT(cad.observer->GetWarning());
     EXPECT(cad.source->GetPartCount() == 1);
     EXPECT(cad.Update() > 0);
     EXPECT(cad.Quiet());
@@ -93,6 +92,7 @@ int TestDemoSceneSourceBadInput(int, char*[])
     building.source->SetFloors(static_cast<int>(bad));
     building.source->SetRoomsX(static_cast<int>(bad));
     building.source->SetRoomsY(static_cast<int>(bad));
+    EXPECT(building.observer->GetWarning());
     EXPECT(building.source->GetFloors() == 1 && building.source->GetRoomsX() == 1 &&
       building.source->GetRoomsY() == 1);
     EXPECT(building.Update() > 0);
@@ -112,7 +112,7 @@ int TestDemoSceneSourceBadInput(int, char*[])
     EXPECT(std::string(vtkDemoSceneSource::GetSceneName(42)) == "unknown");
   }
 
-  // Too many triangles for 32-bit ids: one clear error, an empty output; then recovery.
+  // 1e11 triangles: over MaximumTriangleCount, refused up front; then recovery.
   {
     Observed spheres;
     spheres.source->SetScene(vtkDemoSceneSource::SCENE_SPHERE_GRID);
@@ -120,6 +120,11 @@ int TestDemoSceneSourceBadInput(int, char*[])
     EXPECT(spheres.Update() == 0);
     EXPECT(spheres.source->GetOutput()->GetNumberOfPoints() == 0);
     EXPECT(spheres.ErrorSays("Cannot generate the spheres scene"));
+    EXPECT(spheres.ErrorSays("MaximumTriangleCount"));
+    EXPECT(spheres.ErrorCount() == 1);
+    // With the limit lifted, the generator's own limit (32-bit point ids) speaks, up front too.
+    spheres.source->SetMaximumTriangleCount(VTK_ID_MAX);
+    EXPECT(spheres.Update() == 0);
     EXPECT(spheres.ErrorSays("32-bit"));
     EXPECT(spheres.ErrorCount() == 1);
     spheres.source->SetTriangleCount(1000);
@@ -135,6 +140,10 @@ int TestDemoSceneSourceBadInput(int, char*[])
     building.source->SetRoomsY(1000);
     EXPECT(building.Update() == 0);
     EXPECT(building.ErrorSays("Cannot generate the building scene"));
+    EXPECT(building.ErrorSays("MaximumTriangleCount"));
+    EXPECT(building.ErrorCount() == 1);
+    building.source->SetMaximumTriangleCount(VTK_ID_MAX);
+    EXPECT(building.Update() == 0);
     EXPECT(building.ErrorSays("too many rooms"));
     EXPECT(building.ErrorCount() == 1);
     building.source->SetFloors(2);
@@ -142,6 +151,21 @@ int TestDemoSceneSourceBadInput(int, char*[])
     building.source->SetRoomsY(2);
     EXPECT(building.Update() > 0);
     EXPECT(building.Quiet());
+  }
+  // Sizes the generators would accept but that exhaust memory: refused up front, at once.
+  {
+    Observed cad;
+    cad.source->SetScene(vtkDemoSceneSource::SCENE_CAD_ASSEMBLY);
+    cad.source->SetPartCount(10000000);
+    EXPECT(cad.Update() == 0);
+    EXPECT(cad.ErrorSays("MaximumTriangleCount"));
+    Observed building;
+    building.source->SetScene(vtkDemoSceneSource::SCENE_BUILDING);
+    building.source->SetFloors(100);
+    building.source->SetRoomsX(100);
+    building.source->SetRoomsY(100);
+    EXPECT(building.Update() == 0);
+    EXPECT(building.ErrorSays("MaximumTriangleCount"));
   }
   return failures == 0 ? EXIT_SUCCESS : EXIT_FAILURE;
 }
