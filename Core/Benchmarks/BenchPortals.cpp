@@ -1,9 +1,11 @@
 // Portal culling benchmarks: per-frame cull time and the fraction of triangles culled for eyes
 // inside the generated building, for each mode (screen rectangles, exact frustum, PVS lookup,
-// frustum only), plus graph and PVS build times. One object per room (its geometry's bounds and
+// frustum only), plus graph and PVS build times, and the eye's room lookup (grid vs. the linear
+// scan over rooms and portals it replaced). One object per room (its geometry's bounds and
 // triangle count). `--benchmark_filter=Smoke` runs a tiny building quickly.
 //
 //   build-portal/bin/scenevis_core_bench --benchmark_filter='Portal'
+#include "scenevis/PortalGeometry.h"
 #include "scenevis/PortalGraph.h"
 #include "scenevis/PortalPvs.h"
 #include "scenevis/PortalTraversal.h"
@@ -151,6 +153,68 @@ void BM_Smoke_PortalFrame(benchmark::State& state)
   runFrames(state, 1, 3, 3);
 }
 BENCHMARK(BM_Smoke_PortalFrame)->DenseRange(0, 3)->Unit(benchmark::kMicrosecond);
+
+/// The eye's rooms for the views' eyes: PortalGraph::locate() (grid) or the linear scan it
+/// replaced (every room's inside() test, every portal's distance), same answers.
+void locateEyes(benchmark::State& state, bool linear)
+{
+  const PortalFixture& f = fixture(10, 10, 10);
+  const PortalGraph& g = f.graph;
+  const double reach = 0.07; // the near-plane corners of the views (0.05, 60 degrees, 4:3)
+  std::size_t frame = 0, found = 0;
+  std::vector<std::int32_t> nodes;
+  for (auto _ : state)
+  {
+    const glm::dvec3& eye = f.views[frame++ % f.views.size()].eye;
+    nodes.clear();
+    if (linear)
+    {
+      for (std::int32_t r = 0; r < g.roomCount(); ++r)
+      {
+        if (g.inside(r, eye))
+        {
+          nodes.push_back(r);
+        }
+      }
+      for (const GraphPortal& p : g.portals())
+      {
+        const Box& b = p.bounds;
+        if (eye.x < b.lo.x - reach || eye.y < b.lo.y - reach || eye.z < b.lo.z - reach ||
+          eye.x > b.hi.x + reach || eye.y > b.hi.y + reach || eye.z > b.hi.z + reach)
+        {
+          continue;
+        }
+        if (geometry::distanceToConvex(p.hull, glm::dvec3(p.plane), eye) <= reach)
+        {
+          nodes.push_back(p.nodeA);
+          nodes.push_back(p.nodeB);
+        }
+      }
+    }
+    else
+    {
+      nodes = g.locate(eye, reach).nodes;
+    }
+    found += nodes.size();
+    benchmark::DoNotOptimize(nodes.data());
+  }
+  state.counters["nodes_per_eye"] =
+    static_cast<double>(found) / static_cast<double>(state.iterations());
+  state.counters["rooms"] = g.roomCount();
+  state.SetLabel(linear ? "linear scan" : "grid");
+}
+
+void BM_PortalLocate1000Rooms(benchmark::State& state)
+{
+  locateEyes(state, false);
+}
+BENCHMARK(BM_PortalLocate1000Rooms)->Unit(benchmark::kMicrosecond);
+
+void BM_PortalLocateLinearScan1000Rooms(benchmark::State& state)
+{
+  locateEyes(state, true);
+}
+BENCHMARK(BM_PortalLocateLinearScan1000Rooms)->Unit(benchmark::kMicrosecond);
 
 void BM_PortalGraphBuild1000Rooms(benchmark::State& state)
 {

@@ -1,6 +1,7 @@
 // Specification of cells-and-portals visibility: graph validation, eye location, the traversal in
 // both narrowing modes (corridor, corner, cycles, eye on a portal, portal behind the eye,
 // outside), the PVS and its file, and conservativeness against a ray-cast oracle.
+#include "scenevis/PortalGeometry.h"
 #include "scenevis/PortalGraph.h"
 #include "scenevis/PortalPvs.h"
 #include "scenevis/PortalTraversal.h"
@@ -248,7 +249,10 @@ struct RayOracle
       {
         const double x = -1.0 + (2.0 * i + 1.0) / res, y = -1.0 + (2.0 * j + 1.0) / res;
         const glm::dvec4 f = inv * glm::dvec4(x, y, 1.0, 1.0);
-        const glm::dvec3 dir = glm::normalize(glm::dvec3(f) / f.w - view.eye);
+        // Parallel projection: each ray starts on the near rectangle (no near test needed).
+        const glm::dvec4 n = inv * glm::dvec4(x, y, -1.0, 1.0);
+        const glm::dvec3 origin = view.parallel ? glm::dvec3(n) / n.w : view.eye;
+        const glm::dvec3 dir = glm::normalize(glm::dvec3(f) / f.w - origin);
         double best = std::numeric_limits<double>::infinity();
         std::size_t hit = SIZE_MAX;
         for (std::size_t p = 0; p < planes.size(); ++p)
@@ -258,12 +262,12 @@ struct RayOracle
           {
             continue;
           }
-          const double t = -(glm::dot(glm::dvec3(planes[p]), view.eye) + planes[p].w) / denom;
-          if (!(t > 0.0) || t >= best || t * glm::dot(dir, forward) < znear)
+          const double t = -(glm::dot(glm::dvec3(planes[p]), origin) + planes[p].w) / denom;
+          if (!(t > 0.0) || t >= best || (!view.parallel && t * glm::dot(dir, forward) < znear))
           {
             continue;
           }
-          const glm::dvec3 q = view.eye + t * dir;
+          const glm::dvec3 q = origin + t * dir;
           if (inPolygon(p, q))
           {
             best = t;
@@ -433,6 +437,59 @@ TEST(PortalGraph, LocatesRandomEyesInTheGeneratedBuilding)
   EXPECT_GE(correct, 360) << "misses only inside furniture and stair steps";
 }
 
+TEST(PortalGraph, GridLocateFindsWhatALinearScanFinds)
+{
+  // locate() tests only the rooms and portals its grid lists near the eye; a brute-force scan
+  // over every room (inside()) and every portal (distance) must find the same nodes.
+  const auto b = scenes::building(3, 6, 5, 8);
+  const PortalGraph g = PortalGraph::build(cellSceneOf(b));
+  const glm::ivec3 dims = g.gridDimensions();
+  const int cells = dims.x * dims.y * dims.z;
+  EXPECT_GE(cells, g.roomCount() / 4);
+  EXPECT_LE(cells, g.roomCount() * 4);
+  std::mt19937_64 rng(31);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  const Box& bb = g.buildingBounds();
+  int inRooms = 0, nearPortals = 0;
+  for (int i = 0; i < 3000; ++i)
+  {
+    glm::dvec3 eye = bb.lo - glm::dvec3(1.0) +
+      glm::dvec3(u(rng), u(rng), u(rng)) * (bb.hi - bb.lo + glm::dvec3(2.0));
+    if (i % 3 == 0)
+    {
+      // On or next to a portal: the near-portal rule matters there.
+      const GraphPortal& p = g.portals()[rng() % g.portals().size()];
+      eye = p.centroid + (u(rng) - 0.5) * 0.2 * glm::dvec3(p.plane);
+    }
+    const double reach = i % 2 ? 0.07 : 0.0;
+    std::set<std::int32_t> expected;
+    for (std::int32_t r = 0; r < g.roomCount(); ++r)
+    {
+      if (g.inside(r, eye))
+      {
+        expected.insert(r);
+        ++inRooms;
+      }
+    }
+    for (const GraphPortal& p : g.portals())
+    {
+      if (geometry::distanceToConvex(p.hull, glm::dvec3(p.plane), eye) <=
+        std::max(reach, g.tolerance()))
+      {
+        expected.insert(p.nodeA);
+        expected.insert(p.nodeB);
+        ++nearPortals;
+      }
+    }
+    const EyeLocation loc = g.locate(eye, reach, OutsidePolicy::FrustumOnly);
+    EXPECT_EQ(std::set<std::int32_t>(loc.nodes.begin(), loc.nodes.end()), expected)
+      << "eye (" << eye.x << ", " << eye.y << ", " << eye.z << ")";
+    EXPECT_EQ(loc.nodes.size(), expected.size()) << "no duplicates";
+  }
+  EXPECT_GT(inRooms, 1000);
+  EXPECT_GT(nearPortals, 300);
+}
+
 // --- Traversal ----------------------------------------------------------------------------------
 
 TEST(PortalTraversal, StraightCorridorVisibleThroughAlignedDoorsNotAroundTheCorner)
@@ -581,11 +638,98 @@ TEST(PortalTraversal, OutsideTheBuildingEntersThroughWindowsOrFallsBack)
   const Box& cell = b.rooms[0].bounds;
   t.run(g, lookAt({ cell.hi.x, cell.center().y + 1.2, 1.5 }, { 0, 30, 1.5 }), TraversalOptions());
   EXPECT_EQ(t.stats().fallback, Fallback::EyeInNoRoom);
-  // Parallel projection: frustum only.
-  PortalView parallel = lookAt(eye, { 0, 0, 1.5 });
-  parallel.parallel = true;
-  t.run(g, parallel, TraversalOptions());
+}
+
+TEST(PortalTraversal, ParallelProjectionFromOutsideEntersThroughWindows)
+{
+  // Orthographic views of the building from outside: rays start on the near rectangle, outside
+  // the building, and enter rooms only through windows. Checked against parallel ray casting;
+  // the near rectangle inside the building falls back to frustum-only culling.
+  const auto b = scenes::building(2, 4, 3, 6);
+  const PortalGraph g = PortalGraph::build(cellSceneOf(b));
+  const PortalPvs pvs = PortalPvs::compute(g);
+  const RayOracle oracle(b.mesh, b.room);
+  std::vector<Box> roomGeometry(static_cast<std::size_t>(g.nodeCount()));
+  for (std::size_t i = 0; i < b.mesh.polygonCount(); ++i)
+  {
+    for (std::uint32_t k = 0; k < b.mesh.polygonSize(i); ++k)
+    {
+      roomGeometry[static_cast<std::size_t>(g.nodeOf(b.room[i]))].extend(
+        b.mesh.points[b.mesh.polygon(i)[k]]);
+    }
+  }
+  auto orthoView = [](const glm::dvec3& eye, const glm::dvec3& target, double half, double znear)
+  {
+    PortalView v;
+    v.clipFromWorld = glm::ortho(-half, half, -half, half, znear, 200.0) *
+      glm::lookAt(eye, target, glm::dvec3(0, 0, 1));
+    v.eye = eye;
+    v.parallel = true;
+    return v;
+  };
+  std::mt19937_64 rng(23);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  std::size_t seen = 0, drawn[3] = { 0, 0, 0 };
+  for (int i = 0; i < 12; ++i)
+  {
+    // Around the building, slightly above or below the storeys, looking at a random point in it.
+    const double yaw = u(rng) * 6.283185307, pitch = (u(rng) - 0.5) * 0.5;
+    const glm::dvec3 eye = glm::dvec3(40.0 * std::cos(yaw) * std::cos(pitch),
+      40.0 * std::sin(yaw) * std::cos(pitch), 3.0 + 40.0 * std::sin(pitch));
+    const glm::dvec3 target((u(rng) - 0.5) * 8.0, (u(rng) - 0.5) * 6.0, 1.0 + u(rng) * 4.0);
+    const PortalView view = orthoView(eye, target, 3.0 + u(rng) * 9.0, 1.0);
+    std::set<std::int32_t> visibleNodes;
+    for (const std::size_t p : oracle.visiblePolygons(view, 0.0, 64))
+    {
+      visibleNodes.insert(g.nodeOf(b.room[p]));
+    }
+    seen += visibleNodes.size();
+    PortalTraversal t;
+    for (int m = 0; m < 3; ++m)
+    {
+      if (m < 2)
+      {
+        t.run(g, view, withMode(kModes[m]));
+      }
+      else
+      {
+        t.runPvs(g, pvs, view, TraversalOptions());
+      }
+      ASSERT_EQ(t.stats().fallback, Fallback::None);
+      EXPECT_EQ(t.stats().startRooms, 1u);
+      for (const std::int32_t n : visibleNodes)
+      {
+        EXPECT_TRUE(t.boxVisible(n, roomGeometry[static_cast<std::size_t>(n)]))
+          << "mode " << m << " view " << i << " misses node " << n;
+      }
+      for (std::int32_t n = 0; n < g.roomCount(); ++n)
+      {
+        drawn[m] += t.boxVisible(n, roomGeometry[static_cast<std::size_t>(n)]) ? 1 : 0;
+      }
+    }
+  }
+  EXPECT_GT(seen, 12u) << "the views see rooms through windows";
+  EXPECT_LE(drawn[1], drawn[0]);
+  EXPECT_LT(drawn[1], 12u * 24u * 3u / 4u) << "rooms behind walls are culled";
+  std::printf("parallel views: rooms seen %zu, drawn: rectangles %zu, exact %zu, pvs %zu\n", seen,
+    drawn[0], drawn[1], drawn[2]);
+
+  // The near rectangle inside the building's bounds (an orthographic camera in a room): it may
+  // cut through walls, so frustum only; likewise with the frustum-only outside policy.
+  PortalTraversal t;
+  t.run(g, orthoView({ 1.0, 1.0, 1.5 }, { 30, 1, 1.5 }, 2.0, 0.05), TraversalOptions());
   EXPECT_EQ(t.stats().fallback, Fallback::ParallelProjection);
+  EXPECT_TRUE(t.nodeVisible(0));
+  TraversalOptions frustumOnly;
+  frustumOnly.outside = OutsidePolicy::FrustumOnly;
+  t.run(g, orthoView({ 40, 1, 1.5 }, { 0, 1, 1.5 }, 5.0, 1.0), frustumOnly);
+  EXPECT_EQ(t.stats().fallback, Fallback::ParallelProjection);
+  // A parallel view along a wall sees its windows edge-on: passed on un-narrowed, still right.
+  t.run(g,
+    orthoView(
+      { 40, b.portals[0].polygon[0].y, 1.5 }, { 0, b.portals[0].polygon[0].y, 1.5 }, 6.0, 1.0),
+    withMode(NarrowingMode::ExactFrustum));
+  EXPECT_EQ(t.stats().fallback, Fallback::None);
 }
 
 TEST(PortalTraversal, ConservativeAgainstRayCastingInTheGeneratedBuilding)

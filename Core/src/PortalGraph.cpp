@@ -510,6 +510,8 @@ PortalGraph PortalGraph::build(const CellSceneInput& input, PortalGraphReport* r
   }
   g.AnyLeaky = g.AnyLeaky || g.Rooms.back().leaky;
 
+  g.buildGrid();
+
   // --- Fingerprint: topology and portal geometry. --------------------------------------------
   std::uint64_t h = kFnvOffset;
   hashBytes(h, &g.RoomCount, sizeof(g.RoomCount));
@@ -524,6 +526,116 @@ PortalGraph PortalGraph::build(const CellSceneInput& input, PortalGraphReport* r
   }
   g.Fingerprint = h;
   return g;
+}
+
+bool PortalGraph::BoxGrid::cellRange(
+  const glm::dvec3& a, const glm::dvec3& b, glm::ivec3& lo, glm::ivec3& hi) const
+{
+  if (this->empty() || b.x < this->bounds.lo.x || b.y < this->bounds.lo.y ||
+    b.z < this->bounds.lo.z || a.x > this->bounds.hi.x || a.y > this->bounds.hi.y ||
+    a.z > this->bounds.hi.z)
+  {
+    return false;
+  }
+  for (int k = 0; k < 3; ++k)
+  {
+    // Clamped in double before the conversion: far-away or huge inputs stay defined.
+    const double l = std::floor((a[k] - this->bounds.lo[k]) * this->inverseCell[k]);
+    const double h = std::floor((b[k] - this->bounds.lo[k]) * this->inverseCell[k]);
+    const double top = static_cast<double>(this->dims[k] - 1);
+    lo[k] = static_cast<int>(std::clamp(l, 0.0, top));
+    hi[k] = static_cast<int>(std::clamp(h, 0.0, top));
+  }
+  return true;
+}
+
+void PortalGraph::buildGrid()
+{
+  BoxGrid& grid = this->Grid;
+  grid = BoxGrid();
+  Box all = this->BuildingBounds;
+  for (const GraphPortal& p : this->Portals)
+  {
+    all.extend(p.bounds);
+  }
+  if (all.empty() || this->RoomCount <= 0)
+  {
+    return;
+  }
+  const double t = this->Tolerance;
+  grid.bounds.lo = all.lo - glm::dvec3(t);
+  grid.bounds.hi = all.hi + glm::dvec3(t);
+  // About one cell per room: cubic cells of the size that gives that count for the volume, so
+  // a flat building gets a flat grid. At most 128 cells per axis (2M cells).
+  const glm::dvec3 extent = grid.bounds.hi - grid.bounds.lo;
+  const double largest = std::max({ extent.x, extent.y, extent.z });
+  const glm::dvec3 clampedExtent = glm::max(extent, glm::dvec3(1e-3 * largest));
+  const double volume = clampedExtent.x * clampedExtent.y * clampedExtent.z;
+  const double cell = std::cbrt(volume / static_cast<double>(this->RoomCount));
+  for (int k = 0; k < 3; ++k)
+  {
+    const double n = std::ceil(extent[k] / cell);
+    grid.dims[k] = static_cast<int>(std::clamp(std::isfinite(n) ? n : 1.0, 1.0, 128.0));
+    grid.inverseCell[k] = extent[k] > 0.0 ? grid.dims[k] / extent[k] : 0.0;
+  }
+  const auto cells = static_cast<std::size_t>(grid.dims.x) * grid.dims.y * grid.dims.z;
+  auto fill = [&](std::size_t count, auto boxOf, std::vector<std::uint32_t>& start,
+                std::vector<std::uint32_t>& items)
+  {
+    start.assign(cells + 1, 0);
+    glm::ivec3 lo, hi;
+    for (int pass = 0; pass < 2; ++pass)
+    {
+      for (std::size_t i = 0; i < count; ++i)
+      {
+        const Box& b = boxOf(i);
+        if (b.empty() || !grid.cellRange(b.lo - glm::dvec3(t), b.hi + glm::dvec3(t), lo, hi))
+        {
+          continue;
+        }
+        for (int z = lo.z; z <= hi.z; ++z)
+        {
+          for (int y = lo.y; y <= hi.y; ++y)
+          {
+            for (int x = lo.x; x <= hi.x; ++x)
+            {
+              const std::size_t c =
+                (static_cast<std::size_t>(z) * grid.dims.y + y) * grid.dims.x + x;
+              if (pass == 0)
+              {
+                ++start[c + 1];
+              }
+              else
+              {
+                items[start[c]++] = static_cast<std::uint32_t>(i);
+              }
+            }
+          }
+        }
+      }
+      if (pass == 0)
+      {
+        for (std::size_t c = 0; c < cells; ++c)
+        {
+          start[c + 1] += start[c];
+        }
+        items.resize(start[cells]);
+      }
+    }
+    // The second pass advanced each start to the next cell's: shift back.
+    for (std::size_t c = cells; c > 0; --c)
+    {
+      start[c] = start[c - 1];
+    }
+    start[0] = 0;
+  };
+  fill(
+    static_cast<std::size_t>(this->RoomCount),
+    [this](std::size_t i) -> const Box& { return this->Rooms[i].bounds; }, grid.roomStart,
+    grid.rooms);
+  fill(
+    this->Portals.size(), [this](std::size_t i) -> const Box& { return this->Portals[i].bounds; },
+    grid.portalStart, grid.portals);
 }
 
 int PortalGraph::parity(std::int32_t room, const glm::dvec3& p, const glm::dvec3& dir) const
@@ -607,17 +719,46 @@ EyeLocation PortalGraph::locate(const glm::dvec3& eye, double nearDistance,
     loc.unknown = true;
     return loc;
   }
-  for (std::int32_t r = 0; r < this->RoomCount; ++r)
+  const BoxGrid& grid = this->Grid;
+  glm::ivec3 lo, hi;
+  if (grid.cellRange(eye, eye, lo, hi))
   {
-    if (this->inside(r, eye))
+    const std::size_t c =
+      (static_cast<std::size_t>(lo.z) * grid.dims.y + lo.y) * grid.dims.x + lo.x;
+    for (std::uint32_t k = grid.roomStart[c]; k < grid.roomStart[c + 1]; ++k)
     {
-      loc.nodes.push_back(r);
+      const auto r = static_cast<std::int32_t>(grid.rooms[k]);
+      if (this->inside(r, eye))
+      {
+        loc.nodes.push_back(r);
+      }
     }
+    // Ascending ids whatever the grid's order (callers and tests see a stable order).
+    std::sort(loc.nodes.begin(), loc.nodes.end());
   }
   const std::size_t inRooms = loc.nodes.size();
   const double reach = std::max(nearDistance, this->Tolerance);
-  for (const GraphPortal& p : this->Portals)
+  std::vector<std::uint32_t> candidates;
+  if (grid.cellRange(eye - glm::dvec3(reach), eye + glm::dvec3(reach), lo, hi))
   {
+    for (int z = lo.z; z <= hi.z; ++z)
+    {
+      for (int y = lo.y; y <= hi.y; ++y)
+      {
+        for (int x = lo.x; x <= hi.x; ++x)
+        {
+          const std::size_t c = (static_cast<std::size_t>(z) * grid.dims.y + y) * grid.dims.x + x;
+          candidates.insert(candidates.end(), grid.portals.begin() + grid.portalStart[c],
+            grid.portals.begin() + grid.portalStart[c + 1]);
+        }
+      }
+    }
+    std::sort(candidates.begin(), candidates.end());
+    candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
+  }
+  for (const std::uint32_t pi : candidates)
+  {
+    const GraphPortal& p = this->Portals[pi];
     const Box& b = p.bounds;
     if (eye.x < b.lo.x - reach || eye.y < b.lo.y - reach || eye.z < b.lo.z - reach ||
       eye.x > b.hi.x + reach || eye.y > b.hi.y + reach || eye.z > b.hi.z + reach)

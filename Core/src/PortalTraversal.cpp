@@ -127,13 +127,37 @@ bool PortalTraversal::begin(const PortalGraph& graph, const PortalView& view,
     this->fallBack(Fallback::InvalidView);
     return false;
   }
+  const glm::dmat4 inv = glm::inverse(m);
   if (view.parallel)
   {
-    this->fallBack(Fallback::ParallelProjection);
-    return false;
+    // Rays are parallel to the direction in which only the NDC depth changes (x and y rows are
+    // constant along it); they start on the near rectangle, so the near plane is the front.
+    glm::dvec3 d = glm::cross(glm::dvec3(this->Rows[0]), glm::dvec3(this->Rows[1]));
+    const double len = glm::length(d);
+    const bool affine =
+      this->Rows[3] == glm::dvec4(0.0, 0.0, 0.0, this->Rows[3].w) && this->Rows[3].w > 0.0;
+    if (!(len > 0.0) || !std::isfinite(len) || !affine)
+    {
+      this->fallBack(Fallback::InvalidView);
+      return false;
+    }
+    d /= len;
+    if (glm::dot(glm::dvec3(this->Rows[2]), d) < 0.0)
+    {
+      d = -d; // towards increasing depth
+    }
+    this->Direction = d;
+    this->FrontPlane = this->ViewFrustum.planes[culling::kNear];
+    this->NearBox = Box();
+    for (int k = 0; k < 4; ++k)
+    {
+      const glm::dvec4 c = inv * glm::dvec4(k & 1 ? 1.0 : -1.0, k & 2 ? 1.0 : -1.0, -1.0, 1.0);
+      this->NearBox.extend(glm::dvec3(c) / c.w);
+    }
+    this->NearDistance = 0.0;
+    return true;
   }
   // How far the near plane reaches from the eye: its corners.
-  const glm::dmat4 inv = glm::inverse(m);
   double reach = 0.0;
   for (int k = 0; k < 4; ++k)
   {
@@ -180,7 +204,11 @@ bool PortalTraversal::subsumed(const Region& inner, const Region& outer) const
   {
     for (std::uint32_t p = firstEdge; p < firstEdge + outer.edgePlanes; ++p)
     {
-      if (geometry::planeDistance(this->Planes[p], this->Vertices[v]) < -this->PlaneSlack)
+      // 10x the clipping slack: every crossing may grow a region by one slack, so a region that
+      // went round a cycle of rooms sticks out of its ancestor by a few; with one slack it
+      // would never be subsumed and the cycle would run until the rooms' regions are merged
+      // (seen with parallel views: 50x the work and looser merged regions).
+      if (geometry::planeDistance(this->Planes[p], this->Vertices[v]) < -10.0 * this->PlaneSlack)
       {
         return false;
       }
@@ -258,9 +286,12 @@ void PortalTraversal::crossPortal(const GraphPortal& portal, std::int32_t to, st
     }
   }
 
-  // Edge-on (the eye in the portal's plane) or non-planar: no narrowing is possible or safe.
-  if (!portal.planar ||
-    std::abs(geometry::planeDistance(portal.plane, this->View.eye)) <= slack)
+  // Edge-on (the eye in the portal's plane; parallel rays along it) or non-planar: no narrowing
+  // is possible or safe.
+  const bool edgeOn = this->View.parallel
+    ? std::abs(glm::dot(glm::dvec3(portal.plane), this->Direction)) <= 1e-9
+    : std::abs(geometry::planeDistance(portal.plane, this->View.eye)) <= slack;
+  if (!portal.planar || edgeOn)
   {
     if (this->attach(to, from, true))
     {
@@ -328,12 +359,16 @@ void PortalTraversal::crossPortal(const GraphPortal& portal, std::int32_t to, st
       centroid += v;
     }
     centroid /= static_cast<double>(a->size());
+    // Parallel projection: planes through each edge containing the ray direction.
     const glm::dvec3& eye = this->View.eye;
+    const bool parallel = this->View.parallel;
     std::uint32_t edges = 0;
     for (std::size_t k = 0; k < a->size(); ++k)
     {
-      const glm::dvec3 p0 = (*a)[k] - eye;
-      const glm::dvec3 p1 = (*a)[(k + 1) % a->size()] - eye;
+      const glm::dvec3& q0 = (*a)[k];
+      const glm::dvec3& q1 = (*a)[(k + 1) % a->size()];
+      const glm::dvec3 p0 = parallel ? q1 - q0 : q0 - eye;
+      const glm::dvec3 p1 = parallel ? this->Direction : q1 - eye;
       glm::dvec3 n = glm::cross(p0, p1);
       const double len = glm::length(n);
       if (!(len > 1e-12 * glm::length(p0) * glm::length(p1)))
@@ -341,7 +376,7 @@ void PortalTraversal::crossPortal(const GraphPortal& portal, std::int32_t to, st
         continue; // degenerate edge: fewer planes = a bigger region
       }
       n /= len;
-      glm::dvec4 plane(n, -glm::dot(n, eye));
+      glm::dvec4 plane(n, -glm::dot(n, parallel ? q0 : eye));
       if (geometry::planeDistance(plane, centroid) < 0.0)
       {
         plane = -plane;
@@ -380,6 +415,39 @@ void PortalTraversal::startRegion(std::int32_t node, bool expand)
   }
 }
 
+EyeLocation PortalTraversal::startNodes(
+  const PortalGraph& graph, const PortalView& view, const TraversalOptions& options)
+{
+  if (!view.parallel)
+  {
+    EyeLocation loc = graph.locate(view.eye, this->NearDistance, options.outside);
+    if (loc.unknown)
+    {
+      this->fallBack(Fallback::EyeInNoRoom);
+    }
+    return loc;
+  }
+  // Parallel rays start anywhere on the near rectangle. Entirely outside the building's bounds
+  // they start outside and enter through exterior portals; otherwise the rectangle may cut
+  // through walls and voids, and which rooms rays start in is not worth finding: frustum only.
+  EyeLocation loc;
+  const Box& b = graph.buildingBounds();
+  const Box& n = this->NearBox;
+  const double t = graph.tolerance();
+  const bool apart = b.empty() || n.hi.x < b.lo.x - t || n.hi.y < b.lo.y - t ||
+    n.hi.z < b.lo.z - t || n.lo.x > b.hi.x + t || n.lo.y > b.hi.y + t || n.lo.z > b.hi.z + t;
+  if (apart && options.outside == OutsidePolicy::ExteriorPortals)
+  {
+    loc.nodes.push_back(graph.outsideNode());
+  }
+  else
+  {
+    loc.unknown = true;
+    this->fallBack(Fallback::ParallelProjection);
+  }
+  return loc;
+}
+
 void PortalTraversal::run(const PortalGraph& graph, const PortalView& view,
   const TraversalOptions& options)
 {
@@ -387,10 +455,9 @@ void PortalTraversal::run(const PortalGraph& graph, const PortalView& view,
   {
     return;
   }
-  const EyeLocation loc = graph.locate(view.eye, this->NearDistance, options.outside);
-  if (loc.unknown)
+  const EyeLocation loc = this->startNodes(graph, view, options);
+  if (this->FrustumOnly)
   {
-    this->fallBack(Fallback::EyeInNoRoom);
     return;
   }
   this->Stats.startRooms = loc.nodes.size();
@@ -437,10 +504,9 @@ void PortalTraversal::runPvs(const PortalGraph& graph, const PortalPvs& pvs,
     this->fallBack(Fallback::InvalidView);
     return;
   }
-  const EyeLocation loc = graph.locate(view.eye, this->NearDistance, options.outside);
-  if (loc.unknown)
+  const EyeLocation loc = this->startNodes(graph, view, options);
+  if (this->FrustumOnly)
   {
-    this->fallBack(Fallback::EyeInNoRoom);
     return;
   }
   this->Stats.startRooms = loc.nodes.size();

@@ -968,27 +968,168 @@ struct Layer
     room.push_back(roomId);
   }
 
-  /// The same rectangle minus an optional hole {a0, a1, b0, b1} inside it, as up to 4 quads:
-  /// the two full bands beside the hole along a, then the pieces before and after it along b.
-  void rectWithHole(const glm::dvec3& u,
-                    const glm::dvec3& v,
-                    double c,
-                    double a0,
-                    double a1,
-                    double b0,
-                    double b1,
-                    const double* hole,
-                    std::int32_t roomId)
+  /// Adds a polygon with points of its own.
+  void polygon(const std::vector<glm::dvec3>& pts, std::int32_t roomId)
   {
-    if (!hole)
+    std::array<std::uint32_t, 8> ids{};
+    const std::size_t count = std::min(pts.size(), ids.size());
+    for (std::size_t k = 0; k < count; ++k)
     {
-      rect(u, v, c, a0, a1, b0, b1, roomId);
-      return;
+      ids[k] = mesh.addPoint(pts[k]);
     }
-    rect(u, v, c, a0, hole[0], b0, b1, roomId);
-    rect(u, v, c, hole[1], a1, b0, b1, roomId);
-    rect(u, v, c, hole[0], hole[1], b0, hole[2], roomId);
-    rect(u, v, c, hole[0], hole[1], hole[3], b1, roomId);
+    mesh.addPolygon(ids.data(), count);
+    room.push_back(roomId);
+  }
+
+  /**
+   * A face in the plane x[n] = c (facing +n if @p positive, else -n), cut into the cells of the
+   * grid A x B (sorted lines along axes a = (n+1)%3 and b = (n+2)%3, first and last = its
+   * extent), minus the cell @p hole {a0, a1, b0, b1} (values taken from A and B) if given.
+   * @p extras lists, per border (b = B.front(), b = B.back(), a = A.front(), a = A.back()), the
+   * coordinates of the neighbouring face's vertices on it: a cell whose border side contains
+   * some is emitted as a fan of triangles (from a corner whose sides have none, else from its
+   * centre), so that it has a vertex wherever the neighbour does (no T-junction, hence no
+   * rasterisation crack); other cells are quads.
+   * Every coordinate comes from A, B, c or @p extras unchanged, so shared vertices are
+   * bit-identical.
+   */
+  void grid(int n, double c, bool positive, const std::vector<double>& A,
+    const std::vector<double>& B, const double* hole,
+    const std::array<const std::vector<double>*, 4>& extras, std::int32_t roomId)
+  {
+    const int a = (n + 1) % 3;
+    const int b = (n + 2) % 3;
+    auto point = [&](double va, double vb)
+    {
+      glm::dvec3 p(0.0);
+      p[n] = c;
+      p[a] = va;
+      p[b] = vb;
+      return p;
+    };
+    std::vector<glm::dvec3> ring;
+    for (std::size_t j = 0; j + 1 < B.size(); ++j)
+    {
+      for (std::size_t i = 0; i + 1 < A.size(); ++i)
+      {
+        const double a0 = A[i], a1 = A[i + 1], b0 = B[j], b1 = B[j + 1];
+        if (hole && a0 == hole[0] && a1 == hole[1] && b0 == hole[2] && b1 == hole[3])
+        {
+          continue;
+        }
+        // Counter-clockwise in (a, b): along b0, up a1, back along b1, down a0.
+        auto add = [&](const std::vector<double>* values, double lo, double hi, bool ascending,
+                     bool alongA, double fixed)
+        {
+          if (!values)
+          {
+            return;
+          }
+          const std::size_t first = ring.size();
+          for (const double v : *values)
+          {
+            if (v > lo && v < hi)
+            {
+              ring.push_back(alongA ? point(v, fixed) : point(fixed, v));
+            }
+          }
+          // Values are sorted ascending; walk them the way the ring goes.
+          if (!ascending)
+          {
+            std::reverse(ring.begin() + static_cast<std::ptrdiff_t>(first), ring.end());
+          }
+        };
+        ring.clear();
+        std::array<std::size_t, 4> corner{};
+        corner[0] = ring.size();
+        ring.push_back(point(a0, b0));
+        add(j == 0 ? extras[0] : nullptr, a0, a1, true, true, b0);
+        corner[1] = ring.size();
+        ring.push_back(point(a1, b0));
+        add(i + 2 == A.size() ? extras[3] : nullptr, b0, b1, true, false, a1);
+        corner[2] = ring.size();
+        ring.push_back(point(a1, b1));
+        add(j + 2 == B.size() ? extras[1] : nullptr, a0, a1, false, true, b1);
+        corner[3] = ring.size();
+        ring.push_back(point(a0, b1));
+        add(i == 0 ? extras[2] : nullptr, b0, b1, false, false, a0);
+        const std::size_t count = ring.size();
+        auto emit = [&](const glm::dvec3& p, const glm::dvec3& q, const glm::dvec3& r)
+        {
+          if (positive)
+          {
+            polygon({ p, q, r }, roomId);
+          }
+          else
+          {
+            polygon({ r, q, p }, roomId);
+          }
+        };
+        if (count == 4)
+        {
+          if (!positive)
+          {
+            std::reverse(ring.begin(), ring.end());
+          }
+          polygon(ring, roomId);
+          continue;
+        }
+        // Side k runs from corner k to corner k + 1. A corner whose two sides carry no extra
+        // vertex can be the apex of a fan (count - 2 triangles, none degenerate); otherwise
+        // fan around the centre (count triangles).
+        auto plain = [&](int k)
+        {
+          const std::size_t from = corner[static_cast<std::size_t>(k)];
+          const std::size_t to = k == 3 ? count : corner[static_cast<std::size_t>(k + 1)];
+          return to - from == 1;
+        };
+        int apex = -1;
+        for (int k = 0; k < 4 && apex < 0; ++k)
+        {
+          if (plain(k) && plain((k + 3) % 4))
+          {
+            apex = k;
+          }
+        }
+        if (apex >= 0)
+        {
+          const std::size_t first = corner[static_cast<std::size_t>(apex)];
+          for (std::size_t k = 1; k + 1 < count; ++k)
+          {
+            emit(ring[first], ring[(first + k) % count], ring[(first + k + 1) % count]);
+          }
+          continue;
+        }
+        const glm::dvec3 centre = point(0.5 * (a0 + a1), 0.5 * (b0 + b1));
+        for (std::size_t k = 0; k < count; ++k)
+        {
+          emit(centre, ring[k], ring[(k + 1) % count]);
+        }
+      }
+    }
+  }
+
+  /// The axis-aligned rectangle [lo, hi] (lo[n] == hi[n]) facing +n or -n; @p extras (sorted
+  /// coordinates along the other in-plane axis) lie on its edge where axis @p edgeAxis equals
+  /// @p edgeAt (see grid()).
+  void axisRect(int n, bool positive, const glm::dvec3& lo, const glm::dvec3& hi,
+    std::int32_t roomId, const std::vector<double>* extras = nullptr, int edgeAxis = -1,
+    double edgeAt = 0.0)
+  {
+    const int a = (n + 1) % 3;
+    const int b = (n + 2) % 3;
+    const std::vector<double> A{ lo[a], hi[a] };
+    const std::vector<double> B{ lo[b], hi[b] };
+    std::array<const std::vector<double>*, 4> e{};
+    if (extras && edgeAxis == b)
+    {
+      e[edgeAt == lo[b] ? 0 : 1] = extras;
+    }
+    else if (extras && edgeAxis == a)
+    {
+      e[edgeAt == lo[a] ? 2 : 3] = extras;
+    }
+    grid(n, lo[n], positive, A, B, nullptr, e, roomId);
   }
 
   /// A closed box, outward-facing.
@@ -1284,17 +1425,173 @@ BuildingScene building(int floors, int roomsX, int roomsY, std::uint64_t seed)
             ix == 0,
             ix == roomsX - 1 },
         } };
+        // The room's shell: four wall faces, floor and ceiling on the interior box
+        // [xi0, xi1] x [yi0, yi1] x [zFloor, zCeiling], each cut on the grid of its own
+        // openings, plus the reveals of every opening out to the wall's (or slab's) centre
+        // plane, where the portal is. Faces are numbered 2 * axis + (0: low side, 1: high side)
+        // and list their grid lines per axis; where two faces meet, each also gets the other's
+        // vertices on the shared edge (Layer::grid), so the shell has no T-junction.
+        const double lo[3] = { xi0, yi0, zFloor };
+        const double hi[3] = { xi1, yi1, zCeiling };
+        const double centre[3][2] = { { gridX(ix), gridX(ix + 1) }, { gridY(iy), gridY(iy + 1) },
+          { z0, z1 } };
+        std::array<std::array<std::vector<double>, 3>, 6> lines;
+        std::array<std::array<double, 4>, 6> holes{};
+        std::array<bool, 6> hasHole{};
+        // Floor-level openings (doors) whose threshold lies on the floor's edge.
+        std::array<bool, 6> doorAt{};
+        std::array<double, 6> g0s{}, g1s{}, oz0s{}, oz1s{};
+        for (int face = 0; face < 6; ++face)
+        {
+          const int n = face / 2;
+          for (int axis = 0; axis < 3; ++axis)
+          {
+            if (axis != n)
+            {
+              lines[static_cast<std::size_t>(face)][static_cast<std::size_t>(axis)] = { lo[axis],
+                hi[axis] };
+            }
+          }
+        }
+        const double xs = xi0 + 0.3;
+        const double hx0 = xs + 0.5;
+        const double hx1 = xs + (kRisers - 1) * kTread + 0.3;
+        const double hy0 = yi0 + 0.1;
+        const double hy1 = yi0 + 1.3;
+        const bool holeBelow = room.stairwell && f > 0;
+        const bool holeAbove = room.stairwell && f + 1 < floors;
+        for (int face : { 4, 5 })
+        {
+          if (face == 4 ? holeBelow : holeAbove)
+          {
+            auto& l = lines[static_cast<std::size_t>(face)];
+            l[0] = { xi0, hx0, hx1, xi1 };
+            l[1] = { yi0, hy0, hy1, yi1 };
+            holes[static_cast<std::size_t>(face)] = { hx0, hx1, hy0, hy1 };
+            hasHole[static_cast<std::size_t>(face)] = true;
+          }
+        }
+        // Side k of `sides` is face: -x 0, +x 1, -y 2, +y 3.
+        for (int k = 0; k < 4; ++k)
+        {
+          const Side& side = sides[static_cast<std::size_t>(k)];
+          if (std::isnan(side.opening))
+          {
+            continue;
+          }
+          const bool exterior = side.other == kOutside;
+          const double width = exterior ? kWindowWidth : kDoorWidth;
+          const double g0 = side.opening - 0.5 * width;
+          const double g1 = side.opening + 0.5 * width;
+          const double oz0 = zFloor + (exterior ? kWindowSill : 0.0);
+          const double oz1 = zFloor + (exterior ? kWindowTop : kDoorHeight);
+          const int along = k < 2 ? 1 : 0;
+          auto& l = lines[static_cast<std::size_t>(k)];
+          l[static_cast<std::size_t>(along)] = { lo[along], g0, g1, hi[along] };
+          l[2] = exterior ? std::vector<double>{ zFloor, oz0, oz1, zCeiling }
+                          : std::vector<double>{ zFloor, oz1, zCeiling };
+          // Hole in the face's (a, b) = ((n+1)%3, (n+2)%3) coordinates: x walls (y, z), y walls
+          // (z, x).
+          holes[static_cast<std::size_t>(k)] = k < 2 ? std::array<double, 4>{ g0, g1, oz0, oz1 }
+                                                     : std::array<double, 4>{ oz0, oz1, g0, g1 };
+          hasHole[static_cast<std::size_t>(k)] = true;
+          doorAt[static_cast<std::size_t>(k)] = !exterior;
+          g0s[static_cast<std::size_t>(k)] = g0;
+          g1s[static_cast<std::size_t>(k)] = g1;
+          oz0s[static_cast<std::size_t>(k)] = oz0;
+          oz1s[static_cast<std::size_t>(k)] = oz1;
+        }
+        const std::array<LayerId, 6> layerOf{ kWalls, kWalls, kWalls, kWalls, kFloors, kCeilings };
+        for (int face = 0; face < 6; ++face)
+        {
+          const int n = face / 2;
+          const int a = (n + 1) % 3;
+          const int b = (n + 2) % 3;
+          const auto& own = lines[static_cast<std::size_t>(face)];
+          auto neighbour = [&](int axis, int sideOf, int along) {
+            return &lines[static_cast<std::size_t>(2 * axis + sideOf)]
+                         [static_cast<std::size_t>(along)];
+          };
+          const std::array<const std::vector<double>*, 4> extras{ neighbour(b, 0, a),
+            neighbour(b, 1, a), neighbour(a, 0, b), neighbour(a, 1, b) };
+          layers[layerOf[static_cast<std::size_t>(face)]].grid(n, face % 2 ? hi[n] : lo[n],
+            face % 2 == 0, // faces into the room
+            own[static_cast<std::size_t>(a)], own[static_cast<std::size_t>(b)],
+            hasHole[static_cast<std::size_t>(face)] ? holes[static_cast<std::size_t>(face)].data()
+                                                    : nullptr,
+            extras, id);
+        }
+        // Reveals of the wall openings, from the room face to the wall's centre plane.
+        for (int k = 0; k < 4; ++k)
+        {
+          if (!hasHole[static_cast<std::size_t>(k)])
+          {
+            continue;
+          }
+          const int n = k / 2;
+          const int along = k < 2 ? 1 : 0;
+          const double wFace = k % 2 ? hi[n] : lo[n];
+          const double wMid = centre[n][k % 2];
+          const double w0 = std::min(wFace, wMid), w1 = std::max(wFace, wMid);
+          const double g0 = g0s[static_cast<std::size_t>(k)], g1 = g1s[static_cast<std::size_t>(k)];
+          const double oz0 = oz0s[static_cast<std::size_t>(k)],
+                       oz1 = oz1s[static_cast<std::size_t>(k)];
+          glm::dvec3 rlo(0.0), rhi(0.0);
+          rlo[n] = w0;
+          rhi[n] = w1;
+          // Jambs: facing into the opening.
+          for (int end = 0; end < 2; ++end)
+          {
+            glm::dvec3 jlo = rlo, jhi = rhi;
+            jlo[along] = jhi[along] = end ? g1 : g0;
+            jlo[2] = oz0;
+            jhi[2] = oz1;
+            layers[kWalls].axisRect(along, end == 0, jlo, jhi, id);
+          }
+          // Lintel (facing down) and sill or threshold (facing up); a threshold's inner edge
+          // lies on the floor's edge and takes the floor's vertices there.
+          glm::dvec3 llo = rlo, lhi = rhi;
+          llo[along] = g0;
+          lhi[along] = g1;
+          llo[2] = lhi[2] = oz1;
+          layers[kWalls].axisRect(2, false, llo, lhi, id);
+          llo[2] = lhi[2] = oz0;
+          if (doorAt[static_cast<std::size_t>(k)])
+          {
+            layers[kWalls].axisRect(
+              2, true, llo, lhi, id, &lines[4][static_cast<std::size_t>(along)], n, wFace);
+          }
+          else
+          {
+            layers[kWalls].axisRect(2, true, llo, lhi, id);
+          }
+        }
+        // Stair shaft sides inside the slab, from the room face to the slab's centre plane.
+        auto shaft = [&](Layer& layer, double zl, double zh)
+        {
+          layer.axisRect(0, true, glm::dvec3(hx0, hy0, zl), glm::dvec3(hx0, hy1, zh), id);
+          layer.axisRect(0, false, glm::dvec3(hx1, hy0, zl), glm::dvec3(hx1, hy1, zh), id);
+          layer.axisRect(1, true, glm::dvec3(hx0, hy0, zl), glm::dvec3(hx1, hy0, zh), id);
+          layer.axisRect(1, false, glm::dvec3(hx0, hy1, zl), glm::dvec3(hx1, hy1, zh), id);
+        };
+        if (holeBelow)
+        {
+          shaft(layers[kFloors], z0, zFloor);
+        }
+        if (holeAbove)
+        {
+          shaft(layers[kCeilings], zCeiling, z1);
+        }
+
         for (const Side& side : sides)
         {
           const glm::dvec3 n = side.n;
           const glm::dvec3 u = glm::cross(ez, n);
           // World axis of the wall is +-u; map world extents to the u coordinate.
           const double sign = u.x + u.y; // +1 or -1
-          // Returns the u-range of the world range [a, b] on the wall's axis.
           auto along = [sign](double a, double b)
           { return sign > 0 ? std::make_pair(a, b) : std::make_pair(-b, -a); };
           const bool exterior = side.other == kOutside;
-          const std::pair<double, double> face = along(side.lo + 0.5 * t, side.hi - 0.5 * t);
           const bool open = !std::isnan(side.opening);
           const double width = exterior ? kWindowWidth : kDoorWidth;
           const std::pair<double, double> gap =
@@ -1303,33 +1600,8 @@ BuildingScene building(int floors, int roomsX, int roomsY, std::uint64_t seed)
           const double o1 = gap.second;
           const double oz0 = zFloor + (exterior ? kWindowSill : 0.0);
           const double oz1 = zFloor + (exterior ? kWindowTop : kDoorHeight);
-          const double hole[4] = { oz0, oz1, o0, o1 };
-          // The face into the room: normal -N = Z x U.
-          layers[kWalls].rectWithHole(ez,
-                                      u,
-                                      -(side.wc - 0.5 * t),
-                                      zFloor,
-                                      zCeiling,
-                                      face.first,
-                                      face.second,
-                                      open ? hole : nullptr,
-                                      id);
           if (open)
           {
-            // Reveals, split at the centre plane: this room's half here, the other half by
-            // the neighbour (or the facade below for windows).
-            auto jambs = [&](Layer& layer, double w0, double w1, std::int32_t owner)
-            {
-              layer.rect(ez, n, o0, oz0, oz1, w0, w1, owner);  // faces +U
-              layer.rect(n, ez, -o1, w0, w1, oz0, oz1, owner); // faces -U
-              layer.rect(u, n, -oz1, o0, o1, w0, w1, owner);   // lintel, faces -Z
-              layer.rect(n, u, oz0, w0, w1, o0, o1, owner);    // sill / threshold, faces +Z
-            };
-            jambs(layers[kWalls], side.wc - 0.5 * t, side.wc, id);
-            if (exterior)
-            {
-              jambs(layers[kFacade], side.wc, side.wc + 0.5 * t, kOutside);
-            }
             // One portal per opening: doors from the lower id (the -x / -y room), whose
             // +x / +y side this is; windows from their room.
             if (exterior || side.other > id)
@@ -1348,56 +1620,11 @@ BuildingScene building(int floors, int roomsX, int roomsY, std::uint64_t seed)
               }
             }
           }
-          if (exterior)
-          {
-            // Facade: covers the whole cell side, reaching the corners of the building and the
-            // roof / underside, so the outside is closed except for the windows.
-            const std::pair<double, double> outer =
-              along(side.lo - (side.first ? 0.5 * t : 0.0), side.hi + (side.last ? 0.5 * t : 0.0));
-            const double fz0 = z0 - (f == 0 ? 0.5 * slab : 0.0);
-            const double fz1 = z1 + (f == floors - 1 ? 0.5 * slab : 0.0);
-            const double facadeHole[4] = { o0, o1, oz0, oz1 };
-            layers[kFacade].rectWithHole(u,
-                                         ez,
-                                         side.wc + 0.5 * t,
-                                         outer.first,
-                                         outer.second,
-                                         fz0,
-                                         fz1,
-                                         open ? facadeHole : nullptr,
-                                         kOutside);
-          }
         }
 
-        // Floor and ceiling, with the stair holes. The flight runs along +x near the -y wall.
-        const double xs = xi0 + 0.3;
-        const double hx0 = xs + 0.5;
-        const double hx1 = xs + (kRisers - 1) * kTread + 0.3;
-        const double hy0 = yi0 + 0.1;
-        const double hy1 = yi0 + 1.3;
-        const bool holeBelow = room.stairwell && f > 0;
-        const bool holeAbove = room.stairwell && f + 1 < floors;
-        const double floorHole[4] = { hx0, hx1, hy0, hy1 };
-        const double ceilingHole[4] = { hy0, hy1, hx0, hx1 };
-        layers[kFloors].rectWithHole(
-          ex, ey, zFloor, xi0, xi1, yi0, yi1, holeBelow ? floorHole : nullptr, id);
-        layers[kCeilings].rectWithHole(
-          ey, ex, -zCeiling, yi0, yi1, xi0, xi1, holeAbove ? ceilingHole : nullptr, id);
-        // Shaft sides inside the slab, split at its centre plane like the wall reveals.
-        auto shaft = [&](Layer& layer, double zl, double zh)
-        {
-          layer.rect(ey, ez, hx0, hy0, hy1, zl, zh, id);  // faces +x
-          layer.rect(ez, ey, -hx1, zl, zh, hy0, hy1, id); // faces -x
-          layer.rect(ez, ex, hy0, zl, zh, hx0, hx1, id);  // faces +y
-          layer.rect(ex, ez, -hy1, hx0, hx1, zl, zh, id); // faces -y
-        };
-        if (holeBelow)
-        {
-          shaft(layers[kFloors], z0, zFloor);
-        }
+        // The stair flight runs along +x near the -y wall, up to the hole in the slab above.
         if (holeAbove)
         {
-          shaft(layers[kCeilings], zCeiling, z1);
           Portal portal;
           portal.kind = PortalKind::Stair;
           portal.roomA = id;
@@ -1424,23 +1651,148 @@ BuildingScene building(int floors, int roomsX, int roomsY, std::uint64_t seed)
           {
             const glm::dvec3 size(
               rng.uniform(0.4, 2.0), rng.uniform(0.4, 1.5), rng.uniform(0.4, 2.0));
-            const glm::dvec3 lo(rng.uniform(xi0 + 0.05, xi1 - 0.05 - size.x),
-                                rng.uniform(yi0 + 0.05, yi1 - 0.05 - size.y),
-                                zFloor);
-            layers[kFurniture].box(lo, lo + size, id);
+            const glm::dvec3 corner(rng.uniform(xi0 + 0.05, xi1 - 0.05 - size.x),
+              rng.uniform(yi0 + 0.05, yi1 - 0.05 - size.y), zFloor);
+            layers[kFurniture].box(corner, corner + size, id);
           }
         }
         scene.rooms.push_back(room);
       }
     }
   }
-  // Roof and underside.
+  // Facade, roof and underside: the outside of the building, closed except for the windows.
+  // Like the room shells, every face is cut on the grid of its own window and takes its
+  // neighbours' vertices on shared edges (Layer::grid), so there is no crack to see a room
+  // through from outside. Facade face (side k, floor f, cell i): side k as the room faces
+  // (0: -x, 1: +x, 2: -y, 3: +y), in the plane half a wall outside the outer grid line, cell i
+  // along the side (extended by half a wall at the building's corners), floor f from slab centre
+  // to slab centre (extended by half a slab to the roof and the underside).
   const double bx0 = gridX(0) - 0.5 * t;
   const double bx1 = gridX(roomsX) + 0.5 * t;
   const double by0 = gridY(0) - 0.5 * t;
   const double by1 = gridY(roomsY) + 0.5 * t;
-  layers[kRoof].rect(ex, ey, floors * storey + 0.5 * slab, bx0, bx1, by0, by1, kOutside);
-  layers[kRoof].rect(ey, ex, 0.5 * slab, by0, by1, bx0, bx1, kOutside);
+  const double zTop = floors * storey + 0.5 * slab;
+  const double zBottom = 0.0 * storey - 0.5 * slab;
+  auto cellsAlong = [&](int k) { return k < 2 ? roomsY : roomsX; };
+  auto windowAt = [&](int k, int f, int i)
+  {
+    return k < 2 ? xOpen[xIndex(f, k == 0 ? 0 : roomsX, i)]
+                 : yOpen[yIndex(f, i, k == 2 ? 0 : roomsY)];
+  };
+  auto alongLines = [&](int k, int f, int i)
+  {
+    const int last = cellsAlong(k) - 1;
+    const double lo = i == 0 ? (k < 2 ? by0 : bx0) : (k < 2 ? gridY(i) : gridX(i));
+    const double hi = i == last ? (k < 2 ? by1 : bx1) : (k < 2 ? gridY(i + 1) : gridX(i + 1));
+    const double open = windowAt(k, f, i);
+    if (std::isnan(open))
+    {
+      return std::vector<double>{ lo, hi };
+    }
+    return std::vector<double>{ lo, open - 0.5 * kWindowWidth, open + 0.5 * kWindowWidth, hi };
+  };
+  auto zLines = [&](int k, int f, int i)
+  {
+    const double z0 = f * storey;
+    const double zFloor = z0 + 0.5 * slab;
+    const double fz0 = z0 - (f == 0 ? 0.5 * slab : 0.0);
+    const double fz1 = (f + 1) * storey + (f == floors - 1 ? 0.5 * slab : 0.0);
+    if (std::isnan(windowAt(k, f, i)))
+    {
+      return std::vector<double>{ fz0, fz1 };
+    }
+    return std::vector<double>{ fz0, zFloor + kWindowSill, zFloor + kWindowTop, fz1 };
+  };
+  // Union of the along-lines of a side's cells on floor f: the roof's or underside's edge there.
+  auto sideLines = [&](int k, int f)
+  {
+    std::vector<double> all;
+    for (int i = 0; i < cellsAlong(k); ++i)
+    {
+      const std::vector<double> l = alongLines(k, f, i);
+      all.insert(all.end(), l.begin(), l.end());
+    }
+    std::sort(all.begin(), all.end());
+    all.erase(std::unique(all.begin(), all.end()), all.end());
+    return all;
+  };
+  for (int k = 0; k < 4; ++k)
+  {
+    const int n = k / 2;
+    const double wOuter = k == 0 ? bx0 : k == 1 ? bx1 : k == 2 ? by0 : by1;
+    const double wMid = k == 0 ? gridX(0)
+      : k == 1                 ? gridX(roomsX)
+      : k == 2                 ? gridY(0)
+                               : gridY(roomsY);
+    // The sides meeting this one at its low and high ends, and their cell there.
+    const int loSide = k < 2 ? 2 : 0, hiSide = k < 2 ? 3 : 1;
+    for (int f = 0; f < floors; ++f)
+    {
+      for (int i = 0; i < cellsAlong(k); ++i)
+      {
+        const std::vector<double> along = alongLines(k, f, i);
+        const std::vector<double> z = zLines(k, f, i);
+        const std::vector<double> below = f > 0 ? alongLines(k, f - 1, i) : std::vector<double>();
+        const std::vector<double> above =
+          f + 1 < floors ? alongLines(k, f + 1, i) : std::vector<double>();
+        const std::vector<double> left =
+          i > 0 ? zLines(k, f, i - 1) : zLines(loSide, f, k % 2 ? cellsAlong(loSide) - 1 : 0);
+        const std::vector<double> right = i + 1 < cellsAlong(k)
+          ? zLines(k, f, i + 1)
+          : zLines(hiSide, f, k % 2 ? cellsAlong(hiSide) - 1 : 0);
+        const bool open = along.size() == 4;
+        std::array<double, 4> hole{};
+        // Grid axes: x sides (a, b) = (y, z); y sides (a, b) = (z, x).
+        std::array<const std::vector<double>*, 4> extras{};
+        if (n == 0)
+        {
+          hole = { along[1], along[2], z[1], z[2] };
+          extras = { &below, &above, &left, &right };
+        }
+        else
+        {
+          hole = { z[1], z[2], along[1], along[2] };
+          extras = { &left, &right, &below, &above };
+        }
+        layers[kFacade].grid(n, wOuter,
+          k % 2 == 1, // faces out of the building
+          n == 0 ? along : z, n == 0 ? z : along, open ? hole.data() : nullptr, extras, kOutside);
+        if (open)
+        {
+          // The outer half of the window's reveals, facing into the opening.
+          const int al = n == 0 ? 1 : 0;
+          glm::dvec3 rlo(0.0), rhi(0.0);
+          rlo[n] = std::min(wOuter, wMid);
+          rhi[n] = std::max(wOuter, wMid);
+          for (int end = 0; end < 2; ++end)
+          {
+            glm::dvec3 jlo = rlo, jhi = rhi;
+            jlo[al] = jhi[al] = along[static_cast<std::size_t>(1 + end)];
+            jlo[2] = z[1];
+            jhi[2] = z[2];
+            layers[kFacade].axisRect(al, end == 0, jlo, jhi, kOutside);
+          }
+          glm::dvec3 llo = rlo, lhi = rhi;
+          llo[al] = along[1];
+          lhi[al] = along[2];
+          llo[2] = lhi[2] = z[2];
+          layers[kFacade].axisRect(2, false, llo, lhi, kOutside);
+          llo[2] = lhi[2] = z[1];
+          layers[kFacade].axisRect(2, true, llo, lhi, kOutside);
+        }
+      }
+    }
+  }
+  // Roof (facing up) and underside (facing down), with the facade's vertices on their edges.
+  for (const bool roof : { true, false })
+  {
+    const int f = roof ? floors - 1 : 0;
+    const std::vector<double> lx0 = sideLines(0, f), lx1 = sideLines(1, f);
+    const std::vector<double> ly0 = sideLines(2, f), ly1 = sideLines(3, f);
+    // Axes (a, b) = (x, y): borders y = by0 (side 2), y = by1 (side 3), x = bx0 (0), x = bx1 (1).
+    layers[kRoof].grid(2, roof ? zTop : zBottom, roof, { bx0, bx1 }, { by0, by1 }, nullptr,
+      { &ly0, &ly1, &lx0, &lx1 }, kOutside);
+  }
 
   for (std::size_t l = 0; l < layers.size(); ++l)
   {

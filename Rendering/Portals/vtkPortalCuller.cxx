@@ -57,7 +57,7 @@ const char* FallbackText(sp::Fallback f)
     case sp::Fallback::LeakyRoom:
       return "leaky room (a portal names a missing room)";
     case sp::Fallback::ParallelProjection:
-      return "parallel projection";
+      return "parallel projection with the near plane in the building";
     case sp::Fallback::InvalidView:
       return "unusable camera";
     case sp::Fallback::None:
@@ -91,6 +91,7 @@ public:
   bool WarnedNoPortals = false;
   bool WarnedArrays = false;
   bool WarnedCamera = false;
+  bool WarnedParallel = false;
 };
 
 //------------------------------------------------------------------------------
@@ -310,6 +311,15 @@ double vtkPortalCuller::Cull(
     in.Fallback = FallbackText(s.fallback);
     this->NumberOfRoomsVisited = static_cast<int>(s.roomsVisited);
     this->NumberOfPortalsTraversed = static_cast<int>(s.portalsTraversed);
+    if (s.fallback == sp::Fallback::ParallelProjection && !in.WarnedParallel)
+    {
+      in.WarnedParallel = true;
+      vtkWarningMacro("Parallel projection whose near plane touches the building's bounds (or "
+                      "the frustum-only outside policy): its rays may start in several rooms or "
+                      "inside walls, so portals are not used and only the view frustum culls "
+                      "(warned once). Parallel views from outside the building are culled "
+                      "through its exterior portals.");
+    }
   }
 
   // --- 3. Drawn props first (relative order kept), culled ones after. ------------------------

@@ -24,7 +24,9 @@
  * All modes are conservative under the cells-and-portals assumption (a room is closed except at
  * its portals, and the near plane does not reach through walls): a prop that covers a pixel is
  * never culled. Fallbacks to frustum-only culling (never to an empty image): eye in no room,
- * a room whose portal names a missing room (leaky), parallel projection, unusable camera.
+ * a room whose portal names a missing room (leaky), a parallel projection whose near plane
+ * touches the building's bounds (warned once; a parallel view from outside the building is
+ * traversed like a perspective one, entering through the exterior portals), unusable camera.
  *
  * vtkCuller contract (as vtkFrustumCoverageCuller): culled props are moved to the end of the
  * list, which is shortened; drawn props keep their order; with @p initialized set their
@@ -138,7 +140,8 @@ public:
   vtkGetMacro(LastCullTime, double);
   /// Whether the last Cull() fell back to frustum-only culling (or culled nothing).
   vtkGetMacro(FrustumOnly, bool);
-  /// Why: "" (no fallback), "eye in no room", "leaky room", "parallel projection", ...
+  /// Why: "" (no fallback), "eye in no room", "leaky room", "parallel projection with the near
+  /// plane in the building", ...
   const char* GetFallbackReason() const;
   /// Validation issues of the portal graph (one line each), "" when clean.
   const char* GetGraphReport() const;

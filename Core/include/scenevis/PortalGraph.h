@@ -36,6 +36,7 @@
 
 #include "scenevis/PolygonMesh.h"
 
+#include <glm/ext/vector_int3.hpp>
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
 
@@ -195,12 +196,34 @@ public:
    * (the union for overlapping rooms), plus both nodes of every portal closer than @p nearDistance
    * to the eye (an eye standing in a doorway, or whose near plane reaches through the opening).
    * In no room: see OutsidePolicy.
+   *
+   * Cost: sub-linear in the number of rooms and portals. A uniform grid over the building (about
+   * one cell per room, built by build()) lists the rooms and portals whose bounds touch each
+   * cell; only the rooms listed in the eye's cell get the ray-parity test, and only the portals
+   * of the cells within @p nearDistance get the distance test.
    */
   EyeLocation locate(const glm::dvec3& eye,
     double nearDistance,
     OutsidePolicy policy = OutsidePolicy::ExteriorPortals) const;
 
+  /// Grid cells per axis of the locate() grid (statistics and tests).
+  glm::ivec3 gridDimensions() const { return this->Grid.dims; }
+
 private:
+  /// Uniform grid over boxes: per cell, the items whose (tolerance-grown) box touches it (CSR).
+  struct BoxGrid
+  {
+    Box bounds;
+    glm::ivec3 dims{ 0, 0, 0 };
+    glm::dvec3 inverseCell{ 0.0 };
+    std::vector<std::uint32_t> roomStart, rooms;     ///< size cells + 1, and room ids
+    std::vector<std::uint32_t> portalStart, portals; ///< size cells + 1, and portal indices
+    bool empty() const { return this->dims.x == 0; }
+    /// Cell index range [lo, hi] per axis touched by [a, b] (clamped); false if outside.
+    bool cellRange(const glm::dvec3& a, const glm::dvec3& b, glm::ivec3& lo, glm::ivec3& hi) const;
+  };
+  void buildGrid();
+
   struct BoundaryPolygon
   {
     std::uint32_t first = 0; ///< Into PolygonPoints.
@@ -216,6 +239,7 @@ private:
   std::vector<BoundaryPolygon> Polygons;
   std::vector<glm::dvec3> PolygonPoints;
   Box BuildingBounds;
+  BoxGrid Grid;
   double Tolerance = 1e-12;
   bool AnyLeaky = false;
   std::uint64_t Fingerprint = 0;

@@ -27,12 +27,22 @@
  *   corners (the eye stands in it) makes both its rooms start rooms with the whole frustum; a
  *   portal whose plane passes through the eye (seen edge-on) or that is not planar passes the
  *   region on un-narrowed.
+ * - Parallel projection: the rays are parallel lines starting on the near rectangle, so the
+ *   near plane (not an eye plane) clips portals, and exact narrowing uses the planes through each
+ *   portal edge that contain the view direction (screen rectangles work unchanged); a portal
+ *   parallel to the view direction is edge-on. Rays start outside the building when the near
+ *   rectangle's box is outside the building's bounds (the usual orthographic overview from
+ *   outside): the traversal starts from the outside node and enters through exterior portals.
  * - Fallback to frustum-only culling (every room visible, boxes tested against the view frustum):
- *   eye in no room (OutsidePolicy), a leaky room reached, a parallel projection (its rays start on
- *   the whole near rectangle, which may span many rooms), or an invalid view matrix.
+ *   eye in no room (OutsidePolicy), a leaky room reached, a parallel projection whose near
+ *   rectangle touches the building's bounds (it may cut through walls into several rooms and
+ *   wall voids) or with the FrustumOnly outside policy, or an invalid view matrix.
  *
  * Tolerances: planes are compared with a slack of 10x PortalGraph::tolerance() and rectangles are
- * grown by 1e-9 in NDC, always in the direction that keeps more.
+ * grown by 1e-9 in NDC, always in the direction that keeps more. A region counts as contained in
+ * another (and is not expanded) when its portal polygon is within 10 slacks of the other's edge
+ * planes: each crossing may grow a region by one slack, and a region that went round a cycle of
+ * rooms must still be recognised (1e-7 of the scene size: far below a pixel).
  */
 
 #include "scenevis/Frustum.h"
@@ -89,7 +99,7 @@ enum class Fallback
   None,
   EyeInNoRoom,
   LeakyRoom,
-  ParallelProjection,
+  ParallelProjection, ///< Parallel projection with the near rectangle inside the building's bounds
   InvalidView
 };
 
@@ -180,6 +190,9 @@ private:
   void crossPortal(const GraphPortal& portal, std::int32_t to, std::uint32_t from);
   glm::dvec4 rectPlane(int side, double value) const;
   void startRegion(std::int32_t node, bool expand);
+  /// The start nodes of a frame (falls back when there are none to trust).
+  EyeLocation startNodes(
+    const PortalGraph& graph, const PortalView& view, const TraversalOptions& options);
 
   const PortalGraph* Graph = nullptr;
   TraversalOptions Options;
@@ -187,6 +200,8 @@ private:
   culling::Frustum ViewFrustum;
   glm::dvec4 Rows[4]{}; ///< Rows of clipFromWorld.
   glm::dvec4 FrontPlane{ 0.0 };
+  glm::dvec3 Direction{ 0.0 }; ///< Parallel projection: the (unit) direction of the view rays.
+  Box NearBox;                 ///< Parallel projection: bounds of the near rectangle.
   double PlaneSlack = 0.0;
   double NearDistance = 0.0;
   bool FrustumOnly = false;

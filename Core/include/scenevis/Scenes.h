@@ -207,14 +207,21 @@ struct BuildingScene : Scene
  * A building of `floors` storeys of roomsX x roomsY rooms (ids floor * roomsX * roomsY +
  * iy * roomsX + ix), centred at the origin in x and y, ground floor at z = 0, z up, metres.
  *
- * Geometry (all planar quads, 4 points of their own each):
+ * Geometry (planar quads and triangles, with points of their own each):
  * - Walls have thickness; a wall shared by two rooms is two sets of polygons, one face per side,
- *   each facing into and assigned to its own room. Openings are cut by splitting the face into
- *   up to 4 quads around the hole; the reveals (jambs) inside the wall thickness are split at
- *   the wall's centre plane and each half is assigned to the room on its side.
+ *   each facing into and assigned to its own room. Openings are cut by splitting the face on
+ *   the grid of the hole's lines (up to 8 cells around it); the reveals (jambs) inside the wall
+ *   thickness are split at the wall's centre plane and each half is assigned to the room on its
+ *   side.
  * - Each room has a floor and a ceiling (faces of the slabs, assigned to the room).
  * - Exterior: facade, roof and underside are assigned to kOutside, so from outside the building
  *   is a closed box with window holes.
+ * - Watertight: each room's shell (walls, reveals, floor, ceiling, stair shaft) and the outside's
+ *   (facade, its reveals, roof, underside) is closed except at its portals, with no T-junction:
+ *   where two faces meet, a face whose grid has no vertex where its neighbour has one is cut
+ *   into a triangle fan that has it, and shared vertices are bit-identical. Rasterisation
+ *   therefore leaves no crack through which another room could show (tested), and across a
+ *   portal both sides' edges coincide.
  * - Doors: per floor, a random spanning tree of the room grid gets doors (so every room is
  *   reachable) plus about 30 % of the remaining interior walls.
  * - Windows: each exterior wall of a room gets one with probability 0.75, with a translucent

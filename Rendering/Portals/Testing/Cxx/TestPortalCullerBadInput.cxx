@@ -1,6 +1,8 @@
 // Specification: vtkPortalCuller honours the vtkCuller contract and turns bad input into clear
 // warnings and conservative output (never an empty frame): no portals, portals without room
-// arrays, invalid portals, a dangling room id, an unusable camera, mode off, props without rooms.
+// arrays, invalid portals (< 3 points, non-planar, duplicate), a dangling room id, a room with no
+// portals (disconnected), an eye exactly on a portal plane, parallel projections, an unusable
+// camera, mode off, props without rooms.
 #include "vtkPortalCuller.h"
 
 #include "scenevis/testing/RenderWindow.h"
@@ -127,6 +129,9 @@ int TestPortalCullerBadInput(int, char*[])
   vtkOutput.ExpectWarning("camera or the viewport is not usable");
   vtkOutput.ExpectWarning("SavePVS: no PVS");
   vtkOutput.ExpectWarning("LoadPVS:");
+  vtkOutput.ExpectWarning("is not planar");
+  vtkOutput.ExpectWarning("duplicates portal 0");
+  vtkOutput.ExpectWarning("Parallel projection whose near plane");
   bool ok = true;
 
   auto window = st::MakeRenderWindow(64, 48);
@@ -214,6 +219,63 @@ int TestPortalCullerBadInput(int, char*[])
   ok &= Check(std::string(culler->GetGraphReport()).find("has 2 points") != std::string::npos,
     "graph report lists the problems");
   culler->SetPortals(Portals(true));
+
+  // A non-planar portal (3-4, x = 20.5 at one corner) and a duplicate of portal 0: warned; the
+  // non-planar one passes the view un-narrowed, the duplicate changes nothing.
+  culler->SetPortals(Portals(true,
+    { { { 15, 1.5, 0, 15, 2.5, 0, 15.5, 2.5, 2.1, 15, 1.5, 2.1 }, { 2, 3 } },
+      { { 5, 1.5, 0, 5, 2.5, 0, 5, 2.5, 2.1, 5, 1.5, 2.1 }, { 1, 0 } } }));
+  drawn = Run(culler, ren, props);
+  ok &= Check(std::string(culler->GetGraphReport()).find("not planar") != std::string::npos &&
+      std::string(culler->GetGraphReport()).find("duplicates portal 0") != std::string::npos,
+    "non-planar and duplicate portals reported");
+  ok &= Check(Has(drawn, r0.Get()) && Has(drawn, r1.Get()) && Has(drawn, r2.Get()) &&
+      !culler->GetFrustumOnly(),
+    "non-planar and duplicate portals: the corridor is still drawn");
+  culler->SetPortals(Portals(true));
+
+  // Eye exactly on the plane of door 0-1 (x = 5, in the doorway): both rooms start; looking
+  // down the corridor rooms 1-2 are drawn, looking back room 0 is.
+  cam->SetPosition(5, 2, 1.5);
+  cam->SetFocalPoint(30, 2, 1.5);
+  drawn = Run(culler, ren, props);
+  // (Room 0 lies wholly behind the near plane.)
+  ok &= Check(Has(drawn, r1.Get()) && Has(drawn, r2.Get()) && !Has(drawn, r3.Get()) &&
+      !culler->GetFrustumOnly(),
+    "eye on a portal plane, looking along the corridor");
+  cam->SetFocalPoint(-30, 2, 1.5);
+  drawn = Run(culler, ren, props);
+  ok &=
+    Check(Has(drawn, r0.Get()) && !culler->GetFrustumOnly(), "eye on a portal plane, looking back");
+
+  // Room 3 has no portals (disconnected from the others): an eye in it sees only room 3, never
+  // an empty frame.
+  cam->SetPosition(32.5, 2, 1.5);
+  cam->SetFocalPoint(0, 2, 1.5);
+  drawn = Run(culler, ren, props);
+  ok &= Check(Has(drawn, r3.Get()) && !Has(drawn, r0.Get()) && !Has(drawn, r1.Get()) &&
+      !Has(drawn, r2.Get()) && !culler->GetFrustumOnly(),
+    "eye in a room without portals: that room only");
+
+  // Parallel projection from outside (no exterior portals here): the closed rooms are culled,
+  // the free cube is not. With the near plane inside the building: warned, frustum only.
+  cam->ParallelProjectionOn();
+  cam->SetParallelScale(10);
+  cam->SetPosition(7.5, -40, 1.5);
+  cam->SetFocalPoint(7.5, 2, 1.5);
+  drawn = Run(culler, ren, props);
+  ok &= Check(!Has(drawn, r0.Get()) && !Has(drawn, r1.Get()) && Has(drawn, free.Get()) &&
+      !culler->GetFrustumOnly(),
+    "parallel projection from outside: closed rooms culled");
+  cam->SetPosition(2.5, 2, 1.5);
+  cam->SetFocalPoint(30, 2, 1.5);
+  drawn = Run(culler, ren, props);
+  ok &= Check(drawn.size() == props.size() && culler->GetFrustumOnly() &&
+      std::string(culler->GetFallbackReason()).find("parallel") != std::string::npos,
+    std::string("parallel projection inside: frustum only (") + culler->GetFallbackReason() + ")");
+  cam->ParallelProjectionOff();
+  cam->SetPosition(2.5, 2, 1.5);
+  cam->SetFocalPoint(30, 2, 1.5);
 
   // Eye outside every room, inside the building's bounds? Here: outside all bounds -> enter
   // through exterior portals; there are none, so only the outside (no prop) and free props.
