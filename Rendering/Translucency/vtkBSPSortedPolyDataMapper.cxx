@@ -53,9 +53,9 @@ bool NeedsCellExpansion(vtkMapper* mapper, vtkPolyData* input)
   if (mapper->GetScalarVisibility())
   {
     int cellFlag = 0;
-    vtkAbstractArray* scalars = vtkAbstractMapper::GetAbstractScalars(input,
-      mapper->GetScalarMode(), mapper->GetArrayAccessMode(), mapper->GetArrayId(),
-      mapper->GetArrayName(), cellFlag);
+    vtkAbstractArray* scalars =
+      vtkAbstractMapper::GetAbstractScalars(input, mapper->GetScalarMode(),
+        mapper->GetArrayAccessMode(), mapper->GetArrayId(), mapper->GetArrayName(), cellFlag);
     if (scalars && cellFlag == 1)
     {
       return true;
@@ -100,8 +100,10 @@ struct vtkBSPSortedPolyDataMapper::Internals
   const vtkBSPFragmentSet* RenderDataFor = nullptr;
   bool RenderDataExpanded = false;
   vtkMTimeType RenderDataMapperMTime = 0;
-  std::vector<unsigned int> TriIndices;     // fan triangles of every fragment, fragment id order
+  std::vector<unsigned int> TriIndices;       // fan triangles of every fragment, fragment id order
   std::vector<std::uint32_t> TriOffsets{ 0 }; // fragment f: TriIndices[TriOffsets[f]..[f+1])
+  vtkPolyData* BuffersBuiltFrom = nullptr;    // compared only
+  bool DrewFragments = false;
 
   // Order in the index buffer.
   std::vector<std::uint32_t> UploadedOrder; // fragment ids as in the IBO (valid if IBOHasOrder)
@@ -124,9 +126,11 @@ struct vtkBSPSortedPolyDataMapper::Internals
   vtkIdType VertexBufferBuilds = 0;
   double LastBuildTime = 0.0;
   double LastOrderTime = 0.0;
+  double LastUploadTime = 0.0;
 
   void Upload(vtkOpenGLIndexBufferObject* ibo, const std::vector<std::uint32_t>& order)
   {
+    const auto start = std::chrono::steady_clock::now();
     std::size_t total = 0;
     for (std::uint32_t f : order)
     {
@@ -148,6 +152,7 @@ struct vtkBSPSortedPolyDataMapper::Internals
     this->UploadedOrder = order;
     this->IBOHasOrder = true;
     ++this->IndexUploads;
+    this->LastUploadTime = SecondsSince(start);
   }
 
   void BuildRenderData(vtkMapper* mapper, bool expand);
@@ -221,7 +226,8 @@ void vtkBSPSortedPolyDataMapper::Internals::BuildRenderData(vtkMapper* mapper, b
         *out++ = first + k + 1;
       }
     }
-    auto gather = [numExpanded](vtkAbstractArray* source, const std::vector<vtkIdType>& from) {
+    auto gather = [numExpanded](vtkAbstractArray* source, const std::vector<vtkIdType>& from)
+    {
       vtkAbstractArray* array = source->NewInstance();
       if (!array)
       {
@@ -248,9 +254,9 @@ void vtkBSPSortedPolyDataMapper::Internals::BuildRenderData(vtkMapper* mapper, b
     vtkPointData* outPD = result->GetPointData();
     vtkCellData* inCD = input->GetCellData();
     int cellFlag = 0;
-    vtkAbstractArray* cellScalars = vtkAbstractMapper::GetAbstractScalars(input,
-      mapper->GetScalarMode(), mapper->GetArrayAccessMode(), mapper->GetArrayId(),
-      mapper->GetArrayName(), cellFlag);
+    vtkAbstractArray* cellScalars =
+      vtkAbstractMapper::GetAbstractScalars(input, mapper->GetScalarMode(),
+        mapper->GetArrayAccessMode(), mapper->GetArrayId(), mapper->GetArrayName(), cellFlag);
     for (int a = 0; a < inCD->GetNumberOfArrays(); ++a)
     {
       vtkAbstractArray* source = inCD->GetAbstractArray(a);
@@ -351,6 +357,11 @@ vtkIdType vtkBSPSortedPolyDataMapper::GetNumberOfFragmentTriangles() const
   return static_cast<vtkIdType>(this->Internal->TriOffsets.back() / 3);
 }
 
+bool vtkBSPSortedPolyDataMapper::GetLastRenderDrewFragments() const
+{
+  return this->Internal->DrewFragments;
+}
+
 double vtkBSPSortedPolyDataMapper::GetLastBuildTime() const
 {
   return this->Internal->LastBuildTime;
@@ -359,6 +370,11 @@ double vtkBSPSortedPolyDataMapper::GetLastBuildTime() const
 double vtkBSPSortedPolyDataMapper::GetLastOrderTime() const
 {
   return this->Internal->LastOrderTime;
+}
+
+double vtkBSPSortedPolyDataMapper::GetLastUploadTime() const
+{
+  return this->Internal->LastUploadTime;
 }
 
 void vtkBSPSortedPolyDataMapper::GetFragmentOrder(std::vector<vtkIdType>& cellIds) const
@@ -400,6 +416,12 @@ void vtkBSPSortedPolyDataMapper::SetExternalOrder(const std::vector<std::uint32_
   }
 }
 
+void vtkBSPSortedPolyDataMapper::InvalidateExternalGeometry()
+{
+  this->Internal->RenderData = nullptr;
+  this->Internal->RenderDataFor = nullptr;
+}
+
 void vtkBSPSortedPolyDataMapper::SetDrawRange(vtkIdType firstIndex, vtkIdType indexCount)
 {
   this->Internal->DrawFirst = firstIndex;
@@ -411,15 +433,24 @@ vtkUnsignedCharArray* vtkBSPSortedPolyDataMapper::MapScalars(double alpha)
 {
   // The superclass maps the scalars of GetInput(); ours are those of the geometry drawn.
   int cellFlag = 0;
-  return this->MapScalars(this->CurrentInput ? this->CurrentInput : this->GetInput(), alpha,
-    cellFlag);
+  return this->MapScalars(
+    this->CurrentInput ? this->CurrentInput : this->GetInput(), alpha, cellFlag);
 }
 
 //------------------------------------------------------------------------------
 void vtkBSPSortedPolyDataMapper::BuildBufferObjects(vtkRenderer* ren, vtkActor* act)
 {
   ++this->Internal->VertexBufferBuilds;
+  this->Internal->BuffersBuiltFrom = this->CurrentInput;
   this->Superclass::BuildBufferObjects(ren, act);
+}
+
+//------------------------------------------------------------------------------
+bool vtkBSPSortedPolyDataMapper::GetNeedToRebuildBufferObjects(vtkRenderer* ren, vtkActor* act)
+{
+  // The superclass compares MTimes only; we also switch between the input and the fragments.
+  const bool superclassNeeds = this->Superclass::GetNeedToRebuildBufferObjects(ren, act);
+  return superclassNeeds || this->Internal->BuffersBuiltFrom != this->CurrentInput;
 }
 
 //------------------------------------------------------------------------------
@@ -452,8 +483,8 @@ void vtkBSPSortedPolyDataMapper::UpdateCameraShiftScale(vtkRenderer* ren, vtkAct
   Internals& internal = *this->Internal;
   const bool translucent = actor->IsRenderingTranslucentPolygonalGeometry() && !ren->GetSelector();
   vtkProperty* property = actor->GetProperty();
-  const bool sortable = translucent && property->GetRepresentation() == VTK_SURFACE &&
-    !property->GetEdgeVisibility();
+  const bool sortable =
+    translucent && property->GetRepresentation() == VTK_SURFACE && !property->GetEdgeVisibility();
 
   // Standalone: (re)build the tree once the actor is drawn translucent, and when the input changes.
   if (!internal.External && (sortable || internal.Tree) &&
@@ -497,11 +528,14 @@ void vtkBSPSortedPolyDataMapper::UpdateCameraShiftScale(vtkRenderer* ren, vtkAct
     ++internal.TreeBuilds;
   }
 
-  // The geometry drawn: the fragments (built once per fragment set) or, before any translucent
-  // render, the input itself.
+  // The geometry drawn: the fragments (built once per fragment set) while sorting, otherwise the
+  // input itself. An actor that became opaque thus draws its own triangles again, not the 2-3x
+  // as many split fragments (switching costs one vertex buffer build each way; the tree and the
+  // fragments are kept for when it turns translucent again).
   vtkPolyData* drawn = input;
   bool expanded = false;
-  if (internal.Fragments && internal.Fragments->FragmentCount() > 0)
+  if (internal.Fragments && internal.Fragments->FragmentCount() > 0 &&
+    (internal.External || sortable))
   {
     const bool expand = NeedsCellExpansion(this, internal.Fragments->Input);
     if (!internal.RenderData || internal.RenderDataFor != internal.Fragments.get() ||
@@ -515,6 +549,7 @@ void vtkBSPSortedPolyDataMapper::UpdateCameraShiftScale(vtkRenderer* ren, vtkAct
     expanded = internal.RenderDataExpanded;
   }
   this->CurrentInput = drawn;
+  internal.DrewFragments = drawn != input;
   internal.Expanded = expanded;
   internal.Sortable = sortable;
   this->Superclass::UpdateCameraShiftScale(ren, actor);
@@ -586,7 +621,6 @@ void vtkBSPSortedPolyDataMapper::RenderPieceStart(vtkRenderer* ren, vtkActor* ac
       }
     }
   }
-
 }
 
 //------------------------------------------------------------------------------

@@ -16,9 +16,10 @@
  *    (scenevis::bsp::IncrementalOrder) and re-uploads the triangle index buffer in that order.
  *    Camera unchanged: nothing is re-sorted and nothing is uploaded.
  *
- * Only translucent rendering needs an order: while its actor is opaque the mapper does not sort,
- * and an actor that has never been rendered translucent does not even build the tree (it is drawn
- * exactly like by vtkOpenGLPolyDataMapper).
+ * Only translucent rendering needs an order: while its actor is opaque the mapper neither sorts
+ * nor draws the split fragments (it draws its input, exactly like vtkOpenGLPolyDataMapper; the
+ * tree is kept), and an actor that has never been rendered translucent does not even build the
+ * tree.
  *
  * To see the order on screen, translucent geometry must be alpha blended in primitive order: set
  * a vtkOrderedTranslucentPass on the renderer (VTK 9.1's default weighted OIT ignores order).
@@ -33,8 +34,9 @@
  *   triangles; concave/non-planar polygons are triangulated by the BSP builder.
  *
  * Limits: sorting applies to the surface representation without edge visibility (edges and
- * wireframe/points representations are drawn in fragment order); hardware picking reports
- * fragment-triangle ids rather than input cell ids.
+ * wireframe/points representations draw the input, unsorted). Hardware picking draws the input
+ * (so it reports input cell ids), which costs a vertex buffer build each way on a translucent
+ * actor.
  *
  * Instrumentation (for tests and benchmarks): GetNumberOfIndexUploads(),
  * GetNumberOfOrderUpdates(), GetNumberOfTreeBuilds(), GetNumberOfVertexBufferBuilds().
@@ -90,9 +92,14 @@ public:
   vtkIdType GetNumberOfFragmentTriangles() const;
   ///@}
 
-  /// Seconds of the last tree build and of the last order update + index upload.
+  /// Whether the last render drew the split fragments (sorted) rather than the input (opaque).
+  bool GetLastRenderDrewFragments() const;
+
+  /// Seconds of the last tree build, of the last order update + index upload, and of the last
+  /// index upload alone (gathering the triangles in order + glBufferData).
   double GetLastBuildTime() const;
   double GetLastOrderTime() const;
+  double GetLastUploadTime() const;
 
   /**
    * The current drawing order as input cell ids of the fragments (one entry per fragment, in
@@ -106,6 +113,7 @@ protected:
 
   void UpdateCameraShiftScale(vtkRenderer* ren, vtkActor* act) override;
   void BuildBufferObjects(vtkRenderer* ren, vtkActor* act) override;
+  bool GetNeedToRebuildBufferObjects(vtkRenderer* ren, vtkActor* act) override;
   void BuildIBO(vtkRenderer* ren, vtkActor* act, vtkPolyData* poly) override;
   // Used by vtkBSPTranslucentPass: the fragments come from its world-space tree, the order of this
   // actor's fragments is given, and RenderPiece draws only index range [first, first + count).
@@ -114,6 +122,9 @@ protected:
   /// Local fragment ids in drawing order; uploads the index buffer if it differs from the last.
   void SetExternalOrder(const std::vector<std::uint32_t>& order);
   void SetDrawRange(vtkIdType firstIndex, vtkIdType indexCount);
+  /// The point data of the external fragments' input changed (e.g. baked colours): build the
+  /// vertex buffers again at the next render; the order is kept.
+  void InvalidateExternalGeometry();
 
 private:
   vtkBSPSortedPolyDataMapper(const vtkBSPSortedPolyDataMapper&) = delete;

@@ -10,20 +10,25 @@
 #include "vtkCamera.h"
 #include "vtkCellArray.h"
 #include "vtkCellData.h"
+#include "vtkFloatArray.h"
 #include "vtkIdTypeArray.h"
 #include "vtkIntArray.h"
 #include "vtkMatrix4x4.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
+#include "vtkPlaneCollection.h"
+#include "vtkPointData.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
 #include "vtkPolyDataMapper.h"
 #include "vtkProperty.h"
-#include "vtkScalarsToColors.h"
 #include "vtkRenderState.h"
 #include "vtkRenderer.h"
+#include "vtkScalarsToColors.h"
+#include "vtkShaderProperty.h"
 #include "vtkSmartPointer.h"
 #include "vtkTexture.h"
+#include "vtkUnsignedCharArray.h"
 #include "vtkWeakPointer.h"
 
 #include "scenevis/BspBuilder.h"
@@ -33,6 +38,8 @@
 #include <array>
 #include <chrono>
 #include <cmath>
+#include <map>
+#include <string>
 
 vtkStandardNewMacro(vtkBSPTranslucentPass);
 
@@ -92,9 +99,93 @@ std::vector<double> MapperSettings(vtkPolyDataMapper* mapper)
   return s;
 }
 
+/// The settings that must be equal for actors to share one helper mapper: everything of their
+/// look except colour and opacity, which are baked per point. Empty when the actor cannot share
+/// one (texture, shader code, cell colours, ...).
+std::vector<double> BatchKey(vtkActor* actor, vtkPolyDataMapper* mapper, vtkPolyData* input)
+{
+  std::vector<double> key;
+  vtkProperty* property = actor->GetProperty();
+  const std::string mapperClass = mapper->GetClassName();
+  if (actor->GetTexture() || actor->GetBackfaceProperty() || property->GetNumberOfTextures() > 0 ||
+    property->GetInterpolation() == VTK_PBR ||
+    (mapperClass != "vtkOpenGLPolyDataMapper" && mapperClass != "vtkBSPSortedPolyDataMapper"))
+  {
+    return key;
+  }
+  if (vtkPlaneCollection* planes = mapper->GetClippingPlanes())
+  {
+    if (planes->GetNumberOfItems() > 0)
+    {
+      return key;
+    }
+  }
+  vtkShaderProperty* shaders = actor->GetShaderProperty();
+  if (shaders->HasVertexShaderCode() || shaders->HasFragmentShaderCode() ||
+    shaders->HasGeometryShaderCode() || shaders->GetNumberOfShaderReplacements() > 0)
+  {
+    return key;
+  }
+  bool scalarColors = false;
+  if (mapper->GetScalarVisibility())
+  {
+    int cellFlag = 0;
+    vtkAbstractArray* scalars =
+      vtkAbstractMapper::GetAbstractScalars(input, mapper->GetScalarMode(),
+        mapper->GetArrayAccessMode(), mapper->GetArrayId(), mapper->GetArrayName(), cellFlag);
+    // Cell colours would need per-fragment vertices; scalars interpolated before mapping are
+    // coloured by texture lookup per pixel, which per-point colours cannot reproduce.
+    if (scalars && (cellFlag != 0 || mapper->GetInterpolateScalarsBeforeMapping()))
+    {
+      return key;
+    }
+    scalarColors = scalars != nullptr;
+  }
+  const bool pointNormals = input->GetPointData()->GetNormals() != nullptr;
+  if (!pointNormals && input->GetCellData()->GetNormals())
+  {
+    return key;
+  }
+  // Baked colours feed both the ambient and the diffuse term (as VTK 9.1 does with point
+  // colours); without scalars that is only the actor's look if both colours agree.
+  const double* ambient = property->GetAmbientColor();
+  const double* diffuse = property->GetDiffuseColor();
+  if (!scalarColors && property->GetAmbient() > 0.0 && !std::equal(ambient, ambient + 3, diffuse))
+  {
+    return key;
+  }
+  key = { 1.0, static_cast<double>(property->GetLighting()),
+    static_cast<double>(property->GetInterpolation()), property->GetAmbient(),
+    property->GetDiffuse(), property->GetSpecular(), property->GetSpecularPower(),
+    static_cast<double>(property->GetBackfaceCulling()),
+    static_cast<double>(property->GetFrontfaceCulling()), pointNormals ? 1.0 : 0.0,
+    static_cast<double>(mapper->GetResolveCoincidentTopology()) };
+  double factor = 0.0, units = 0.0;
+  mapper->GetRelativeCoincidentTopologyPolygonOffsetParameters(factor, units);
+  key.push_back(factor);
+  key.push_back(units);
+  if (property->GetSpecular() > 0.0)
+  {
+    const double* specular = property->GetSpecularColor();
+    key.insert(key.end(), specular, specular + 3);
+  }
+  return key;
+}
+
+/// What the baked colours of a batched actor depend on besides its input and mapper settings.
+std::vector<double> ColorKey(vtkActor* actor, vtkPolyDataMapper* mapper)
+{
+  vtkProperty* property = actor->GetProperty();
+  const double* diffuse = property->GetDiffuseColor();
+  std::vector<double> key(diffuse, diffuse + 3);
+  key.push_back(property->GetOpacity());
+  key.push_back(static_cast<double>(mapper->GetLookupTable()->GetMTime()));
+  return key;
+}
+
 struct Run
 {
-  std::size_t actor;
+  std::size_t group;
   vtkIdType firstIndex;
   vtkIdType indexCount;
 };
@@ -105,29 +196,61 @@ struct vtkBSPTranslucentPass::Internals
   struct Entry
   {
     vtkWeakPointer<vtkActor> Actor;
+    // Draws the actor when it is not batched; maps its scalars to colours when it is.
     vtkSmartPointer<vtkBSPSortedPolyDataMapper> Helper;
     std::vector<double> MapperSettings;
     vtkPolyDataMapper* Mapper = nullptr; // compared only
     vtkPolyData* Input = nullptr;        // compared only
     vtkMTimeType InputMTime = 0;
     std::array<double, 16> Matrix{};
+    std::vector<double> BatchKey; // empty: cannot be batched
+    std::vector<double> ColorKey; // batched actors only
+    std::size_t Group = 0;
+    vtkIdType PointOffset = 0; // first point in its group's polydata
+  };
+  std::vector<Entry> Entries;
+
+  /// What one run draws: one actor with its own helper, or a batch of compatible actors.
+  struct Group
+  {
+    std::vector<std::size_t> Members;
+    bool Batched = false;
+    vtkSmartPointer<vtkBSPSortedPolyDataMapper> Helper; // batched only
+    vtkSmartPointer<vtkActor> Actor;                    // batched only: identity matrix
+    vtkSmartPointer<vtkPolyData> Points;                // batched only: world points, colours
+    vtkMTimeType PropertyMTime = 0;
     std::shared_ptr<vtkBSPFragmentSet> Fragments;
     std::vector<std::uint32_t> LocalOrder;
     vtkIdType Cursor = 0;
+
+    vtkBSPSortedPolyDataMapper* DrawingMapper(const std::vector<Entry>& entries) const
+    {
+      return this->Batched ? this->Helper.Get() : entries[this->Members[0]].Helper.Get();
+    }
+    vtkActor* DrawingActor(const std::vector<Entry>& entries) const
+    {
+      return this->Batched ? this->Actor.Get() : entries[this->Members[0]].Actor.Get();
+    }
   };
-  std::vector<Entry> Entries;
+  std::vector<Group> Groups;
+  // Batched helpers (mapper + actor) kept across rebuilds so their shaders and buffers are reused.
+  std::vector<std::pair<vtkSmartPointer<vtkBSPSortedPolyDataMapper>, vtkSmartPointer<vtkActor>>>
+    BatchHelpers;
 
   std::unique_ptr<bsp::Tree> Tree;
   std::unique_ptr<bsp::IncrementalOrder> Order;
   std::vector<std::uint32_t> FragmentActor; // global fragment -> entry
-  std::vector<std::uint32_t> FragmentLocal; // global fragment -> fragment id within its entry
+  std::vector<std::uint32_t> FragmentGroup; // global fragment -> group
+  std::vector<std::uint32_t> FragmentLocal; // global fragment -> fragment id within its group
   std::vector<Run> Runs;
   bool RunsValid = false;
   bool HaveView = false;
   scenevis::View LastView;
+  bool Batching = true;
 
   vtkIdType TreeBuilds = 0;
   vtkIdType OrderUpdates = 0;
+  vtkIdType ColorBakes = 0;
   vtkIdType UploadsOfReleasedHelpers = 0;
   double LastBuildTime = 0.0;
   double LastOrderTime = 0.0;
@@ -138,22 +261,164 @@ struct vtkBSPTranslucentPass::Internals
     {
       this->UploadsOfReleasedHelpers += entry.Helper->GetNumberOfIndexUploads();
     }
+    for (auto& helper : this->BatchHelpers)
+    {
+      this->UploadsOfReleasedHelpers += helper.first->GetNumberOfIndexUploads();
+    }
     this->Entries.clear();
+    this->Groups.clear();
+    this->BatchHelpers.clear();
     this->Order.reset();
     this->Tree.reset();
     this->FragmentActor.clear();
+    this->FragmentGroup.clear();
     this->FragmentLocal.clear();
     this->Runs.clear();
     this->RunsValid = false;
     this->HaveView = false;
   }
 
-  void Build();
+  /// Group of every entry: equal non-empty keys form a batch when there are at least two.
+  std::vector<Group> Partition() const;
+  bool SamePartition(const std::vector<Group>& groups) const;
+  void Build(std::vector<Group> groups);
+  void BakeColors(Group& group);
   void UpdateRuns();
 };
 
 //------------------------------------------------------------------------------
-void vtkBSPTranslucentPass::Internals::Build()
+std::vector<vtkBSPTranslucentPass::Internals::Group> vtkBSPTranslucentPass::Internals::Partition()
+  const
+{
+  // rep[k]: the first entry with k's key (k itself when it cannot be batched).
+  const std::size_t n = this->Entries.size();
+  std::vector<std::size_t> rep(n);
+  std::vector<std::size_t> count(n, 0);
+  std::map<std::vector<double>, std::size_t> firstWithKey;
+  for (std::size_t k = 0; k < n; ++k)
+  {
+    rep[k] = k;
+    const std::vector<double>& key = this->Entries[k].BatchKey;
+    if (this->Batching && !key.empty())
+    {
+      rep[k] = firstWithKey.emplace(key, k).first->second;
+    }
+    ++count[rep[k]];
+  }
+  std::vector<Group> groups;
+  std::vector<std::size_t> batchGroup(n, n);
+  for (std::size_t k = 0; k < n; ++k)
+  {
+    if (count[rep[k]] < 2)
+    {
+      Group single;
+      single.Members = { k };
+      groups.push_back(std::move(single));
+      continue;
+    }
+    if (batchGroup[rep[k]] == n)
+    {
+      batchGroup[rep[k]] = groups.size();
+      Group batch;
+      batch.Batched = true;
+      groups.push_back(std::move(batch));
+    }
+    groups[batchGroup[rep[k]]].Members.push_back(k);
+  }
+  return groups;
+}
+
+bool vtkBSPTranslucentPass::Internals::SamePartition(const std::vector<Group>& groups) const
+{
+  if (groups.size() != this->Groups.size())
+  {
+    return false;
+  }
+  for (std::size_t g = 0; g < groups.size(); ++g)
+  {
+    if (groups[g].Batched != this->Groups[g].Batched ||
+      groups[g].Members != this->Groups[g].Members)
+    {
+      return false;
+    }
+  }
+  return true;
+}
+
+//------------------------------------------------------------------------------
+void vtkBSPTranslucentPass::Internals::BakeColors(Group& group)
+{
+  auto* colors = vtkUnsignedCharArray::SafeDownCast(group.Points->GetPointData()->GetScalars());
+  unsigned char* out = colors->GetPointer(0);
+  for (std::size_t k : group.Members)
+  {
+    Entry& entry = this->Entries[k];
+    vtkActor* actor = entry.Actor;
+    vtkProperty* property = actor->GetProperty();
+    const double opacity = property->GetOpacity();
+    const vtkIdType count = entry.Input->GetNumberOfPoints();
+    unsigned char* first = out + 4 * entry.PointOffset;
+    vtkUnsignedCharArray* mapped = nullptr;
+    if (entry.Helper->GetScalarVisibility())
+    {
+      // The helper is a copy of the actor's mapper (settings and lookup table): the colours the
+      // actor would show, with its opacity multiplied in as VTK's opacity uniform would.
+      int cellFlag = 0;
+      mapped = entry.Helper->MapScalars(entry.Input, opacity, cellFlag);
+      if (mapped && (cellFlag != 0 || mapped->GetNumberOfTuples() != count))
+      {
+        mapped = nullptr;
+      }
+    }
+    if (mapped)
+    {
+      const int components = mapped->GetNumberOfComponents();
+      const unsigned char* in = mapped->GetPointer(0);
+      const auto scaledAlpha = static_cast<unsigned char>(std::lround(255.0 * opacity));
+      for (vtkIdType i = 0; i < count; ++i, in += components)
+      {
+        unsigned char* rgba = first + 4 * i;
+        switch (components)
+        {
+          case 1:
+            rgba[0] = rgba[1] = rgba[2] = in[0];
+            rgba[3] = scaledAlpha;
+            break;
+          case 2:
+            rgba[0] = rgba[1] = rgba[2] = in[0];
+            rgba[3] = in[1];
+            break;
+          case 3:
+            std::copy(in, in + 3, rgba);
+            rgba[3] = scaledAlpha;
+            break;
+          default:
+            std::copy(in, in + 4, rgba);
+            break;
+        }
+      }
+    }
+    else
+    {
+      const double* color = property->GetDiffuseColor();
+      const unsigned char rgba[4] = { static_cast<unsigned char>(std::lround(255.0 * color[0])),
+        static_cast<unsigned char>(std::lround(255.0 * color[1])),
+        static_cast<unsigned char>(std::lround(255.0 * color[2])),
+        static_cast<unsigned char>(std::lround(255.0 * opacity)) };
+      for (vtkIdType i = 0; i < count; ++i)
+      {
+        std::copy(rgba, rgba + 4, first + 4 * i);
+      }
+    }
+    entry.ColorKey = ColorKey(actor, entry.Mapper);
+  }
+  colors->Modified();
+  group.Helper->InvalidateExternalGeometry();
+  ++this->ColorBakes;
+}
+
+//------------------------------------------------------------------------------
+void vtkBSPTranslucentPass::Internals::Build(std::vector<Group> groups)
 {
   const auto start = std::chrono::steady_clock::now();
   this->Order.reset();
@@ -177,23 +442,130 @@ void vtkBSPTranslucentPass::Internals::Build()
   }
   auto tree = std::make_unique<bsp::Tree>(bsp::build(mesh, vtkBSPFragmentSet::BuildConfig()));
 
-  // Which actor every point belongs to, and its id within that actor's fragment set.
+  // The geometry every group draws: an actor's own input, or for a batch the world-space points
+  // (and normals) of its actors one after the other, with baked colours.
+  std::size_t batches = 0;
+  for (std::size_t g = 0; g < groups.size(); ++g)
+  {
+    Group& group = groups[g];
+    for (std::size_t k : group.Members)
+    {
+      this->Entries[k].Group = g;
+      this->Entries[k].PointOffset = 0;
+    }
+    if (!group.Batched)
+    {
+      continue;
+    }
+    if (batches == this->BatchHelpers.size())
+    {
+      auto helper = vtkSmartPointer<vtkBSPSortedPolyDataMapper>::New();
+      helper->StaticOn();
+      helper->ScalarVisibilityOn();
+      helper->SetScalarModeToUsePointData();
+      helper->SetColorModeToDirectScalars();
+      helper->InterpolateScalarsBeforeMappingOff();
+      auto actor = vtkSmartPointer<vtkActor>::New();
+      actor->SetMapper(helper);
+      this->BatchHelpers.emplace_back(helper, actor);
+    }
+    group.Helper = this->BatchHelpers[batches].first;
+    group.Actor = this->BatchHelpers[batches].second;
+    ++batches;
+
+    vtkIdType total = 0;
+    for (std::size_t k : group.Members)
+    {
+      this->Entries[k].PointOffset = total;
+      total += this->Entries[k].Input->GetNumberOfPoints();
+    }
+    const bool normals = this->Entries[group.Members[0]].Input->GetPointData()->GetNormals();
+    vtkNew<vtkPoints> points;
+    points->SetDataTypeToDouble();
+    points->SetNumberOfPoints(total);
+    vtkNew<vtkFloatArray> normalArray;
+    normalArray->SetName("Normals");
+    normalArray->SetNumberOfComponents(3);
+    normalArray->SetNumberOfTuples(normals ? total : 0);
+    for (std::size_t k : group.Members)
+    {
+      const Entry& entry = this->Entries[k];
+      const double* m = entry.Matrix.data();
+      // Normals go through the inverse transpose of the linear part.
+      vtkNew<vtkMatrix4x4> normalMatrix;
+      normalMatrix->DeepCopy(m);
+      normalMatrix->Invert();
+      normalMatrix->Transpose();
+      vtkPoints* in = entry.Input->GetPoints();
+      vtkDataArray* inNormals = entry.Input->GetPointData()->GetNormals();
+      const vtkIdType count = entry.Input->GetNumberOfPoints();
+      for (vtkIdType i = 0; i < count; ++i)
+      {
+        double p[3];
+        in->GetPoint(i, p);
+        double w = m[12] * p[0] + m[13] * p[1] + m[14] * p[2] + m[15];
+        w = w != 0.0 ? 1.0 / w : 1.0;
+        points->SetPoint(entry.PointOffset + i,
+          (m[0] * p[0] + m[1] * p[1] + m[2] * p[2] + m[3]) * w,
+          (m[4] * p[0] + m[5] * p[1] + m[6] * p[2] + m[7]) * w,
+          (m[8] * p[0] + m[9] * p[1] + m[10] * p[2] + m[11]) * w);
+        if (normals && inNormals)
+        {
+          double n[3];
+          inNormals->GetTuple(i, n);
+          const double(*a)[4] = normalMatrix->Element;
+          double r[3] = { a[0][0] * n[0] + a[0][1] * n[1] + a[0][2] * n[2],
+            a[1][0] * n[0] + a[1][1] * n[1] + a[1][2] * n[2],
+            a[2][0] * n[0] + a[2][1] * n[1] + a[2][2] * n[2] };
+          const double length = std::sqrt(r[0] * r[0] + r[1] * r[1] + r[2] * r[2]);
+          if (length > 0.0)
+          {
+            r[0] /= length;
+            r[1] /= length;
+            r[2] /= length;
+          }
+          normalArray->SetTuple(entry.PointOffset + i, r);
+        }
+      }
+    }
+    vtkNew<vtkUnsignedCharArray> colors;
+    colors->SetName("Colors");
+    colors->SetNumberOfComponents(4);
+    colors->SetNumberOfTuples(total);
+    group.Points = vtkSmartPointer<vtkPolyData>::New();
+    group.Points->SetPoints(points);
+    group.Points->GetPointData()->SetScalars(colors);
+    if (normals)
+    {
+      group.Points->GetPointData()->SetNormals(normalArray);
+    }
+    group.Helper->SetInputData(group.Points);
+  }
+  for (std::size_t b = batches; b < this->BatchHelpers.size(); ++b)
+  {
+    this->UploadsOfReleasedHelpers += this->BatchHelpers[b].first->GetNumberOfIndexUploads();
+  }
+  this->BatchHelpers.resize(batches);
+
+  // Which actor every point belongs to, and its id within its group's fragment set.
   const std::size_t inputPoints = tree->inputPointCount;
   std::vector<std::uint32_t> pointActor(tree->points.size());
   std::vector<std::uint32_t> pointLocal(tree->points.size());
   for (std::size_t k = 0; k < this->Entries.size(); ++k)
   {
+    const auto offset = static_cast<std::uint32_t>(this->Entries[k].PointOffset);
     for (std::uint32_t p = pointStart[k]; p < pointStart[k + 1]; ++p)
     {
       pointActor[p] = static_cast<std::uint32_t>(k);
-      pointLocal[p] = p - pointStart[k];
+      pointLocal[p] = p - pointStart[k] + offset;
     }
   }
-  std::vector<std::shared_ptr<vtkBSPFragmentSet>> sets(this->Entries.size());
-  for (std::size_t k = 0; k < this->Entries.size(); ++k)
+  std::vector<std::shared_ptr<vtkBSPFragmentSet>> sets(groups.size());
+  for (std::size_t g = 0; g < groups.size(); ++g)
   {
-    sets[k] = std::make_shared<vtkBSPFragmentSet>();
-    sets[k]->Input = this->Entries[k].Input;
+    sets[g] = std::make_shared<vtkBSPFragmentSet>();
+    sets[g]->Input =
+      groups[g].Batched ? groups[g].Points.Get() : this->Entries[groups[g].Members[0]].Input;
   }
   for (std::size_t s = 0; s < tree->splitPoints.size(); ++s)
   {
@@ -201,7 +573,7 @@ void vtkBSPTranslucentPass::Internals::Build()
     const std::size_t id = inputPoints + s;
     // A split point lies on an edge of one polygon, so both ends belong to the same actor.
     const std::uint32_t k = pointActor[split.a];
-    vtkBSPFragmentSet& set = *sets[k];
+    vtkBSPFragmentSet& set = *sets[this->Entries[k].Group];
     pointActor[id] = k;
     pointLocal[id] = static_cast<std::uint32_t>(
       static_cast<std::size_t>(set.Input->GetNumberOfPoints()) + set.Splits.size());
@@ -209,16 +581,19 @@ void vtkBSPTranslucentPass::Internals::Build()
   }
   const std::size_t fragmentCount = tree->fragments.size();
   this->FragmentActor.resize(fragmentCount);
+  this->FragmentGroup.resize(fragmentCount);
   this->FragmentLocal.resize(fragmentCount);
-  for (std::size_t g = 0; g < fragmentCount; ++g)
+  for (std::size_t f = 0; f < fragmentCount; ++f)
   {
-    const bsp::Fragment& fragment = tree->fragments[g];
+    const bsp::Fragment& fragment = tree->fragments[f];
     const auto k = static_cast<std::uint32_t>(
       std::upper_bound(polygonStart.begin(), polygonStart.end(), fragment.source) -
       polygonStart.begin() - 1);
-    vtkBSPFragmentSet& set = *sets[k];
-    this->FragmentActor[g] = k;
-    this->FragmentLocal[g] = static_cast<std::uint32_t>(set.FragmentCount());
+    const auto g = static_cast<std::uint32_t>(this->Entries[k].Group);
+    vtkBSPFragmentSet& set = *sets[g];
+    this->FragmentActor[f] = k;
+    this->FragmentGroup[f] = g;
+    this->FragmentLocal[f] = static_cast<std::uint32_t>(set.FragmentCount());
     for (std::uint32_t v = 0; v < fragment.count; ++v)
     {
       set.Vertices.push_back(pointLocal[tree->fragmentVertices[fragment.first + v]]);
@@ -226,10 +601,16 @@ void vtkBSPTranslucentPass::Internals::Build()
     set.Offsets.push_back(static_cast<std::uint32_t>(set.Vertices.size()));
     set.Cells.push_back(cellOf[fragment.source]);
   }
-  for (std::size_t k = 0; k < this->Entries.size(); ++k)
+  this->Groups = std::move(groups);
+  for (std::size_t g = 0; g < this->Groups.size(); ++g)
   {
-    this->Entries[k].Fragments = sets[k];
-    this->Entries[k].Helper->SetExternalFragments(sets[k]);
+    Group& group = this->Groups[g];
+    group.Fragments = sets[g];
+    group.DrawingMapper(this->Entries)->SetExternalFragments(sets[g]);
+    if (group.Batched)
+    {
+      this->BakeColors(group);
+    }
   }
   this->Tree = std::move(tree);
   this->Order = std::make_unique<bsp::IncrementalOrder>(*this->Tree, bsp::Direction::BackToFront);
@@ -240,34 +621,33 @@ void vtkBSPTranslucentPass::Internals::Build()
 //------------------------------------------------------------------------------
 void vtkBSPTranslucentPass::Internals::UpdateRuns()
 {
-  for (Entry& entry : this->Entries)
+  for (Group& group : this->Groups)
   {
-    entry.LocalOrder.clear();
-    entry.Cursor = 0;
+    group.LocalOrder.clear();
+    group.Cursor = 0;
   }
   this->Runs.clear();
   const std::size_t none = static_cast<std::size_t>(-1);
   std::size_t current = none;
-  for (std::uint32_t g : this->Order->order())
+  for (std::uint32_t f : this->Order->order())
   {
-    const std::uint32_t k = this->FragmentActor[g];
-    Entry& entry = this->Entries[k];
-    const std::uint32_t local = this->FragmentLocal[g];
-    const vtkIdType indices = 3 *
-      (static_cast<vtkIdType>(entry.Fragments->Offsets[local + 1] - entry.Fragments->Offsets[local]) -
-        2);
-    if (k != current)
+    const std::uint32_t g = this->FragmentGroup[f];
+    Group& group = this->Groups[g];
+    const std::uint32_t local = this->FragmentLocal[f];
+    const std::vector<std::uint32_t>& offsets = group.Fragments->Offsets;
+    const vtkIdType indices = 3 * (static_cast<vtkIdType>(offsets[local + 1] - offsets[local]) - 2);
+    if (g != current)
     {
-      this->Runs.push_back({ k, entry.Cursor, 0 });
-      current = k;
+      this->Runs.push_back({ g, group.Cursor, 0 });
+      current = g;
     }
     this->Runs.back().indexCount += indices;
-    entry.Cursor += indices;
-    entry.LocalOrder.push_back(local);
+    group.Cursor += indices;
+    group.LocalOrder.push_back(local);
   }
-  for (Entry& entry : this->Entries)
+  for (Group& group : this->Groups)
   {
-    entry.Helper->SetExternalOrder(entry.LocalOrder);
+    group.DrawingMapper(this->Entries)->SetExternalOrder(group.LocalOrder);
   }
   this->RunsValid = true;
 }
@@ -287,6 +667,10 @@ void vtkBSPTranslucentPass::ReleaseGraphicsResources(vtkWindow* w)
   for (Internals::Entry& entry : this->Internal->Entries)
   {
     entry.Helper->ReleaseGraphicsResources(w);
+  }
+  for (auto& helper : this->Internal->BatchHelpers)
+  {
+    helper.first->ReleaseGraphicsResources(w);
   }
   this->Superclass::ReleaseGraphicsResources(w);
 }
@@ -347,8 +731,9 @@ void vtkBSPTranslucentPass::Render(const vtkRenderState* s)
     return;
   }
 
-  // Rebuild only when the set of actors, a matrix, an input or a mapper changed.
+  // Rebuild only when the set of actors, a matrix, an input or the grouping changed.
   bool rebuild = sorted.size() != internal.Entries.size() || !internal.Tree;
+  std::vector<bool> mapperChanged(sorted.size(), false);
   std::vector<Internals::Entry> entries;
   entries.reserve(sorted.size());
   for (std::size_t k = 0; k < sorted.size(); ++k)
@@ -376,6 +761,7 @@ void vtkBSPTranslucentPass::Render(const vtkRenderState* s)
       entry.Helper->StaticOn();
       entry.Mapper = mappers[k];
       entry.MapperSettings = settings;
+      mapperChanged[k] = true;
     }
     if (entry.Input != inputs[k] || entry.InputMTime != inputs[k]->GetMTime())
     {
@@ -389,6 +775,8 @@ void vtkBSPTranslucentPass::Render(const vtkRenderState* s)
       std::copy(m, m + 16, entry.Matrix.begin());
       rebuild = true;
     }
+    entry.BatchKey =
+      internal.Batching ? BatchKey(sorted[k], mappers[k], inputs[k]) : std::vector<double>();
     entries.push_back(std::move(entry));
   }
   for (const Internals::Entry& old : internal.Entries)
@@ -400,9 +788,47 @@ void vtkBSPTranslucentPass::Render(const vtkRenderState* s)
     }
   }
   internal.Entries = std::move(entries);
-  if (rebuild)
+  std::vector<Internals::Group> groups = internal.Partition();
+  if (rebuild || !internal.SamePartition(groups))
   {
-    internal.Build();
+    internal.Build(std::move(groups));
+  }
+  else
+  {
+    // A batched actor's colour, opacity, lookup table or scalar settings changed: bake the
+    // colours of its group again (the tree and the order stay).
+    for (Internals::Group& group : internal.Groups)
+    {
+      if (!group.Batched)
+      {
+        continue;
+      }
+      bool bake = false;
+      for (std::size_t k : group.Members)
+      {
+        const Internals::Entry& entry = internal.Entries[k];
+        bake = bake || mapperChanged[k] || entry.ColorKey != ColorKey(entry.Actor, entry.Mapper);
+      }
+      if (bake)
+      {
+        internal.BakeColors(group);
+      }
+    }
+  }
+  // The shared property of a batch: its first actor's, with colour and opacity in the points.
+  for (Internals::Group& group : internal.Groups)
+  {
+    if (group.Batched)
+    {
+      vtkProperty* property = internal.Entries[group.Members[0]].Actor->GetProperty();
+      if (group.PropertyMTime != property->GetMTime() ||
+        group.Actor->GetProperty()->GetOpacity() != 1.0)
+      {
+        group.Actor->GetProperty()->DeepCopy(property);
+        group.Actor->GetProperty()->SetOpacity(1.0);
+        group.PropertyMTime = property->GetMTime();
+      }
+    }
   }
 
   // Order: incremental, and only when the camera moved.
@@ -432,12 +858,13 @@ void vtkBSPTranslucentPass::Render(const vtkRenderState* s)
   }
   internal.LastOrderTime = SecondsSince(orderStart);
 
-  // Draw the runs, each with its actor's property, texture and matrix.
+  // Draw the runs, each with its actor's (or its batch's) property, texture and matrix.
   for (const Run& run : internal.Runs)
   {
-    Internals::Entry& entry = internal.Entries[run.actor];
-    vtkActor* actor = entry.Actor;
-    entry.Helper->SetDrawRange(run.firstIndex, run.indexCount);
+    const Internals::Group& group = internal.Groups[run.group];
+    vtkBSPSortedPolyDataMapper* helper = group.DrawingMapper(internal.Entries);
+    vtkActor* actor = group.DrawingActor(internal.Entries);
+    helper->SetDrawRange(run.firstIndex, run.indexCount);
     actor->SetIsRenderingTranslucentPolygonalGeometry(true);
     vtkProperty* property = actor->GetProperty();
     property->Render(actor, renderer);
@@ -449,16 +876,52 @@ void vtkBSPTranslucentPass::Render(const vtkRenderState* s)
     {
       texture->Render(renderer);
     }
-    actor->Render(renderer, entry.Helper);
+    actor->Render(renderer, helper);
     property->PostRender(actor, renderer);
     if (vtkTexture* texture = actor->GetTexture())
     {
       texture->PostRender(renderer);
     }
     actor->SetIsRenderingTranslucentPolygonalGeometry(false);
-    entry.Helper->SetDrawRange(-1, -1);
+    helper->SetDrawRange(-1, -1);
   }
   this->NumberOfRenderedProps += static_cast<int>(internal.Entries.size());
+}
+
+//------------------------------------------------------------------------------
+int vtkBSPTranslucentPass::GetNumberOfBatchGroups() const
+{
+  return static_cast<int>(std::count_if(this->Internal->Groups.begin(),
+    this->Internal->Groups.end(), [](const Internals::Group& g) { return g.Batched; }));
+}
+
+int vtkBSPTranslucentPass::GetNumberOfBatchedActors() const
+{
+  int actors = 0;
+  for (const Internals::Group& group : this->Internal->Groups)
+  {
+    actors += group.Batched ? static_cast<int>(group.Members.size()) : 0;
+  }
+  return actors;
+}
+
+vtkIdType vtkBSPTranslucentPass::GetNumberOfColorBakes() const
+{
+  return this->Internal->ColorBakes;
+}
+
+void vtkBSPTranslucentPass::SetBatching(bool batching)
+{
+  if (this->Internal->Batching != batching)
+  {
+    this->Internal->Batching = batching;
+    this->Modified();
+  }
+}
+
+bool vtkBSPTranslucentPass::GetBatching() const
+{
+  return this->Internal->Batching;
 }
 
 //------------------------------------------------------------------------------
@@ -483,8 +946,7 @@ vtkIdType vtkBSPTranslucentPass::GetNumberOfFragments() const
 
 vtkIdType vtkBSPTranslucentPass::GetNumberOfSplits() const
 {
-  return this->Internal->Tree ? static_cast<vtkIdType>(this->Internal->Tree->statistics.splits)
-                              : 0;
+  return this->Internal->Tree ? static_cast<vtkIdType>(this->Internal->Tree->statistics.splits) : 0;
 }
 
 vtkIdType vtkBSPTranslucentPass::GetNumberOfDrawCalls() const
@@ -508,6 +970,10 @@ vtkIdType vtkBSPTranslucentPass::GetNumberOfIndexUploads() const
   for (const Internals::Entry& entry : this->Internal->Entries)
   {
     uploads += entry.Helper->GetNumberOfIndexUploads();
+  }
+  for (const auto& helper : this->Internal->BatchHelpers)
+  {
+    uploads += helper.first->GetNumberOfIndexUploads();
   }
   return uploads;
 }
@@ -537,8 +1003,8 @@ void vtkBSPTranslucentPass::GetOrderedFragments(vtkPolyData* output) const
   points->SetNumberOfPoints(static_cast<vtkIdType>(tree.points.size()));
   for (std::size_t i = 0; i < tree.points.size(); ++i)
   {
-    points->SetPoint(static_cast<vtkIdType>(i), tree.points[i].x, tree.points[i].y,
-      tree.points[i].z);
+    points->SetPoint(
+      static_cast<vtkIdType>(i), tree.points[i].x, tree.points[i].y, tree.points[i].z);
   }
   vtkNew<vtkCellArray> polys;
   vtkNew<vtkIntArray> actorIndex;
@@ -568,5 +1034,7 @@ void vtkBSPTranslucentPass::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "NumberOfSortedActors: " << this->GetNumberOfSortedActors() << "\n";
   os << indent << "NumberOfFragments: " << this->GetNumberOfFragments() << "\n";
   os << indent << "NumberOfDrawCalls: " << this->GetNumberOfDrawCalls() << "\n";
+  os << indent << "NumberOfBatchGroups: " << this->GetNumberOfBatchGroups() << "\n";
+  os << indent << "Batching: " << this->GetBatching() << "\n";
   os << indent << "NumberOfTreeBuilds: " << this->GetNumberOfTreeBuilds() << "\n";
 }

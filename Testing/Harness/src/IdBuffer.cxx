@@ -161,7 +161,6 @@ vtkStandardNewMacro(vtkSceneVisIdBufferMapper)
     {
       renderer->ResetCamera();
     }
-    renderer->ResetCameraClippingRange();
 
     // Detach the window's renderers so that only the ID render is in the image.
     std::vector<vtkSmartPointer<vtkRenderer>> saved;
@@ -176,6 +175,9 @@ vtkStandardNewMacro(vtkSceneVisIdBufferMapper)
       window->RemoveRenderer(other);
     }
     window->AddRenderer(renderer);
+    // After AddRenderer: the near-plane tolerance depends on the window's depth bits (0.001 with
+    // 24 bits, else 0.01 of the far distance), and a near plane 1% away looks through walls.
+    renderer->ResetCameraClippingRange();
     window->Render();
     const int* size = window->GetSize();
     IdImage image;

@@ -3,7 +3,8 @@
 //  (a) same image as vtkBSPSortFilter + vtkPolyDataMapper (same exact order, near-identical);
 //  (b) within 0.5/255 mean error of dual depth peeling with 100 peels;
 //  (c) camera unchanged -> no re-sort, no index upload; camera moved -> no vertex buffer rebuild;
-//  (d) an opaque actor builds no tree at all.
+//  (d) an opaque actor builds no tree at all; one that turned translucent and then opaque again
+//      draws its input (not the split fragments) and keeps its tree.
 #include "vtkBSPSortFilter.h"
 #include "vtkBSPSortedPolyDataMapper.h"
 #include "vtkDemoSceneSource.h"
@@ -122,12 +123,15 @@ int TestBSPSortedPolyDataMapper(int, char*[])
     auto filtered = RenderWith(window, filterRenderer);
     auto peeled = RenderWith(window, peelRenderer);
     const std::string tag = "view " + std::to_string(v) + (spec.parallel ? " (parallel)" : "");
-    st::WritePng(sorted, st::TemporaryDirectory() + "/TestBSPSortedPolyDataMapper_" +
-        std::to_string(v) + "_mapper.png");
-    st::WritePng(filtered, st::TemporaryDirectory() + "/TestBSPSortedPolyDataMapper_" +
-        std::to_string(v) + "_filter.png");
-    st::WritePng(peeled, st::TemporaryDirectory() + "/TestBSPSortedPolyDataMapper_" +
-        std::to_string(v) + "_peel100.png");
+    st::WritePng(sorted,
+      st::TemporaryDirectory() + "/TestBSPSortedPolyDataMapper_" + std::to_string(v) +
+        "_mapper.png");
+    st::WritePng(filtered,
+      st::TemporaryDirectory() + "/TestBSPSortedPolyDataMapper_" + std::to_string(v) +
+        "_filter.png");
+    st::WritePng(peeled,
+      st::TemporaryDirectory() + "/TestBSPSortedPolyDataMapper_" + std::to_string(v) +
+        "_peel100.png");
 
     st::ImageThresholds same; // same order: near-identical
     same.maxMeanAbsError = 0.1;
@@ -148,8 +152,8 @@ int TestBSPSortedPolyDataMapper(int, char*[])
   ok &= Check(sortedMapper->GetNumberOfVertexBufferBuilds() == 1,
     "vertex buffers built once for all views (builds: " +
       std::to_string(sortedMapper->GetNumberOfVertexBufferBuilds()) + ")");
-  ok &= Check(sortedMapper->GetNumberOfFragments() > 0, "fragments: " +
-      std::to_string(sortedMapper->GetNumberOfFragments()));
+  ok &= Check(sortedMapper->GetNumberOfFragments() > 0,
+    "fragments: " + std::to_string(sortedMapper->GetNumberOfFragments()));
 
   // (c) Camera unchanged: nothing re-sorted, nothing uploaded.
   RenderWith(window, sortedRenderer);
@@ -181,15 +185,34 @@ int TestBSPSortedPolyDataMapper(int, char*[])
   opaqueRenderer->SetPass(sortedPass);
   auto opaqueImage = RenderWith(window, opaqueRenderer);
   ok &= Check(st::CoveredFraction(opaqueImage) > 0.05, "opaque actor drawn");
-  ok &= Check(opaqueMapper->GetNumberOfTreeBuilds() == 0 &&
-      opaqueMapper->GetNumberOfIndexUploads() == 0,
+  ok &= Check(
+    opaqueMapper->GetNumberOfTreeBuilds() == 0 && opaqueMapper->GetNumberOfIndexUploads() == 0,
     "opaque actor: no tree, no sorting");
   // ... until it becomes translucent.
   opaqueActor->GetProperty()->SetOpacity(0.5);
   RenderWith(window, opaqueRenderer);
-  ok &= Check(opaqueMapper->GetNumberOfTreeBuilds() == 1 &&
-      opaqueMapper->GetNumberOfIndexUploads() == 1,
+  ok &= Check(
+    opaqueMapper->GetNumberOfTreeBuilds() == 1 && opaqueMapper->GetNumberOfIndexUploads() == 1,
     "translucent actor: tree built, order uploaded");
+  ok &= Check(opaqueMapper->GetLastRenderDrewFragments(), "translucent actor: fragments drawn");
+  // Opaque again: it draws its own triangles, not the split fragments, and keeps its tree.
+  const vtkIdType buffers = opaqueMapper->GetNumberOfVertexBufferBuilds();
+  opaqueActor->GetProperty()->SetOpacity(1.0);
+  auto opaqueAgain = RenderWith(window, opaqueRenderer);
+  ok &= Check(!opaqueMapper->GetLastRenderDrewFragments() &&
+      opaqueMapper->GetNumberOfVertexBufferBuilds() == buffers + 1,
+    "opaque again: input drawn (one vertex buffer build)");
+  const auto vsFirstOpaque = st::CompareImages(opaqueAgain, opaqueImage);
+  ok &= Check(vsFirstOpaque.meanAbsError == 0.0,
+    "opaque again: same image as before: " + vsFirstOpaque.Summary());
+  RenderWith(window, opaqueRenderer);
+  ok &= Check(opaqueMapper->GetNumberOfVertexBufferBuilds() == buffers + 1,
+    "opaque, next frame: no vertex buffer build");
+  opaqueActor->GetProperty()->SetOpacity(0.5);
+  RenderWith(window, opaqueRenderer);
+  ok &=
+    Check(opaqueMapper->GetLastRenderDrewFragments() && opaqueMapper->GetNumberOfTreeBuilds() == 1,
+      "translucent again: fragments drawn, tree kept");
 
   window->GetRenderers()->RemoveAllItems();
   return vtkOutput.ExitCode(ok ? EXIT_SUCCESS : EXIT_FAILURE);
