@@ -234,6 +234,9 @@ void revolve(const Profile& profile,
 /// UV sphere resolution: stacks latitude bands, slices ~ 2 * stacks, closest to `triangles`.
 std::pair<int, int> sphereResolution(std::size_t triangles)
 {
+  // Three indices per triangle must fit the 32-bit ids; checking here, before the int
+  // conversions below, keeps huge requests from overflowing them.
+  checkIdRange(0, triangles > kMaxId / 3 ? kMaxId + std::size_t(1) : 3 * triangles);
   const double t = static_cast<double>(triangles);
   const int stacks = std::max(2, static_cast<int>(std::lround(std::sqrt(t / 4.0) + 0.5)));
   const int slices =
