@@ -9,7 +9,25 @@
 #   SAME                                    the same text as the same member of the JSON file
 #                                           VALUE (e.g. the report of another run)
 # QUIET_STDERR=ON: stderr must be empty too (no progress bar when stderr is not a terminal).
-# Usage: cmake -DCOMMAND=... -DCHECKS=... [-DJSON_FILE=...] [-DQUIET_STDERR=ON] -P expect_json.cmake
+# DATA_KEY=key: the command needs that key of the fetched real data (scripts/fetch-data.sh); when
+# the data cache's manifest lacks it, prints "SKIPPED: ..." (the test's SKIP_REGULAR_EXPRESSION).
+# Usage: cmake -DCOMMAND=... -DCHECKS=... [-DJSON_FILE=...] [-DQUIET_STDERR=ON] [-DDATA_KEY=...]
+#        -P expect_json.cmake
+if(DATA_KEY)
+  if(DEFINED ENV{SCENEVIS_DATA_DIR})
+    set(manifest "$ENV{SCENEVIS_DATA_DIR}/manifest.txt")
+  else()
+    set(manifest "$ENV{HOME}/.cache/scenevis-data/manifest.txt")
+  endif()
+  set(entries "")
+  if(EXISTS "${manifest}")
+    file(STRINGS "${manifest}" entries REGEX "^${DATA_KEY}=")
+  endif()
+  if(NOT entries)
+    message("SKIPPED: '${DATA_KEY}' is not fetched (bash scripts/fetch-data.sh)")
+    return()
+  endif()
+endif()
 if(DEFINED JSON_FILE)
   file(REMOVE "${JSON_FILE}") # a stale report must not pass for a new one
 endif()
