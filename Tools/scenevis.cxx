@@ -2062,8 +2062,8 @@ void DescribeExact(std::ostream& json, vtkRenderWindow* window, vtkCamera* camer
 {
   namespace st = scenevis::testing;
   const auto start = std::chrono::steady_clock::now();
-  const std::vector<std::uint32_t> visibleCells =
-    st::VisibleSet(st::RenderVisibleIds(window, pd, camera));
+  const st::IdImage visibleIds = st::RenderVisibleIds(window, pd, camera);
+  const std::vector<std::uint32_t> visibleCells = st::VisibleSet(visibleIds);
   const double exactMs = Milliseconds(start);
 
   // Which cells of the scene were drawn: the chunked mapper's cells, the cells of the actors
@@ -2112,8 +2112,19 @@ void DescribeExact(std::ostream& json, vtkRenderWindow* window, vtkCamera* camer
       missedKeys.insert(key);
     }
   }
+  // What an approximate mode costs on screen: the pixels whose visible cell it did not draw.
+  std::size_t visiblePixels = 0;
+  std::size_t lostPixels = 0;
+  for (const std::uint32_t id : visibleIds.ids)
+  {
+    if (id == st::kNoId || id >= drawn.size())
+      continue;
+    ++visiblePixels;
+    lostPixels += drawn[id] ? 0 : 1;
+  }
   const auto drawnCells = std::count(drawn.begin(), drawn.end(), 1);
-  json << ",\n  \"exact\": {\"visible_cells\": " << visibleCells.size()
+  json << ",\n  \"exact\": {\"visible_pixels\": " << visiblePixels
+       << ", \"lost_pixels\": " << lostPixels << ", \"visible_cells\": " << visibleCells.size()
        << ", \"drawn_cells\": " << drawnCells
        << ", \"false_negative_cells\": " << falseNegativeCells << ", \"overdraw_cells\": "
        << drawnCells - static_cast<vtkIdType>(visibleCells.size()) + falseNegativeCells;
