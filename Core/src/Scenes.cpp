@@ -1747,14 +1747,18 @@ BuildingScene building(int floors, int roomsX, int roomsY, std::uint64_t seed)
         std::array<double, 4> hole{};
         // Grid axes: x sides (a, b) = (y, z); y sides (a, b) = (z, x).
         std::array<const std::vector<double>*, 4> extras{};
+        // The hole exists only where there is a window (4 lines along, 4 in z); without one,
+        // along and z hold just the two ends.
         if (n == 0)
         {
-          hole = { along[1], along[2], z[1], z[2] };
+          if (open)
+            hole = { along[1], along[2], z[1], z[2] };
           extras = { &below, &above, &left, &right };
         }
         else
         {
-          hole = { z[1], z[2], along[1], along[2] };
+          if (open)
+            hole = { z[1], z[2], along[1], along[2] };
           extras = { &left, &right, &below, &above };
         }
         layers[kFacade].grid(n, wOuter,
