@@ -177,7 +177,10 @@ vtkStandardNewMacro(vtkSceneVisIdBufferMapper)
     window->AddRenderer(renderer);
     // After AddRenderer: the near-plane tolerance depends on the window's depth bits (0.001 with
     // 24 bits, else 0.01 of the far distance), and a near plane 1% away looks through walls.
-    renderer->ResetCameraClippingRange();
+    if (!camera || !options.cameraClippingRange)
+    {
+      renderer->ResetCameraClippingRange();
+    }
     window->Render();
     const int* size = window->GetSize();
     IdImage image;

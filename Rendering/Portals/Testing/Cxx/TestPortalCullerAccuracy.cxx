@@ -31,13 +31,10 @@
 #include <vtkProperty.h>
 #include <vtkRenderWindow.h>
 #include <vtkRenderer.h>
-#include <vtkRendererCollection.h>
-#include <vtkUnsignedCharArray.h>
 #include <vtkXMLPolyDataReader.h>
 #include <vtkXMLPolyDataWriter.h>
 
 #include <algorithm>
-#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -119,87 +116,14 @@ struct ModeResult
   double frameMs = 0.0;
 };
 
-/**
- * The exact visible set of @p coloured (cell colours = id + 1 in 24 bits) for @p camera with the
- * camera's own clipping range. st::RenderVisibleIds() resets the range to the data bounds before
- * its renderer has a window, which puts the near plane at 1% of the far distance (about 0.25 m
- * here): from an eye closer than that to a wall its image looks through the wall. The frames
- * this test checks are drawn with the camera's range, so the oracle uses it too.
- */
-st::IdImage RenderIdsWithCameraRange(
-  vtkRenderWindow* window, vtkPolyData* coloured, vtkCamera* camera)
+/// The exact visible set of @p pd's rooms ("RoomNode" as the id) for @p camera, with the
+/// camera's own clipping range: the frames this test checks are drawn with it.
+st::IdImage RenderRoomIds(vtkRenderWindow* window, vtkPolyData* pd, vtkCamera* camera)
 {
-  vtkNew<vtkPolyDataMapper> mapper;
-  mapper->SetInputData(coloured);
-  mapper->ScalarVisibilityOn();
-  mapper->SetScalarModeToUseCellData();
-  mapper->SetColorModeToDirectScalars();
-  vtkNew<vtkActor> actor;
-  actor->SetMapper(mapper);
-  actor->GetProperty()->LightingOff();
-  actor->GetProperty()->SetInterpolationToFlat();
-  vtkNew<vtkRenderer> renderer;
-  renderer->SetBackground(0, 0, 0);
-  renderer->SetUseFXAA(false);
-  renderer->SetUseDepthPeeling(0);
-  renderer->AddActor(actor);
-  renderer->GetActiveCamera()->DeepCopy(camera); // clipping range included
-  std::vector<vtkSmartPointer<vtkRenderer>> saved;
-  vtkRendererCollection* renderers = window->GetRenderers();
-  renderers->InitTraversal();
-  while (vtkRenderer* other = renderers->GetNextItem())
-  {
-    saved.emplace_back(other);
-  }
-  for (auto& other : saved)
-  {
-    window->RemoveRenderer(other);
-  }
-  window->AddRenderer(renderer);
-  window->Render();
-  const int* size = window->GetSize();
-  vtkNew<vtkUnsignedCharArray> pixels;
-  window->GetPixelData(0, 0, size[0] - 1, size[1] - 1, 0, pixels);
-  window->RemoveRenderer(renderer);
-  renderer->ReleaseGraphicsResources(window);
-  for (auto& other : saved)
-  {
-    window->AddRenderer(other);
-  }
-  st::IdImage image;
-  image.width = size[0];
-  image.height = size[1];
-  image.ids.resize(static_cast<std::size_t>(size[0]) * static_cast<std::size_t>(size[1]));
-  const unsigned char* p = pixels->GetPointer(0);
-  for (std::size_t i = 0; i < image.ids.size(); ++i, p += 3)
-  {
-    const std::uint32_t value = (std::uint32_t(p[0]) << 16) | (std::uint32_t(p[1]) << 8) | p[2];
-    image.ids[i] = value == 0 ? st::kNoId : value - 1;
-  }
-  return image;
-}
-
-/// @p pd with cell colours encoding its cell-data array "RoomNode" + 1 (for the ID render).
-vtkSmartPointer<vtkPolyData> IdColoured(vtkPolyData* pd)
-{
-  vtkDataArray* node = pd->GetCellData()->GetArray("RoomNode");
-  vtkNew<vtkUnsignedCharArray> colours;
-  colours->SetNumberOfComponents(3);
-  colours->SetNumberOfTuples(pd->GetNumberOfCells());
-  for (vtkIdType c = 0; c < pd->GetNumberOfCells(); ++c)
-  {
-    const auto value = static_cast<std::uint32_t>(node->GetTuple1(c)) + 1u;
-    colours->SetTypedTuple(c,
-      std::array<unsigned char, 3>{ static_cast<unsigned char>((value >> 16) & 0xFFu),
-        static_cast<unsigned char>((value >> 8) & 0xFFu),
-        static_cast<unsigned char>(value & 0xFFu) }
-        .data());
-  }
-  vtkNew<vtkPolyData> out;
-  out->SetPoints(pd->GetPoints());
-  out->SetPolys(pd->GetPolys());
-  out->GetCellData()->SetScalars(colours);
-  return out;
+  st::IdRenderOptions options;
+  options.originalIdArray = "RoomNode";
+  options.cameraClippingRange = true;
+  return st::RenderIdBuffer(window, pd, camera, options);
 }
 
 /// Where the eyes of the test are.
@@ -258,7 +182,7 @@ int TestPortalCullerAccuracy(int, char*[])
     actors.push_back(actor);
     props.push_back(actor);
   }
-  auto all = IdColoured(RoomPolyData(b, -2, outsideNode));
+  auto all = RoomPolyData(b, -2, outsideNode);
 
   vtkNew<vtkPortalCuller> culler;
   culler->SetPortals(reader->GetOutput());
@@ -350,7 +274,7 @@ int TestPortalCullerAccuracy(int, char*[])
     camera->SetViewUp(0, 0, 1);
     camera->SetClippingRange(0.05, 200.0);
 
-    const st::IdImage ids = RenderIdsWithCameraRange(window, all, camera);
+    const st::IdImage ids = RenderRoomIds(window, all, camera);
     const std::vector<std::uint32_t> visible = st::VisibleSet(ids);
     visibleTotal += visible.size();
     for (const std::uint32_t v : visible)
@@ -436,7 +360,7 @@ int TestPortalCullerAccuracy(int, char*[])
     camera->SetViewUp(0, 0, 1);
     camera->SetParallelScale(2.0 + u(rng) * 8.0);
     camera->SetClippingRange(1.0, 200.0);
-    const st::IdImage ids = RenderIdsWithCameraRange(window, all, camera);
+    const st::IdImage ids = RenderRoomIds(window, all, camera);
     const std::vector<std::uint32_t> visible = st::VisibleSet(ids);
     parallelVisible += visible.size();
     for (int m = 0; m < 3; ++m)

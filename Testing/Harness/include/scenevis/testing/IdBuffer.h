@@ -70,12 +70,16 @@ struct IdRenderOptions
   /// Name of a cell-data array (any numeric type, 1 component) holding each cell's original id;
   /// empty: the id is the cell index.
   std::string originalIdArray;
+  /// true: keep @p camera's clipping range (compare with frames drawn with it, e.g. an eye
+  /// closer to a wall than a range fitted to the whole scene allows); false: fit it to the data.
+  bool cameraClippingRange = false;
 };
 
 /**
  * Render the cells of @p polys with ID colours into @p window (its size is the image size) using
  * a copy of @p camera (nullptr: a camera reset to the data bounds). The clipping range is reset
- * to the data bounds so that no cell is clipped by near/far planes.
+ * to the data bounds so that no cell is clipped by near/far planes (unless
+ * IdRenderOptions::cameraClippingRange).
  * @throws std::invalid_argument for non-polygon cells, ids that do not fit or a missing array.
  */
 IdImage RenderIdBuffer(vtkRenderWindow* window,
