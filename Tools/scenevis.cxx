@@ -520,33 +520,6 @@ private:
 };
 
 /**
- * Bounds of the finite points of @p pd (VTK's bounds skip NaN points but not infinite ones, and
- * a camera fitted to infinite bounds sees nothing of the polygons the sorters keep). All zero
- * when no point is finite.
- */
-void FiniteBounds(vtkPolyData* pd, double bounds[6])
-{
-  bool any = false;
-  vtkPoints* points = pd->GetPoints();
-  const vtkIdType count = points ? points->GetNumberOfPoints() : 0;
-  for (vtkIdType i = 0; i < count; ++i)
-  {
-    double p[3];
-    points->GetPoint(i, p);
-    if (!(std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2])))
-      continue;
-    for (int k = 0; k < 3; ++k)
-    {
-      bounds[2 * k] = any ? std::min(bounds[2 * k], p[k]) : p[k];
-      bounds[2 * k + 1] = any ? std::max(bounds[2 * k + 1], p[k]) : p[k];
-    }
-    any = true;
-  }
-  if (!any)
-    std::fill_n(bounds, 6, 0.0);
-}
-
-/**
  * LoadModel() in a child process. VTK 9.1's PLY and glTF readers crash on some malformed files
  * (Testing/BadInput lists them); the tool reads files it cannot trust, so a reader crash must cost
  * the child, not the tool: the child writes what it read as an uncompressed .vtp to a temporary
@@ -841,7 +814,7 @@ void SetUpCamera(const Options& options, vtkRenderer* renderer, vtkPolyData* pd,
   vtkCamera* camera = renderer->GetActiveCamera();
   camera->SetParallelProjection(options.parallel);
   double bounds[6];
-  FiniteBounds(pd, bounds);
+  pd->GetBounds(bounds); // finite: LoadScene removed cells with NaN/Inf points
   const double center[3] = { (bounds[0] + bounds[1]) / 2, (bounds[2] + bounds[3]) / 2,
     (bounds[4] + bounds[5]) / 2 };
   const double defaultUp[3] = { 0.0, zUp ? 0.0 : 1.0, zUp ? 1.0 : 0.0 };
@@ -2758,7 +2731,7 @@ int Sort(const Options& options)
   vtkNew<vtkCamera> camera;
   camera->SetParallelProjection(options.parallel);
   double bounds[6];
-  FiniteBounds(scene.polydata, bounds);
+  scene.polydata->GetBounds(bounds);
   const double center[3] = { (bounds[0] + bounds[1]) / 2, (bounds[2] + bounds[3]) / 2,
     (bounds[4] + bounds[5]) / 2 };
   if (options.hasCamera)
