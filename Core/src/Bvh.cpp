@@ -424,7 +424,7 @@ void Bvh::cull(const CullParams& params, std::vector<std::uint32_t>& visible, Cu
   }
 }
 
-void Bvh::cullNode(Frame& f, std::uint32_t ni, std::uint8_t mask) const
+bool Bvh::nodePasses(Frame& f, std::uint32_t ni, std::uint8_t& mask) const
 {
   const Node& node = nodes_[ni];
   const CullParams& params = f.params;
@@ -432,27 +432,70 @@ void Bvh::cullNode(Frame& f, std::uint32_t ni, std::uint8_t mask) const
   if (mask && !testBoxMasked(params.frustum, node.lo, node.hi, mask, nodeHint_[ni]))
   {
     f.stats.culledFrustum += node.objects;
-    return;
+    return false;
   }
   if (f.distance && nearestDistance2(params.eye, node.lo, node.hi) > f.maxDistance2)
   {
     f.stats.culledDistance += node.objects;
-    return;
+    return false;
   }
   const glm::dvec3 center = (node.lo + node.hi) * 0.5;
   const double radius = 0.5 * glm::length(node.hi - node.lo);
   if (f.nodeContribution && tooSmall(params, center, radius, radius))
   {
     f.stats.culledContribution += node.objects;
-    return;
+    return false;
   }
   if (f.cones && nodeCones_[ni].canCull() &&
     (params.parallel ? backFacingAlong(nodeCones_[ni], params.viewDirection)
                      : backFacingFromEye(nodeCones_[ni], center, radius, params.eye)))
   {
     f.stats.culledNormalCone += node.objects;
+    return false;
+  }
+  return true;
+}
+
+bool Bvh::objectPasses(Frame& f, std::uint32_t p, std::uint8_t mask) const
+{
+  const CullParams& params = f.params;
+  ++f.stats.objectsTested;
+  const glm::dvec3 lo(boxes_.minX[p], boxes_.minY[p], boxes_.minZ[p]);
+  const glm::dvec3 hi(boxes_.maxX[p], boxes_.maxY[p], boxes_.maxZ[p]);
+  if (mask && !testBoxMasked(params.frustum, lo, hi, mask, objectHint_[p]))
+  {
+    ++f.stats.culledFrustum;
+    return false;
+  }
+  if (f.distance && nearestDistance2(params.eye, lo, hi) > f.maxDistance2)
+  {
+    ++f.stats.culledDistance;
+    return false;
+  }
+  const glm::dvec3 c = (lo + hi) * 0.5;
+  const double r = 0.5 * glm::length(hi - lo);
+  if (f.contribution && tooSmall(params, c, r, 0.0))
+  {
+    ++f.stats.culledContribution;
+    return false;
+  }
+  if (f.cones && cones_[p].canCull() &&
+    (params.parallel ? backFacingAlong(cones_[p], params.viewDirection)
+                     : backFacingFromEye(cones_[p], c, r, params.eye)))
+  {
+    ++f.stats.culledNormalCone;
+    return false;
+  }
+  return true;
+}
+
+void Bvh::cullNode(Frame& f, std::uint32_t ni, std::uint8_t mask) const
+{
+  if (!nodePasses(f, ni, mask))
+  {
     return;
   }
+  const Node& node = nodes_[ni];
   if (mask == 0 && !f.distance && !f.contribution && !f.cones)
   {
     // Fully inside the frustum and nothing else to test: the whole subtree is visible, and its
@@ -480,37 +523,173 @@ void Bvh::cullNode(Frame& f, std::uint32_t ni, std::uint8_t mask) const
     {
       continue; // reported after the traversal
     }
-    ++f.stats.objectsTested;
+    if (objectPasses(f, p, mask))
+    {
+      f.visible.push_back(id_[p]);
+      ++f.stats.objectsDrawn;
+      f.stats.trianglesDrawn += triangles_[p];
+    }
+  }
+}
+
+// ----------------------------------------------------------------------------------------------
+// Cull with occlusion
+// ----------------------------------------------------------------------------------------------
+
+struct Bvh::OcclusionFrame
+{
+  Frame base;
+  OcclusionCull& occlusion;
+  std::vector<std::pair<double, std::uint32_t>> leafScratch;
+};
+
+namespace
+{
+/// How near a box comes to the viewer: squared distance from the eye (perspective) or the
+/// smallest coordinate along the view direction (parallel). Only the order matters.
+inline double nearness(const CullParams& p, const glm::dvec3& lo, const glm::dvec3& hi)
+{
+  if (p.parallel)
+  {
+    const glm::dvec3& d = p.viewDirection;
+    return std::min(lo.x * d.x, hi.x * d.x) + std::min(lo.y * d.y, hi.y * d.y) +
+      std::min(lo.z * d.z, hi.z * d.z);
+  }
+  return nearestDistance2(p.eye, lo, hi);
+}
+} // namespace
+
+void Bvh::cullOccluded(const CullParams& params,
+  OcclusionCull& occlusion,
+  std::vector<std::uint32_t>& visible,
+  CullStats* stats)
+{
+  if (!occlusion.buffer)
+  {
+    cull(params, visible, stats);
+    return;
+  }
+  visible.clear();
+  CullStats local;
+  OcclusionFrame frame{ Frame{ params, visible, local, false, false, false, 0.0, false },
+    occlusion, {} };
+  Frame& base = frame.base;
+  base.contribution = params.minPixels > 0.0 && params.pixelsPerUnit > 0.0 &&
+    std::isfinite(params.pixelsPerUnit);
+  base.nodeContribution = base.contribution;
+  base.distance = params.maxDistance < std::numeric_limits<double>::infinity();
+  base.maxDistance2 = params.maxDistance * params.maxDistance;
+  base.cones = params.normalConeCulling;
+  if (occluderStamp_.size() != id_.size() || ++occlusionFrame_ == 0)
+  {
+    occluderStamp_.assign(id_.size(), 0);
+    occlusionFrame_ = 1;
+  }
+  const std::uint8_t allPlanes = params.frustumCulling ? kAllPlanes : 0;
+  // Temporal coherence: last frame's visible objects occlude first, if they still pass this
+  // frame's tests (counted apart, so the statistics describe the traversal alone).
+  if (occlusion.seeds && occlusion.drawOccluder)
+  {
+    CullStats scratch;
+    std::vector<std::uint32_t> none;
+    Frame probe{ params, none, scratch, base.contribution, base.nodeContribution, base.distance,
+      base.maxDistance2, base.cones };
+    for (const std::uint32_t id : *occlusion.seeds)
+    {
+      if (id >= position_.size())
+      {
+        continue;
+      }
+      const std::uint32_t p = position_[id];
+      if (p >= treeCount_ || always_[p] || occluderStamp_[p] == occlusionFrame_ ||
+        !objectPasses(probe, p, allPlanes))
+      {
+        continue;
+      }
+      occluderStamp_[p] = occlusionFrame_;
+      occlusion.drawOccluder(id);
+      ++local.occludersDrawn;
+    }
+  }
+  if (!nodes_.empty())
+  {
+    cullNodeOccluded(frame, 0, allPlanes);
+  }
+  for (std::uint32_t p = 0; p < id_.size(); ++p)
+  {
+    if (always_[p])
+    {
+      visible.push_back(id_[p]);
+      ++local.objectsDrawn;
+      local.trianglesDrawn += triangles_[p];
+    }
+  }
+  if (stats)
+  {
+    *stats = local;
+  }
+}
+
+void Bvh::cullNodeOccluded(OcclusionFrame& of, std::uint32_t ni, std::uint8_t mask)
+{
+  Frame& f = of.base;
+  if (!nodePasses(f, ni, mask))
+  {
+    return;
+  }
+  const Node& node = nodes_[ni];
+  ++f.stats.occlusionTests;
+  if (of.occlusion.buffer->boxOccluded(node.lo, node.hi))
+  {
+    f.stats.culledOcclusion += node.objects;
+    return;
+  }
+  if (!node.isLeaf())
+  {
+    const std::uint32_t a = ni + 1, b = node.first;
+    const bool aFirst = nearness(f.params, nodes_[a].lo, nodes_[a].hi) <=
+      nearness(f.params, nodes_[b].lo, nodes_[b].hi);
+    cullNodeOccluded(of, aFirst ? a : b, mask);
+    cullNodeOccluded(of, aFirst ? b : a, mask);
+    return;
+  }
+  // Objects of the leaf nearest first (the scratch is consumed before recursing elsewhere).
+  auto& order = of.leafScratch;
+  order.clear();
+  for (std::uint32_t p = node.first; p < node.first + node.count; ++p)
+  {
+    if (!always_[p])
+    {
+      const glm::dvec3 lo(boxes_.minX[p], boxes_.minY[p], boxes_.minZ[p]);
+      const glm::dvec3 hi(boxes_.maxX[p], boxes_.maxY[p], boxes_.maxZ[p]);
+      order.emplace_back(nearness(f.params, lo, hi), p);
+    }
+  }
+  std::sort(order.begin(), order.end());
+  for (const auto& entry : order)
+  {
+    const std::uint32_t p = entry.second;
+    if (!objectPasses(f, p, mask))
+    {
+      continue;
+    }
+    ++f.stats.occlusionTests;
     const glm::dvec3 lo(boxes_.minX[p], boxes_.minY[p], boxes_.minZ[p]);
     const glm::dvec3 hi(boxes_.maxX[p], boxes_.maxY[p], boxes_.maxZ[p]);
-    std::uint8_t objectMask = mask;
-    if (objectMask && !testBoxMasked(params.frustum, lo, hi, objectMask, objectHint_[p]))
+    if (of.occlusion.buffer->boxOccluded(lo, hi))
     {
-      ++f.stats.culledFrustum;
-      continue;
-    }
-    if (f.distance && nearestDistance2(params.eye, lo, hi) > f.maxDistance2)
-    {
-      ++f.stats.culledDistance;
-      continue;
-    }
-    const glm::dvec3 c = (lo + hi) * 0.5;
-    const double r = 0.5 * glm::length(hi - lo);
-    if (f.contribution && tooSmall(params, c, r, 0.0))
-    {
-      ++f.stats.culledContribution;
-      continue;
-    }
-    if (f.cones && cones_[p].canCull() &&
-      (params.parallel ? backFacingAlong(cones_[p], params.viewDirection)
-                       : backFacingFromEye(cones_[p], c, r, params.eye)))
-    {
-      ++f.stats.culledNormalCone;
+      ++f.stats.culledOcclusion;
       continue;
     }
     f.visible.push_back(id_[p]);
     ++f.stats.objectsDrawn;
     f.stats.trianglesDrawn += triangles_[p];
+    if (of.occlusion.drawOccluder && occluderStamp_[p] != occlusionFrame_)
+    {
+      occluderStamp_[p] = occlusionFrame_;
+      of.occlusion.drawOccluder(id_[p]);
+      ++f.stats.occludersDrawn;
+    }
   }
 }
 

@@ -25,12 +25,14 @@
 
 #include "scenevis/Frustum.h"
 #include "scenevis/NormalCone.h"
+#include "scenevis/OcclusionBuffer.h"
 #include "scenevis/PolygonMesh.h"
 
 #include <glm/vec3.hpp>
 
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <limits>
 #include <vector>
 
@@ -78,13 +80,41 @@ struct CullStats
   std::size_t culledContribution = 0;
   std::size_t culledDistance = 0;
   std::size_t culledNormalCone = 0;
+  std::size_t culledOcclusion = 0;    ///< hidden behind occluders (cullOccluded() only)
+  std::size_t occlusionTests = 0;     ///< node and object boxes tested against the buffer
+  std::size_t occludersDrawn = 0;     ///< objects handed to OcclusionCull::drawOccluder
   std::size_t objectsDrawn = 0;
   std::size_t trianglesDrawn = 0; ///< sum of the drawn objects' triangle counts (if given)
 
   std::size_t objectsCulled() const
   {
-    return culledFrustum + culledContribution + culledDistance + culledNormalCone;
+    return culledFrustum + culledContribution + culledDistance + culledNormalCone +
+      culledOcclusion;
   }
+};
+
+/**
+ * Occlusion culling on top of CullParams (see OcclusionBuffer.h for the buffer's contract).
+ * The tree is traversed front to back; a node or object whose box is hidden behind the buffer's
+ * occluders is culled with its subtree, and every object found visible is handed to drawOccluder
+ * (which rasterizes it into the buffer if it is an opaque occluder) before anything farther is
+ * tested, so what is drawn occludes what is behind it.
+ *
+ * Conservative: an object is culled only if its box is hidden behind occluders; each occluder is
+ * an object this traversal reports visible (drawOccluder is only ever called for such objects) or
+ * a seed that passes this frame's other tests and is hidden only behind nearer occluders
+ * (transitively behind visible ones). So whatever the caller draws opaque where drawOccluder said,
+ * the culled objects are hidden in the final image.
+ */
+struct OcclusionCull
+{
+  /// Sized to the viewport and cleared by the caller; setClipFromWorld() of this frame's camera.
+  occlusion::MaskedDepthBuffer* buffer = nullptr;
+  /// Rasterize object @p id into the buffer if it is an occluder (at most once per cull).
+  std::function<void(std::uint32_t id)> drawOccluder;
+  /// Objects drawn as occluders before the traversal (temporal coherence: last frame's visible
+  /// set). Seeds that fail this frame's frustum / distance / size / cone tests are skipped.
+  const std::vector<std::uint32_t>* seeds = nullptr;
 };
 
 enum class BuildMethod
@@ -140,6 +170,16 @@ public:
    */
   void cull(const CullParams& params, std::vector<std::uint32_t>& visible, CullStats* stats);
 
+  /**
+   * Cull with the tests of @p params and occlusion (see OcclusionCull): front-to-back order,
+   * nearest child first. @p visible lists the objects drawn, nearest first (approximately: by
+   * traversal order).
+   */
+  void cullOccluded(const CullParams& params,
+    OcclusionCull& occlusion,
+    std::vector<std::uint32_t>& visible,
+    CullStats* stats);
+
   /// Sum of the half surface areas of all nodes relative to that right after build(): grows as
   /// refits loosen the tree; rebuild when it gets large (e.g. > 1.5).
   double degradation() const;
@@ -148,6 +188,10 @@ private:
   struct Frame;
   std::uint32_t buildRange(std::uint32_t begin, std::uint32_t end, std::uint32_t parent);
   void cullNode(Frame& frame, std::uint32_t node, std::uint8_t mask) const;
+  struct OcclusionFrame;
+  void cullNodeOccluded(OcclusionFrame& frame, std::uint32_t node, std::uint8_t mask);
+  bool nodePasses(Frame& frame, std::uint32_t node, std::uint8_t& mask) const;
+  bool objectPasses(Frame& frame, std::uint32_t position, std::uint8_t mask) const;
   void computeNodeBounds(std::uint32_t node);
   double totalArea() const;
 
@@ -163,6 +207,9 @@ private:
   // cull() can be called on a tree whose structure is otherwise shared read-only.
   mutable std::vector<std::uint8_t> nodeHint_, objectHint_;
   std::vector<std::uint32_t> dirtyLeaves_;
+  // cullOccluded(): frame stamp per object position when it was drawn as an occluder.
+  std::vector<std::uint32_t> occluderStamp_;
+  std::uint32_t occlusionFrame_ = 0;
   std::vector<std::uint8_t> leafDirty_;
   // Build scratch.
   std::vector<glm::dvec3> centroid_;

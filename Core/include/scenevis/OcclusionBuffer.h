@@ -1,0 +1,184 @@
+#pragma once
+/**
+ * @file OcclusionBuffer.h
+ * @brief A conservative software depth buffer for occlusion culling: opaque occluders are
+ *        rasterized into it, bounding boxes of occludees are tested against it.
+ *
+ * Contract (what "conservative" means here): a box reported occluded has no pixel of the final
+ * image in which anything inside it is nearer than the occluders drawn into the buffer, provided
+ * that those occluders are drawn opaque by the real renderer with the same camera and viewport.
+ * There is no "few pixels" threshold.
+ *
+ * How it stays conservative at every pixel of the real image:
+ * - The buffer has the viewport's resolution and samples the same points as OpenGL: the pixel
+ *   centres (i + 0.5, j + 0.5) in window coordinates. Near the outline of an occluder (edges with
+ *   no neighbour triangle, silhouette edges between a front- and a back-facing neighbour, edges
+ *   made by the near plane) a pixel counts as covered only if its centre is at least
+ *   `coverageMargin` pixels inside, so vertex snapping and float rounding in the GPU (llvmpipe
+ *   snaps to 1/256 pixel) cannot make OpenGL leave uncovered a pixel that the buffer believes
+ *   covered. Inside an occluder (an edge shared by two triangles of the same facing, given by
+ *   the caller's neighbour table, see buildTriangleNeighbors()) both triangles evaluate the same
+ *   edge function bit for bit with opposite signs and a tie rule gives every pixel centre to
+ *   exactly one of them: a mesh is watertight, also where edges pass exactly through pixel
+ *   centres (common in axis-aligned CAD views). Without a neighbour table every edge is an
+ *   outline edge (still conservative, occludes less).
+ * - Depths are window depths in [0, 1] as OpenGL's depth test sees them (z_ndc / 2 + 1/2, smaller
+ *   is nearer). An occluder's depth over a tile is bounded from above exactly (the maximum of its
+ *   plane over the tile's corners, clamped by its farthest vertex) plus `depthMargin`; an
+ *   occludee's depth is its nearest corner minus `depthMargin`. A 24-bit depth buffer has steps of
+ *   6e-8; the default margin is 16 steps.
+ * - Occluder triangles are clipped against the near plane in clip space (what is in front of the
+ *   near plane is not drawn by OpenGL either); boxes that reach the near plane are never occluded.
+ *
+ * Representation (the idea of Intel's Masked Software Occlusion Culling, Hasselgren et al. 2016,
+ * reduced to its core, our own code): the screen is split into tiles of 8 x 4 pixels. A tile keeps
+ * - z0: a depth that every pixel of the tile has something at least as near as (the "reference
+ *   layer"; +inf while nothing covers the whole tile), and
+ * - a working layer (mask, z1): the pixels of `mask` have something at least as near as z1.
+ * Triangles of different occluders merge in the working layer; when its mask becomes full, z0
+ * becomes min(z0, z1). This is what lets a mesh of many small triangles occlude: no single
+ * triangle needs to cover a tile. Occludee tests read one depth per tile (z0): a box is occluded
+ * when its nearest depth is behind z0 of every tile its screen rectangle touches. The tiles are
+ * the hierarchy's first level (Greene's hierarchical z-buffer: one max depth per block).
+ *
+ * Cost: per occluder triangle, 3 vertex projections (shared vertices are projected once by the
+ * caller), then per tile it touches a coverage mask of 32 pixels. Per occludee box, 8 corner
+ * projections and one comparison per tile. Memory: 12 bytes per tile (0.375 bytes per pixel):
+ * 180 kB at 1920x1200.
+ *
+ * Units: the caller gives the clip-from-world matrix (glm, OpenGL clip conventions as in
+ * Frustum.h) and the viewport size in pixels; triangles are given in clip space (x, y, z, w),
+ * so a caller transforms each mesh's points once with clipFromWorld * worldFromModel.
+ */
+
+#include <glm/mat4x4.hpp>
+#include <glm/vec3.hpp>
+#include <glm/vec4.hpp>
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+namespace scenevis
+{
+namespace occlusion
+{
+
+/// Which faces of an occluder OpenGL draws (front = counter-clockwise in window coordinates).
+enum class FaceCulling
+{
+  None,  ///< both sides are drawn: both occlude
+  Back,  ///< back faces culled: only front faces occlude
+  Front, ///< front faces culled: only back faces occlude
+  Both   ///< nothing is drawn: nothing occludes
+};
+
+/// No neighbour across this edge (see buildTriangleNeighbors()).
+constexpr std::uint32_t kNoNeighbor = 0xFFFFFFFFu;
+
+/**
+ * Edge neighbours of a triangle list for MaskedDepthBuffer::drawTriangles: out[3 t + k] is the
+ * triangle sharing edge k (vertex k to vertex k + 1) of triangle t, or kNoNeighbor. Vertices are
+ * welded by exact coordinates (meshes that duplicate points at creases still count as one
+ * surface). An edge counts as shared only when exactly two triangles use it, in opposite
+ * directions (consistently oriented); anything else (boundary, non-manifold, flipped) has no
+ * neighbour, which is always conservative. @p xyz: 3 coordinates per point.
+ */
+std::vector<std::uint32_t> buildTriangleNeighbors(
+  const double* xyz, std::size_t pointCount, const std::uint32_t* indices, std::size_t triangleCount);
+
+/// Counters since the last clear().
+struct BufferStats
+{
+  std::size_t trianglesIn = 0;        ///< triangles handed to drawTriangles()
+  std::size_t trianglesDrawn = 0;     ///< ... that touched at least one tile
+  std::size_t trianglesRejected = 0;  ///< degenerate, back-facing, off-screen, non-finite, behind
+  std::size_t tilesUpdated = 0;       ///< tile updates with a non-empty coverage mask
+  std::size_t boxesTested = 0;
+  std::size_t boxesOccluded = 0;
+};
+
+class MaskedDepthBuffer
+{
+public:
+  static constexpr int kTileWidth = 8;
+  static constexpr int kTileHeight = 4;
+
+  struct Tile
+  {
+    float z0;           ///< every pixel has an occluder at least this near (+inf: none known)
+    float z1;           ///< pixels of mask have an occluder at least this near
+    std::uint32_t mask; ///< working layer coverage, bit (y * 8 + x) for pixel (x, y) of the tile
+  };
+
+  /// Pixels inward from every triangle edge that a covered pixel centre must keep.
+  double coverageMargin = 1.0 / 64.0;
+  /// Window-depth margin added to occluder depths and taken from occludee depths.
+  double depthMargin = 1e-6;
+
+  /// Size in pixels (the viewport's). Clears. Sizes below 1 give an empty buffer that occludes
+  /// nothing.
+  void resize(int width, int height);
+  int width() const { return width_; }
+  int height() const { return height_; }
+  int tilesX() const { return tilesX_; }
+  int tilesY() const { return tilesY_; }
+
+  /// Forget every occluder (z0 = +inf everywhere) and reset the statistics.
+  void clear();
+
+  /// The camera of this frame (glm convention: clip = clipFromWorld * (p, 1)); used by the box
+  /// tests. Occluder triangles are given in clip space directly.
+  void setClipFromWorld(const glm::dmat4& clipFromWorld) { clipFromWorld_ = clipFromWorld; }
+  const glm::dmat4& clipFromWorld() const { return clipFromWorld_; }
+
+  /**
+   * Rasterize triangles as occluders. @p clip: vertices in clip space; @p indices: 3 per
+   * triangle, each < @p vertexCount (others are rejected). Triangles with non-finite vertices,
+   * zero area, culled faces or nothing in front of the near plane are rejected (counted).
+   * @p neighbors: optional, from buildTriangleNeighbors() for these indices; it makes shared edges
+   * watertight (see the file comment).
+   */
+  void drawTriangles(const glm::dvec4* clip,
+    std::size_t vertexCount,
+    const std::uint32_t* indices,
+    std::size_t triangleCount,
+    FaceCulling culling = FaceCulling::None,
+    const std::uint32_t* neighbors = nullptr);
+
+  /// Whether the world-space box [lo, hi] is hidden behind the occluders drawn so far (see the
+  /// file comment). Empty or non-finite boxes, and boxes reaching the near plane, are not.
+  bool boxOccluded(const glm::dvec3& lo, const glm::dvec3& hi);
+
+  /**
+   * Whether everything in the window-space rectangle [x0, x1] x [y0, y1] (pixels, continuous
+   * coordinates) at window depth >= @p nearestDepth is hidden. Every pixel whose centre may lie
+   * in the rectangle is checked (one pixel more on each side against rounding).
+   */
+  bool rectOccluded(double x0, double y0, double x1, double y1, double nearestDepth) const;
+
+  /// The depth every pixel of the tile holding pixel (x, y) is known to be covered at (+inf if
+  /// none): for tests and debugging images.
+  float tileDepth(int x, int y) const;
+  const std::vector<Tile>& tiles() const { return tiles_; }
+
+  const BufferStats& stats() const { return stats_; }
+  std::size_t memoryBytes() const { return tiles_.capacity() * sizeof(Tile); }
+
+private:
+  void drawClippedTriangle(const glm::dvec4* v, FaceCulling culling, unsigned outlineEdges);
+  void drawWindowTriangle(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c,
+    FaceCulling culling, unsigned outlineEdges);
+  void updateTile(Tile& tile, std::uint32_t mask, float depth, std::uint32_t outside);
+
+  int width_ = 0, height_ = 0, tilesX_ = 0, tilesY_ = 0;
+  std::vector<Tile> tiles_;
+  /// Per tile column / row: bits of pixels beyond the viewport (they count as covered).
+  std::vector<std::uint32_t> outsideX_, outsideY_;
+  std::vector<signed char> facing_; ///< drawTriangles scratch: +1 / -1 / 0 per triangle
+  glm::dmat4 clipFromWorld_{ 1.0 };
+  BufferStats stats_;
+};
+
+} // namespace occlusion
+} // namespace scenevis

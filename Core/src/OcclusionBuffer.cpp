@@ -1,0 +1,579 @@
+#include "scenevis/OcclusionBuffer.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <unordered_map>
+
+namespace scenevis
+{
+namespace occlusion
+{
+
+namespace
+{
+constexpr std::uint32_t kFullMask = 0xFFFFFFFFu;
+constexpr float kNoOccluder = std::numeric_limits<float>::infinity();
+
+bool finite(const glm::dvec4& v)
+{
+  return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z) && std::isfinite(v.w);
+}
+
+/// The smallest float not below @p value (float(value) may round down).
+float roundUp(double value)
+{
+  float f = static_cast<float>(value);
+  if (static_cast<double>(f) < value)
+  {
+    f = std::nextafter(f, kNoOccluder);
+  }
+  return f;
+}
+} // namespace
+
+void MaskedDepthBuffer::resize(int width, int height)
+{
+  width_ = std::max(0, width);
+  height_ = std::max(0, height);
+  tilesX_ = (width_ + kTileWidth - 1) / kTileWidth;
+  tilesY_ = (height_ + kTileHeight - 1) / kTileHeight;
+  tiles_.assign(static_cast<std::size_t>(tilesX_) * static_cast<std::size_t>(tilesY_),
+    Tile{ kNoOccluder, 0.0f, 0u });
+  outsideX_.assign(static_cast<std::size_t>(tilesX_), 0u);
+  outsideY_.assign(static_cast<std::size_t>(tilesY_), 0u);
+  for (int tx = 0; tx < tilesX_; ++tx)
+  {
+    for (int i = 0; i < kTileWidth; ++i)
+    {
+      if (tx * kTileWidth + i >= width_)
+      {
+        for (int j = 0; j < kTileHeight; ++j)
+        {
+          outsideX_[tx] |= 1u << (j * kTileWidth + i);
+        }
+      }
+    }
+  }
+  for (int ty = 0; ty < tilesY_; ++ty)
+  {
+    for (int j = 0; j < kTileHeight; ++j)
+    {
+      if (ty * kTileHeight + j >= height_)
+      {
+        outsideY_[ty] |= 0xFFu << (j * kTileWidth);
+      }
+    }
+  }
+  stats_ = BufferStats();
+}
+
+void MaskedDepthBuffer::clear()
+{
+  std::fill(tiles_.begin(), tiles_.end(), Tile{ kNoOccluder, 0.0f, 0u });
+  stats_ = BufferStats();
+}
+
+float MaskedDepthBuffer::tileDepth(int x, int y) const
+{
+  if (x < 0 || y < 0 || x >= width_ || y >= height_)
+  {
+    return kNoOccluder;
+  }
+  return tiles_[static_cast<std::size_t>(y / kTileHeight) * tilesX_ + x / kTileWidth].z0;
+}
+
+void MaskedDepthBuffer::drawTriangles(const glm::dvec4* clip,
+  std::size_t vertexCount,
+  const std::uint32_t* indices,
+  std::size_t triangleCount,
+  FaceCulling culling,
+  const std::uint32_t* neighbors)
+{
+  stats_.trianglesIn += triangleCount;
+  if (tiles_.empty() || culling == FaceCulling::Both)
+  {
+    stats_.trianglesRejected += triangleCount;
+    return;
+  }
+  auto valid = [&](std::size_t t) {
+    const std::uint32_t* tri = indices + 3 * t;
+    return tri[0] < vertexCount && tri[1] < vertexCount && tri[2] < vertexCount &&
+      finite(clip[tri[0]]) && finite(clip[tri[1]]) && finite(clip[tri[2]]);
+  };
+  if (neighbors)
+  {
+    // Facing of every triangle first: an edge is inside the occluder only if the neighbour
+    // across it faces the same way. The sign of det[x y w] is the window-space orientation
+    // (homogeneous, so it holds for triangles cut by the near plane too).
+    facing_.resize(triangleCount);
+    for (std::size_t t = 0; t < triangleCount; ++t)
+    {
+      signed char f = 0;
+      if (valid(t))
+      {
+        const glm::dvec4& a = clip[indices[3 * t]];
+        const glm::dvec4& b = clip[indices[3 * t + 1]];
+        const glm::dvec4& c = clip[indices[3 * t + 2]];
+        const double det = a.x * (b.y * c.w - b.w * c.y) - a.y * (b.x * c.w - b.w * c.x) +
+          a.w * (b.x * c.y - b.y * c.x);
+        f = det > 0.0 ? 1 : (det < 0.0 ? -1 : 0);
+      }
+      facing_[t] = f;
+    }
+  }
+  for (std::size_t t = 0; t < triangleCount; ++t)
+  {
+    if (!valid(t))
+    {
+      ++stats_.trianglesRejected;
+      continue;
+    }
+    unsigned outline = 7u;
+    if (neighbors && facing_[t] != 0)
+    {
+      outline = 0u;
+      for (int k = 0; k < 3; ++k)
+      {
+        const std::uint32_t n = neighbors[3 * t + k];
+        if (n >= triangleCount || facing_[n] != facing_[t])
+        {
+          outline |= 1u << k;
+        }
+      }
+    }
+    const glm::dvec4 v[3] = { clip[indices[3 * t]], clip[indices[3 * t + 1]],
+      clip[indices[3 * t + 2]] };
+    drawClippedTriangle(v, culling, outline);
+  }
+}
+
+namespace
+{
+/// Lexicographic order of clip-space points: a shared edge is cut by the near plane at the
+/// same point in both of its triangles.
+bool lessClip(const glm::dvec4& a, const glm::dvec4& b)
+{
+  if (a.x != b.x)
+    return a.x < b.x;
+  if (a.y != b.y)
+    return a.y < b.y;
+  if (a.z != b.z)
+    return a.z < b.z;
+  return a.w < b.w;
+}
+
+glm::dvec4 nearPlaneCut(const glm::dvec4& p, const glm::dvec4& q)
+{
+  const glm::dvec4& a = lessClip(p, q) ? p : q;
+  const glm::dvec4& b = lessClip(p, q) ? q : p;
+  const double da = a.z + a.w, db = b.z + b.w;
+  return a + (b - a) * (da / (da - db));
+}
+} // namespace
+
+void MaskedDepthBuffer::drawClippedTriangle(const glm::dvec4* in, FaceCulling culling, unsigned outline)
+{
+  // Near plane in clip space: z + w >= 0 (OpenGL). What lies in front of it is not drawn.
+  double d[3];
+  int inside = 0;
+  for (int i = 0; i < 3; ++i)
+  {
+    d[i] = in[i].z + in[i].w;
+    inside += d[i] >= 0.0 ? 1 : 0;
+  }
+  if (inside == 0)
+  {
+    ++stats_.trianglesRejected;
+    return;
+  }
+  glm::dvec4 poly[4]{};
+  unsigned edgeOutline[4]{}; // of the edge from poly[i] to poly[i + 1]
+  int n = 0;
+  // Sutherland-Hodgman against the near plane: at most 4 vertices, order (and so facing) kept;
+  // the new edge along the near plane is an outline edge.
+  for (int i = 0; i < 3; ++i)
+  {
+    const int j = (i + 1) % 3;
+    const unsigned own = (outline >> i) & 1u;
+    if (d[i] >= 0.0)
+    {
+      edgeOutline[n] = own;
+      poly[n++] = in[i];
+    }
+    if ((d[i] >= 0.0) != (d[j] >= 0.0))
+    {
+      edgeOutline[n] = d[i] >= 0.0 ? 1u : own;
+      poly[n++] = nearPlaneCut(in[i], in[j]);
+    }
+  }
+  glm::dvec3 window[4]{};
+  for (int i = 0; i < n; ++i)
+  {
+    const glm::dvec4& v = poly[i];
+    if (!(v.w > 0.0))
+    {
+      // Not a projection OpenGL draws sensibly (a point at or behind the eye after clipping):
+      // dropping an occluder is always conservative.
+      ++stats_.trianglesRejected;
+      return;
+    }
+    window[i] = glm::dvec3((v.x / v.w * 0.5 + 0.5) * width_, (v.y / v.w * 0.5 + 0.5) * height_,
+      v.z / v.w * 0.5 + 0.5);
+  }
+  if (n == 3)
+  {
+    drawWindowTriangle(window[0], window[1], window[2], culling,
+      edgeOutline[0] | (edgeOutline[1] << 1) | (edgeOutline[2] << 2));
+  }
+  else
+  {
+    // The fan's diagonal is inside the polygon: not an outline edge.
+    drawWindowTriangle(window[0], window[1], window[2], culling,
+      edgeOutline[0] | (edgeOutline[1] << 1));
+    drawWindowTriangle(window[0], window[2], window[3], culling,
+      (edgeOutline[2] << 1) | (edgeOutline[3] << 2));
+  }
+}
+
+namespace
+{
+/**
+ * Inside test of one triangle edge at pixel centres. The edge function is evaluated with the
+ * edge's end points in a canonical order (lexicographic), so the two triangles sharing an edge
+ * compute the same value bit for bit and differ only in `sign`; a centre exactly on the edge
+ * goes to the triangle whose sign is positive (the tie rule), so shared edges leave no holes.
+ */
+struct EdgeTest
+{
+  double px, py, dx, dy; ///< canonical start point and direction
+  double sign;           ///< +1 / -1: makes the triangle's inside positive
+  double threshold;      ///< 0 inside an occluder, margin * length on its outline
+  bool includeTie;
+  double slack; ///< bound on the rounding of value() between corners and pixel centres
+
+  EdgeTest(const glm::dvec3& from, const glm::dvec3& to, double orientation, bool outline,
+    double margin, double extent)
+  {
+    const bool forward = from.x < to.x || (from.x == to.x && from.y < to.y);
+    const glm::dvec3& p = forward ? from : to;
+    const glm::dvec3& q = forward ? to : from;
+    px = p.x;
+    py = p.y;
+    dx = q.x - p.x;
+    dy = q.y - p.y;
+    sign = (forward ? 1.0 : -1.0) * orientation;
+    threshold = outline ? margin * std::sqrt(dx * dx + dy * dy) : 0.0;
+    includeTie = outline || sign > 0.0;
+    slack = 1e-9 * (std::abs(dx) + std::abs(dy)) * extent;
+  }
+  double value(double x, double y) const { return sign * (dx * (y - py) - dy * (x - px)); }
+  bool inside(double x, double y) const
+  {
+    const double v = value(x, y);
+    return v > threshold || (v == threshold && includeTie);
+  }
+};
+} // namespace
+
+void MaskedDepthBuffer::drawWindowTriangle(const glm::dvec3& a, const glm::dvec3& b,
+  const glm::dvec3& c, FaceCulling culling, unsigned outline)
+{
+  const double area2 = (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x);
+  if (!(std::abs(area2) > 0.0) || !std::isfinite(area2) ||
+    (culling == FaceCulling::Back && area2 < 0.0) ||
+    (culling == FaceCulling::Front && area2 > 0.0))
+  {
+    ++stats_.trianglesRejected;
+    return;
+  }
+  const double orientation = area2 > 0.0 ? 1.0 : -1.0;
+  const double det = std::abs(area2);
+
+  // Pixels whose centres can be inside.
+  const double xmin = std::min({ a.x, b.x, c.x }), xmax = std::max({ a.x, b.x, c.x });
+  const double ymin = std::min({ a.y, b.y, c.y }), ymax = std::max({ a.y, b.y, c.y });
+  const double px0 = std::max(0.0, std::ceil(xmin - 0.5));
+  const double px1 = std::min(static_cast<double>(width_ - 1), std::floor(xmax - 0.5));
+  const double py0 = std::max(0.0, std::ceil(ymin - 0.5));
+  const double py1 = std::min(static_cast<double>(height_ - 1), std::floor(ymax - 0.5));
+  if (!(px0 <= px1 && py0 <= py1))
+  {
+    ++stats_.trianglesRejected;
+    return;
+  }
+  const double extent = std::max({ std::abs(xmin), std::abs(xmax), std::abs(ymin),
+    std::abs(ymax), static_cast<double>(width_ + height_) });
+  const EdgeTest edges[3] = {
+    EdgeTest(a, b, orientation, outline & 1u, coverageMargin, extent),
+    EdgeTest(b, c, orientation, outline & 2u, coverageMargin, extent),
+    EdgeTest(c, a, orientation, outline & 4u, coverageMargin, extent)
+  };
+
+  // Window depth as a plane z = zx x + zy y + z00 (depth is affine in window x, y); counter-
+  // clockwise vertex order for the solve.
+  const glm::dvec3& q1 = area2 > 0.0 ? b : c;
+  const glm::dvec3& q2 = area2 > 0.0 ? c : b;
+  const double bx = q1.x - a.x, by = q1.y - a.y, bz = q1.z - a.z;
+  const double cx = q2.x - a.x, cy = q2.y - a.y, cz = q2.z - a.z;
+  const double zx = (bz * cy - by * cz) / det;
+  const double zy = (bx * cz - bz * cx) / det;
+  const double z00 = a.z - zx * a.x - zy * a.y;
+  const double zFarVertex = std::max({ a.z, b.z, c.z });
+  // Rounding of the plane's evaluation, bounded generously; the depth margin comes on top.
+  const double planeError =
+    1e-12 * ((std::abs(zx) + 1.0) * width_ + (std::abs(zy) + 1.0) * height_ + std::abs(z00));
+
+  bool touched = false;
+  const int tx0 = static_cast<int>(px0) / kTileWidth, tx1 = static_cast<int>(px1) / kTileWidth;
+  const int ty0 = static_cast<int>(py0) / kTileHeight, ty1 = static_cast<int>(py1) / kTileHeight;
+  for (int ty = ty0; ty <= ty1; ++ty)
+  {
+    const double y0 = ty * kTileHeight + 0.5, y1 = y0 + (kTileHeight - 1);
+    for (int tx = tx0; tx <= tx1; ++tx)
+    {
+      const double x0 = tx * kTileWidth + 0.5, x1 = x0 + (kTileWidth - 1);
+      // Edge values are affine: their extremes over the tile's pixel centres are at its corner
+      // centres (up to rounding: `slack`; undecided tiles test every centre exactly).
+      bool empty = false, full = true;
+      for (const EdgeTest& e : edges)
+      {
+        const double v00 = e.value(x0, y0), v10 = e.value(x1, y0), v01 = e.value(x0, y1),
+                     v11 = e.value(x1, y1);
+        const double lo = std::min(std::min(v00, v10), std::min(v01, v11));
+        const double hi = std::max(std::max(v00, v10), std::max(v01, v11));
+        if (hi < e.threshold - e.slack)
+        {
+          empty = true;
+          break;
+        }
+        full = full && lo > e.threshold + e.slack;
+      }
+      if (empty)
+      {
+        continue;
+      }
+      std::uint32_t mask = kFullMask;
+      if (!full)
+      {
+        mask = 0;
+        for (int j = 0; j < kTileHeight; ++j)
+        {
+          const double y = y0 + j;
+          for (int i = 0; i < kTileWidth; ++i)
+          {
+            const double x = x0 + i;
+            if (edges[0].inside(x, y) && edges[1].inside(x, y) && edges[2].inside(x, y))
+            {
+              mask |= 1u << (j * kTileWidth + i);
+            }
+          }
+        }
+        if (mask == 0)
+        {
+          continue;
+        }
+      }
+      const double zCorners = std::max(std::max(zx * x0 + zy * y0, zx * x1 + zy * y0),
+                                std::max(zx * x0 + zy * y1, zx * x1 + zy * y1)) +
+        z00;
+      const double depth = std::min(zCorners + planeError, zFarVertex) + depthMargin;
+      Tile& tile = tiles_[static_cast<std::size_t>(ty) * tilesX_ + tx];
+      updateTile(tile, mask, roundUp(depth), outsideX_[tx] | outsideY_[ty]);
+      ++stats_.tilesUpdated;
+      touched = true;
+    }
+  }
+  if (touched)
+  {
+    ++stats_.trianglesDrawn;
+  }
+  else
+  {
+    ++stats_.trianglesRejected;
+  }
+}
+
+void MaskedDepthBuffer::updateTile(Tile& tile, std::uint32_t mask, float depth, std::uint32_t outside)
+{
+  // Invariants: every pixel has an occluder at depth <= z0; every pixel of mask one at <= z1.
+  if (!(depth < tile.z0))
+  {
+    return; // no nearer than what the whole tile already has
+  }
+  if ((mask | outside) == kFullMask)
+  {
+    tile.z0 = depth;
+  }
+  else if (tile.mask == 0)
+  {
+    tile.mask = mask;
+    tile.z1 = depth;
+  }
+  else if (tile.z1 - depth > tile.z0 - tile.z1)
+  {
+    // The new triangle is much nearer than the working layer: merging would push the layer's
+    // depth far back; start the layer again from this triangle (Hasselgren et al.'s heuristic).
+    tile.mask = mask;
+    tile.z1 = depth;
+  }
+  else
+  {
+    tile.mask |= mask;
+    tile.z1 = std::max(tile.z1, depth);
+  }
+  if (tile.mask != 0 && (tile.mask | outside) == kFullMask)
+  {
+    tile.z0 = std::min(tile.z0, tile.z1);
+    tile.mask = 0;
+  }
+  else if (tile.mask != 0 && !(tile.z1 < tile.z0))
+  {
+    tile.mask = 0; // the working layer says nothing the reference layer does not
+  }
+}
+
+bool MaskedDepthBuffer::rectOccluded(
+  double x0, double y0, double x1, double y1, double nearestDepth) const
+{
+  if (tiles_.empty() || !(x0 <= x1) || !(y0 <= y1) || !std::isfinite(nearestDepth))
+  {
+    return false;
+  }
+  // Pixels whose centres can be in the rectangle, one more on each side against rounding.
+  const double px0 = std::max(0.0, std::ceil(x0 - 0.5) - 1.0);
+  const double px1 = std::min(static_cast<double>(width_ - 1), std::floor(x1 - 0.5) + 1.0);
+  const double py0 = std::max(0.0, std::ceil(y0 - 0.5) - 1.0);
+  const double py1 = std::min(static_cast<double>(height_ - 1), std::floor(y1 - 0.5) + 1.0);
+  if (!(px0 <= px1 && py0 <= py1))
+  {
+    return false; // off screen: for the frustum test to decide, not for occlusion
+  }
+  const double z = nearestDepth - depthMargin;
+  const int tx0 = static_cast<int>(px0) / kTileWidth, tx1 = static_cast<int>(px1) / kTileWidth;
+  const int ty0 = static_cast<int>(py0) / kTileHeight, ty1 = static_cast<int>(py1) / kTileHeight;
+  for (int ty = ty0; ty <= ty1; ++ty)
+  {
+    const Tile* row = tiles_.data() + static_cast<std::size_t>(ty) * tilesX_;
+    for (int tx = tx0; tx <= tx1; ++tx)
+    {
+      if (!(z > static_cast<double>(row[tx].z0)))
+      {
+        return false;
+      }
+    }
+  }
+  return true;
+}
+
+bool MaskedDepthBuffer::boxOccluded(const glm::dvec3& lo, const glm::dvec3& hi)
+{
+  ++stats_.boxesTested;
+  if (!(lo.x <= hi.x && lo.y <= hi.y && lo.z <= hi.z) || !std::isfinite(lo.x) ||
+    !std::isfinite(lo.y) || !std::isfinite(lo.z) || !std::isfinite(hi.x) ||
+    !std::isfinite(hi.y) || !std::isfinite(hi.z))
+  {
+    return false;
+  }
+  double x0 = std::numeric_limits<double>::infinity(), y0 = x0, zNear = x0;
+  double x1 = -x0, y1 = -x0;
+  for (int k = 0; k < 8; ++k)
+  {
+    const glm::dvec4 corner((k & 1) ? hi.x : lo.x, (k & 2) ? hi.y : lo.y, (k & 4) ? hi.z : lo.z,
+      1.0);
+    const glm::dvec4 c = clipFromWorld_ * corner;
+    // A box reaching the near plane (or the eye) is never occluded: its projection is unbounded.
+    if (!(c.w > 0.0) || !(c.z + c.w > 0.0))
+    {
+      return false;
+    }
+    const double x = (c.x / c.w * 0.5 + 0.5) * width_;
+    const double y = (c.y / c.w * 0.5 + 0.5) * height_;
+    const double z = c.z / c.w * 0.5 + 0.5;
+    x0 = std::min(x0, x);
+    x1 = std::max(x1, x);
+    y0 = std::min(y0, y);
+    y1 = std::max(y1, y);
+    zNear = std::min(zNear, z);
+  }
+  const bool occluded = rectOccluded(x0, y0, x1, y1, zNear);
+  stats_.boxesOccluded += occluded ? 1 : 0;
+  return occluded;
+}
+
+namespace
+{
+struct PointKey
+{
+  double x, y, z;
+  bool operator==(const PointKey& o) const { return x == o.x && y == o.y && z == o.z; }
+};
+struct PointKeyHash
+{
+  std::size_t operator()(const PointKey& k) const
+  {
+    std::hash<double> h;
+    return h(k.x) ^ (h(k.y) * 0x9E3779B97F4A7C15ull) ^ (h(k.z) * 0xC2B2AE3D27D4EB4Full);
+  }
+};
+} // namespace
+
+std::vector<std::uint32_t> buildTriangleNeighbors(
+  const double* xyz, std::size_t pointCount, const std::uint32_t* indices, std::size_t triangleCount)
+{
+  std::vector<std::uint32_t> neighbors(3 * triangleCount, kNoNeighbor);
+  // Weld by exact coordinates (-0.0 == 0.0 hashes differently: std::hash is on the value, and
+  // both are equal doubles; normalise the zero's sign to be sure).
+  std::vector<std::uint32_t> weld(pointCount);
+  std::unordered_map<PointKey, std::uint32_t, PointKeyHash> ids;
+  ids.reserve(pointCount);
+  for (std::size_t i = 0; i < pointCount; ++i)
+  {
+    const PointKey key{ xyz[3 * i] + 0.0, xyz[3 * i + 1] + 0.0, xyz[3 * i + 2] + 0.0 };
+    weld[i] = ids.emplace(key, static_cast<std::uint32_t>(ids.size())).first->second;
+  }
+  // Directed edge (from, to) -> its half-edge; the twin is (to, from).
+  std::unordered_map<std::uint64_t, std::uint32_t> halfEdge;
+  std::unordered_map<std::uint64_t, std::uint32_t> uses; // undirected edge -> number of uses
+  halfEdge.reserve(3 * triangleCount);
+  auto key = [](std::uint32_t a, std::uint32_t b) { return (std::uint64_t(a) << 32) | b; };
+  for (std::size_t t = 0; t < triangleCount; ++t)
+  {
+    for (int k = 0; k < 3; ++k)
+    {
+      const std::uint32_t i0 = indices[3 * t + k], i1 = indices[3 * t + (k + 1) % 3];
+      if (i0 >= pointCount || i1 >= pointCount || weld[i0] == weld[i1])
+      {
+        continue;
+      }
+      const std::uint32_t a = weld[i0], b = weld[i1];
+      ++uses[key(std::min(a, b), std::max(a, b))];
+      halfEdge.emplace(key(a, b), static_cast<std::uint32_t>(3 * t + k));
+    }
+  }
+  for (std::size_t t = 0; t < triangleCount; ++t)
+  {
+    for (int k = 0; k < 3; ++k)
+    {
+      const std::uint32_t i0 = indices[3 * t + k], i1 = indices[3 * t + (k + 1) % 3];
+      if (i0 >= pointCount || i1 >= pointCount || weld[i0] == weld[i1])
+      {
+        continue;
+      }
+      const std::uint32_t a = weld[i0], b = weld[i1];
+      if (uses[key(std::min(a, b), std::max(a, b))] != 2)
+      {
+        continue; // boundary or non-manifold
+      }
+      const auto twin = halfEdge.find(key(b, a));
+      if (twin != halfEdge.end())
+      {
+        neighbors[3 * t + k] = twin->second / 3;
+      }
+    }
+  }
+  return neighbors;
+}
+
+} // namespace occlusion
+} // namespace scenevis
