@@ -283,8 +283,28 @@ TEST(OcclusionBuffer, AnOccluderCutByTheNearPlaneStillOccludes)
   const glm::dvec3 lo(-2, 3, -2), hi(2, 4, 2);
   EXPECT_EQ(visiblePixels(cam, w, lo, hi), 0);
   EXPECT_TRUE(buffer.boxOccluded(lo, hi));
-  // A box that reaches the near plane is never occluded.
+  // A box reaching from the eye to behind the wall is not occluded (its part in front of the
+  // wall is seen), even where the near plane cuts it.
   EXPECT_FALSE(buffer.boxOccluded({ -0.2, -0.1, -0.2 }, { 0.2, 0.5, 0.2 }));
+}
+
+TEST(OcclusionBuffer, OnlyThePartOfABoxInTheFrustumIsTested)
+{
+  // Eye at the origin looking along +y (90 degrees): a wall at y = 1. A box beside the viewer
+  // reaches behind the eye, but what of it is in the frustum lies behind the wall.
+  const Camera cam = perspectiveCamera({ 0, 0, 0 }, { 0, 1, 0 }, 90.0, 64, 64, 0.1, 100.0);
+  const std::vector<Triangle> w = wall(1.0, 50.0, 2);
+  MaskedDepthBuffer buffer = bufferFor(cam);
+  draw(buffer, cam, w);
+  const glm::dvec3 lo(-10, -2, -1), hi(-5, 8, 1);
+  EXPECT_EQ(visiblePixels(cam, w, lo, hi), 0);
+  EXPECT_TRUE(buffer.boxOccluded(lo, hi));
+  // Reaching into the frustum in front of the wall: seen.
+  EXPECT_FALSE(buffer.boxOccluded({ -10, -2, -1 }, { -0.5, 5, 1 }));
+  // Around the eye (a room the viewer stands in): its faces are all behind the wall, but the
+  // box holds the whole near plane: seen.
+  ASSERT_GT(visiblePixels(cam, w, { -5, -5, -5 }, { 5, 5, 5 }), 0);
+  EXPECT_FALSE(buffer.boxOccluded({ -5, -5, -5 }, { 5, 5, 5 }));
 }
 
 TEST(OcclusionBuffer, ParallelProjectionOccludes)
@@ -368,8 +388,11 @@ TEST(OcclusionBuffer, RandomScenesAreConservativeAtEveryPixel)
     draw(buffer, cam, soup, FaceCulling::None, scene % 5 != 4);
     for (int b = 0; b < 25; ++b)
     {
-      const glm::dvec3 c(uniform(-6, 6), uniform(-6, 6), uniform(-6, 6));
-      const glm::dvec3 half(uniform(0.01, 1.5), uniform(0.01, 1.5), uniform(0.01, 1.5));
+      // Every fifth box is around the eye or next to it (rooms the viewer is in or beside).
+      const glm::dvec3 c = b % 5 == 4 ? eye + glm::dvec3(uniform(-2, 2), uniform(-2, 2), uniform(-2, 2))
+                                      : glm::dvec3(uniform(-6, 6), uniform(-6, 6), uniform(-6, 6));
+      const double s = b % 5 == 4 ? 3.0 : 1.5;
+      const glm::dvec3 half(uniform(0.01, s), uniform(0.01, s), uniform(0.01, s));
       const bool reported = buffer.boxOccluded(c - half, c + half);
       const int visible = visiblePixels(cam, soup, c - half, c + half);
       ++tested;

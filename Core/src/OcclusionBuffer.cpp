@@ -1,5 +1,8 @@
 #include "scenevis/OcclusionBuffer.h"
 
+#include <glm/common.hpp>
+#include <glm/matrix.hpp>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -66,6 +69,20 @@ void MaskedDepthBuffer::resize(int width, int height)
     }
   }
   stats_ = BufferStats();
+}
+
+void MaskedDepthBuffer::setClipFromWorld(const glm::dmat4& clipFromWorld)
+{
+  clipFromWorld_ = clipFromWorld;
+  const glm::dmat4 worldFromClip = glm::inverse(clipFromWorld);
+  nearCornersValid_ = true;
+  for (int k = 0; k < 4; ++k)
+  {
+    const glm::dvec4 p = worldFromClip * glm::dvec4((k & 1) ? 1.0 : -1.0, (k & 2) ? 1.0 : -1.0, -1.0, 1.0);
+    nearCorners_[k] = glm::dvec3(p) / p.w;
+    nearCornersValid_ = nearCornersValid_ && p.w != 0.0 && std::isfinite(nearCorners_[k].x) &&
+      std::isfinite(nearCorners_[k].y) && std::isfinite(nearCorners_[k].z);
+  }
 }
 
 void MaskedDepthBuffer::clear()
@@ -319,7 +336,9 @@ void MaskedDepthBuffer::drawWindowTriangle(const glm::dvec3& a, const glm::dvec3
   const double zx = (bz * cy - by * cz) / det;
   const double zy = (bx * cz - bz * cx) / det;
   const double z00 = a.z - zx * a.x - zy * a.y;
-  const double zFarVertex = std::max({ a.z, b.z, c.z });
+  const double offset = std::max(0.0, polygonOffsetFactor) * std::max(std::abs(zx), std::abs(zy)) +
+    std::max(0.0, polygonOffsetDepth);
+  const double zFarVertex = std::max({ a.z, b.z, c.z }) + offset;
   // Rounding of the plane's evaluation, bounded generously; the depth margin comes on top.
   const double planeError =
     1e-12 * ((std::abs(zx) + 1.0) * width_ + (std::abs(zy) + 1.0) * height_ + std::abs(z00));
@@ -377,7 +396,7 @@ void MaskedDepthBuffer::drawWindowTriangle(const glm::dvec3& a, const glm::dvec3
       const double zCorners = std::max(std::max(zx * x0 + zy * y0, zx * x1 + zy * y0),
                                 std::max(zx * x0 + zy * y1, zx * x1 + zy * y1)) +
         z00;
-      const double depth = std::min(zCorners + planeError, zFarVertex) + depthMargin;
+      const double depth = std::min(zCorners + offset + planeError, zFarVertex) + depthMargin;
       Tile& tile = tiles_[static_cast<std::size_t>(ty) * tilesX_ + tx];
       updateTile(tile, mask, roundUp(depth), outsideX_[tx] | outsideY_[ty]);
       ++stats_.tilesUpdated;
@@ -466,6 +485,28 @@ bool MaskedDepthBuffer::rectOccluded(
   return true;
 }
 
+namespace
+{
+/// Clip-space plane functions of the frustum sides and the near plane (inside: >= 0). The far
+/// plane is not clipped: what is beyond it is hidden anyway.
+inline double planeValue(int plane, const glm::dvec4& v)
+{
+  switch (plane)
+  {
+    case 0:
+      return v.w + v.x;
+    case 1:
+      return v.w - v.x;
+    case 2:
+      return v.w + v.y;
+    case 3:
+      return v.w - v.y;
+    default:
+      return v.w + v.z;
+  }
+}
+} // namespace
+
 bool MaskedDepthBuffer::boxOccluded(const glm::dvec3& lo, const glm::dvec3& hi)
 {
   ++stats_.boxesTested;
@@ -475,15 +516,26 @@ bool MaskedDepthBuffer::boxOccluded(const glm::dvec3& lo, const glm::dvec3& hi)
   {
     return false;
   }
-  double x0 = std::numeric_limits<double>::infinity(), y0 = x0, zNear = x0;
-  double x1 = -x0, y1 = -x0;
+  glm::dvec4 corner[8];
+  unsigned outside = 0; // planes some corner is outside of
   for (int k = 0; k < 8; ++k)
   {
-    const glm::dvec4 corner((k & 1) ? hi.x : lo.x, (k & 2) ? hi.y : lo.y, (k & 4) ? hi.z : lo.z,
-      1.0);
-    const glm::dvec4 c = clipFromWorld_ * corner;
-    // A box reaching the near plane (or the eye) is never occluded: its projection is unbounded.
-    if (!(c.w > 0.0) || !(c.z + c.w > 0.0))
+    corner[k] = clipFromWorld_ *
+      glm::dvec4((k & 1) ? hi.x : lo.x, (k & 2) ? hi.y : lo.y, (k & 4) ? hi.z : lo.z, 1.0);
+    if (!finite(corner[k]))
+    {
+      return false;
+    }
+    for (int p = 0; p < 5; ++p)
+    {
+      outside |= planeValue(p, corner[k]) < 0.0 ? 1u << p : 0u;
+    }
+  }
+  double x0 = std::numeric_limits<double>::infinity(), y0 = x0, zNear = x0;
+  double x1 = -x0, y1 = -x0;
+  bool any = false;
+  auto add = [&](const glm::dvec4& c) {
+    if (!(c.w > 0.0))
     {
       return false;
     }
@@ -495,6 +547,87 @@ bool MaskedDepthBuffer::boxOccluded(const glm::dvec3& lo, const glm::dvec3& hi)
     y0 = std::min(y0, y);
     y1 = std::max(y1, y);
     zNear = std::min(zNear, z);
+    any = true;
+    return true;
+  };
+  if (outside == 0)
+  {
+    for (const glm::dvec4& c : corner)
+    {
+      if (!add(c))
+      {
+        return false;
+      }
+    }
+  }
+  else
+  {
+    // The near plane's rectangle inside the box: the box reaches the near plane on screen (the
+    // clipped faces below would miss that face of box-and-frustum). Tested on a slightly grown
+    // box so that rounding cannot miss it.
+    const glm::dvec3 grow = (hi - lo) * 1e-9 + (glm::abs(lo) + glm::abs(hi)) * 1e-12;
+    for (int k = 0; k < 4; ++k)
+    {
+      const glm::dvec3& p = nearCorners_[k];
+      if (!nearCornersValid_ ||
+        (p.x >= lo.x - grow.x && p.x <= hi.x + grow.x && p.y >= lo.y - grow.y &&
+          p.y <= hi.y + grow.y && p.z >= lo.z - grow.z && p.z <= hi.z + grow.z))
+      {
+        return false;
+      }
+    }
+    // Only the part of the box inside the frustum can be seen: clip its six faces against the
+    // planes it crosses; the clipped faces bound box-and-frustum, whose vertices give the screen
+    // rectangle and the nearest depth. (A box reaching the near plane thus keeps only what is
+    // on screen: a room beside the viewer is tested by the part of it in view.)
+    static const int faces[6][4] = { { 0, 1, 3, 2 }, { 4, 5, 7, 6 }, { 0, 1, 5, 4 },
+      { 2, 3, 7, 6 }, { 0, 2, 6, 4 }, { 1, 3, 7, 5 } };
+    glm::dvec4 bufferA[16], bufferB[16];
+    for (const auto& face : faces)
+    {
+      int n = 4;
+      glm::dvec4* in = bufferA;
+      glm::dvec4* out = bufferB;
+      for (int i = 0; i < 4; ++i)
+      {
+        in[i] = corner[face[i]];
+      }
+      for (int p = 0; p < 5 && n > 0; ++p)
+      {
+        if (!(outside & (1u << p)))
+        {
+          continue;
+        }
+        int m = 0;
+        for (int i = 0; i < n; ++i)
+        {
+          const glm::dvec4& a = in[i];
+          const glm::dvec4& b = in[(i + 1) % n];
+          const double da = planeValue(p, a), db = planeValue(p, b);
+          if (da >= 0.0)
+          {
+            out[m++] = a;
+          }
+          if ((da >= 0.0) != (db >= 0.0))
+          {
+            out[m++] = a + (b - a) * (da / (da - db));
+          }
+        }
+        n = m;
+        std::swap(in, out);
+      }
+      for (int i = 0; i < n; ++i)
+      {
+        if (!add(in[i]))
+        {
+          return false;
+        }
+      }
+    }
+    if (!any)
+    {
+      return false; // outside the frustum: for the frustum test to count, not occlusion
+    }
   }
   const bool occluded = rectOccluded(x0, y0, x1, y1, zNear);
   stats_.boxesOccluded += occluded ? 1 : 0;

@@ -23,10 +23,13 @@
 #include "vtkSmartPointer.h"
 #include "vtkWeakPointer.h"
 
+#include "vtkOccluderRasterizer.h"
+
 #include "scenevis/Bvh.h"
 #include "scenevis/NormalCone.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstring>
 #include <unordered_map>
@@ -107,6 +110,10 @@ public:
   bool NormalConesBuilt = false;
   sc::Bvh Bvh;
   std::vector<std::uint32_t> Visible;
+  // Occlusion culling: the rasterizer (made on first use) and last frame's visible slots, which
+  // are this frame's first occluders.
+  std::unique_ptr<vtkOccluderRasterizer> Occlusion;
+  std::vector<std::uint32_t> LastVisible;
   std::vector<vtkProp*> Culled;
   std::vector<std::uint32_t> KeptSlots;
   std::size_t RefitsSinceCheck = 0;
@@ -131,6 +138,38 @@ public:
   std::vector<std::uint32_t> PolledSlots;
   bool EventsActive = false;
   vtkIdType Events = 0;
+
+  /// Front-to-back cull with occlusion (vtkOcclusionCuller): props found visible are rasterized
+  /// as occluders before farther nodes are tested; last frame's visible props occlude first.
+  void CullOccluded(
+    vtkRenderer* ren, const sc::CullParams& params, std::size_t cacheBudget, sc::CullStats& stats)
+  {
+    if (!this->Occlusion)
+    {
+      this->Occlusion.reset(new vtkOccluderRasterizer);
+    }
+    vtkOccluderRasterizer& raster = *this->Occlusion;
+    raster.CacheBudget = cacheBudget;
+    vtkCamera* cam = ren->GetActiveCamera();
+    const int* size = ren->GetSize();
+    vtkMatrix4x4* m =
+      cam->GetCompositeProjectionTransformMatrix(ren->GetTiledAspectRatio(), -1, 1);
+    raster.BeginFrame(size[0], size[1], &m->GetData()[0]);
+    sc::OcclusionCull occlusion;
+    occlusion.buffer = &raster.Buffer();
+    // Only props the renderer draws this frame occlude (a prop another culler removed, or one
+    // that left the renderer, stays in the hierarchy until the next rebuild).
+    occlusion.drawOccluder = [this, &raster](std::uint32_t s)
+    {
+      if (s < this->Present.size() && this->Present[s])
+      {
+        raster.Draw(this->Slots[s].Prop);
+      }
+    };
+    occlusion.seeds = &this->LastVisible;
+    this->Bvh.cullOccluded(params, occlusion, this->Visible, &stats);
+    this->LastVisible = this->Visible;
+  }
 
   vtkInternals()
   {
@@ -524,7 +563,11 @@ double vtkOctreeCuller::Cull(
   vtkRenderer* ren, vtkProp** propList, int& listLength, int& initialized)
 {
   vtkInternals& in = *this->Internals;
+  const auto cullStart = std::chrono::steady_clock::now();
   this->CullingSkipped = false;
+  this->NumberOfPropsCulledByOcclusion = this->NumberOfOcclusionTests = 0;
+  this->NumberOfOccludersDrawn = this->NumberOfOccluderTriangles = 0;
+  this->OccluderRasterTime = this->CullTime = 0.0;
   this->NumberOfNodesVisited = this->NumberOfPropsTested = this->NumberOfPropsCulled = 0;
   this->NumberOfPropsCulledByFrustum = this->NumberOfPropsCulledBySize = 0;
   this->NumberOfPropsCulledByDistance = this->NumberOfPropsCulledByNormalCone = 0;
@@ -619,6 +662,7 @@ double vtkOctreeCuller::Cull(
       triangles.push_back(slot.Triangles);
     }
     in.Bvh.build(boxes, sc::BuildMethod::BinnedSah, 4, &triangles);
+    in.LastVisible.clear(); // slot numbers changed
     if (this->NormalConeCulling)
     {
       for (std::uint32_t s = 0; s < in.Slots.size(); ++s)
@@ -880,7 +924,22 @@ double vtkOctreeCuller::Cull(
   if (usable)
   {
     sc::CullStats stats;
-    in.Bvh.cull(params, in.Visible, &stats);
+    if (this->OcclusionCulling)
+    {
+      in.CullOccluded(ren, params, this->OccluderCacheBudget, stats);
+      const vtkOccluderRasterizer& raster = *in.Occlusion;
+      this->NumberOfPropsCulledByOcclusion = static_cast<vtkIdType>(stats.culledOcclusion);
+      this->NumberOfOcclusionTests = static_cast<vtkIdType>(stats.occlusionTests);
+      this->NumberOfOccludersDrawn = raster.OccludersDrawn;
+      this->NumberOfOccluderTriangles = raster.OccluderTriangles;
+      this->OccluderRasterTime = 1e3 * raster.DrawSeconds;
+      this->DepthBufferBytes = in.Occlusion->Buffer().memoryBytes();
+      this->OccluderCacheBytes = raster.CacheBytes;
+    }
+    else
+    {
+      in.Bvh.cull(params, in.Visible, &stats);
+    }
     for (const std::uint32_t s : in.Visible)
     {
       in.Drawn[s] = 1;
@@ -987,6 +1046,8 @@ double vtkOctreeCuller::Cull(
   {
     total = static_cast<double>(kept);
   }
+  this->CullTime =
+    1e3 * std::chrono::duration<double>(std::chrono::steady_clock::now() - cullStart).count();
   return total;
 }
 

@@ -87,7 +87,8 @@
 #include "SceneVisRenderingCullingModule.h" // For export macro
 #include "vtkCuller.h"
 
-#include <memory> // For std::unique_ptr
+#include <cstddef> // For std::size_t
+#include <memory>  // For std::unique_ptr
 
 class vtkProp;
 
@@ -196,6 +197,22 @@ protected:
   vtkIdType NumberOfRebuilds = 0;
   vtkIdType NumberOfRefits = 0;
   bool CullingSkipped = false;
+
+  ///@{
+  /// Occlusion culling, turned on by the subclass vtkOcclusionCuller (see there): the hierarchy
+  /// is traversed front to back, props found visible are rasterized as occluders into a
+  /// software depth buffer, and nodes hidden behind them are culled with their subtrees.
+  bool OcclusionCulling = false;
+  std::size_t OccluderCacheBudget = std::size_t(256) << 20;
+  vtkIdType NumberOfPropsCulledByOcclusion = 0;
+  vtkIdType NumberOfOcclusionTests = 0;
+  vtkIdType NumberOfOccludersDrawn = 0;
+  vtkIdType NumberOfOccluderTriangles = 0;
+  double OccluderRasterTime = 0.0; ///< ms this frame rasterizing occluders
+  double CullTime = 0.0;           ///< ms of the whole Cull()
+  std::size_t DepthBufferBytes = 0;
+  std::size_t OccluderCacheBytes = 0;
+  ///@}
 
 private:
   vtkOctreeCuller(const vtkOctreeCuller&) = delete;

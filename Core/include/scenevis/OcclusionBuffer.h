@@ -28,7 +28,8 @@
  *   occludee's depth is its nearest corner minus `depthMargin`. A 24-bit depth buffer has steps of
  *   6e-8; the default margin is 16 steps.
  * - Occluder triangles are clipped against the near plane in clip space (what is in front of the
- *   near plane is not drawn by OpenGL either); boxes that reach the near plane are never occluded.
+ *   near plane is not drawn by OpenGL either); occludee boxes are clipped against the near and
+ *   side planes, and what remains is tested (its nearest depth and screen rectangle).
  *
  * Representation (the idea of Intel's Masked Software Occlusion Culling, Hasselgren et al. 2016,
  * reduced to its core, our own code): the screen is split into tiles of 8 x 4 pixels. A tile keeps
@@ -115,6 +116,13 @@ public:
   double coverageMargin = 1.0 / 64.0;
   /// Window-depth margin added to occluder depths and taken from occludee depths.
   double depthMargin = 1e-6;
+  /**
+   * OpenGL polygon offset of the occluders drawn next (glPolygonOffset(factor, units) pushes
+   * their depth back by factor * max(|dz/dx|, |dz/dy|) + units * r): the same push is added to
+   * their depth bounds. Set before drawTriangles() for occluders drawn with an offset.
+   */
+  double polygonOffsetFactor = 0.0;
+  double polygonOffsetDepth = 0.0; ///< units * r, in window depth
 
   /// Size in pixels (the viewport's). Clears. Sizes below 1 give an empty buffer that occludes
   /// nothing.
@@ -129,7 +137,7 @@ public:
 
   /// The camera of this frame (glm convention: clip = clipFromWorld * (p, 1)); used by the box
   /// tests. Occluder triangles are given in clip space directly.
-  void setClipFromWorld(const glm::dmat4& clipFromWorld) { clipFromWorld_ = clipFromWorld; }
+  void setClipFromWorld(const glm::dmat4& clipFromWorld);
   const glm::dmat4& clipFromWorld() const { return clipFromWorld_; }
 
   /**
@@ -147,7 +155,8 @@ public:
     const std::uint32_t* neighbors = nullptr);
 
   /// Whether the world-space box [lo, hi] is hidden behind the occluders drawn so far (see the
-  /// file comment). Empty or non-finite boxes, and boxes reaching the near plane, are not.
+  /// file comment). Only the part of the box inside the frustum (sides and near plane) is
+  /// tested. Empty or non-finite boxes, and boxes outside the frustum, are not occluded.
   bool boxOccluded(const glm::dvec3& lo, const glm::dvec3& hi);
 
   /**
@@ -177,6 +186,10 @@ private:
   std::vector<std::uint32_t> outsideX_, outsideY_;
   std::vector<signed char> facing_; ///< drawTriangles scratch: +1 / -1 / 0 per triangle
   glm::dmat4 clipFromWorld_{ 1.0 };
+  /// World-space corners of the near plane's rectangle (a box holding one reaches the eye's
+  /// near plane on screen: never occluded); valid only if nearCornersValid_.
+  glm::dvec3 nearCorners_[4];
+  bool nearCornersValid_ = false;
   BufferStats stats_;
 };
 

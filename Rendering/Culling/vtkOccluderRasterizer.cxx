@@ -1,0 +1,243 @@
+#include "vtkOccluderRasterizer.h"
+
+#include "vtkActor.h"
+#include "vtkCellArray.h"
+#include "vtkMath.h"
+#include "vtkMatrix4x4.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+#include "vtkPolyDataMapper.h"
+#include "vtkProperty.h"
+
+#include <glm/geometric.hpp>
+#include <glm/mat4x4.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+namespace so = scenevis::occlusion;
+
+namespace
+{
+/// Whether polygon @p ids (n >= 4 points) is planar and convex: then its fan covers exactly it.
+bool PlanarConvex(vtkPoints* points, const vtkIdType* ids, vtkIdType n)
+{
+  std::vector<glm::dvec3> p(static_cast<std::size_t>(n));
+  for (vtkIdType i = 0; i < n; ++i)
+  {
+    double x[3];
+    points->GetPoint(ids[i], x);
+    p[static_cast<std::size_t>(i)] = glm::dvec3(x[0], x[1], x[2]);
+  }
+  // Newell normal, then every corner must turn the same way and every point lie on the plane.
+  glm::dvec3 normal(0.0);
+  double size = 0.0;
+  for (std::size_t i = 0; i < p.size(); ++i)
+  {
+    const glm::dvec3& a = p[i];
+    const glm::dvec3& b = p[(i + 1) % p.size()];
+    normal += glm::dvec3((a.y - b.y) * (a.z + b.z), (a.z - b.z) * (a.x + b.x),
+      (a.x - b.x) * (a.y + b.y));
+    size = std::max(size, glm::length(b - a));
+  }
+  const double length = glm::length(normal);
+  if (!(length > 0.0) || !std::isfinite(length))
+  {
+    return false;
+  }
+  normal /= length;
+  for (std::size_t i = 0; i < p.size(); ++i)
+  {
+    const glm::dvec3& a = p[i];
+    const glm::dvec3& b = p[(i + 1) % p.size()];
+    const glm::dvec3& c = p[(i + 2) % p.size()];
+    if (glm::dot(glm::cross(b - a, c - b), normal) < 0.0 ||
+      std::abs(glm::dot(a - p[0], normal)) > 1e-9 * size)
+    {
+      return false;
+    }
+  }
+  return true;
+}
+} // namespace
+
+void vtkOccluderRasterizer::BeginFrame(int width, int height, const double m[16])
+{
+  ++this->Frame;
+  std::copy(m, m + 16, this->ClipFromWorld);
+  if (this->DepthBuffer.width() != width || this->DepthBuffer.height() != height)
+  {
+    this->DepthBuffer.resize(width, height);
+  }
+  else
+  {
+    this->DepthBuffer.clear();
+  }
+  glm::dmat4 clipFromWorld;
+  for (int r = 0; r < 4; ++r)
+  {
+    for (int c = 0; c < 4; ++c)
+    {
+      clipFromWorld[c][r] = m[4 * r + c];
+    }
+  }
+  this->DepthBuffer.setClipFromWorld(clipFromWorld);
+  this->OccludersDrawn = 0;
+  this->OccluderTriangles = 0;
+  this->DrawSeconds = 0.0;
+  if (this->CacheBytes > this->CacheBudget)
+  {
+    this->Evict();
+  }
+}
+
+void vtkOccluderRasterizer::Evict()
+{
+  // Oldest first, never what the previous frame used (it is likely to be needed again).
+  std::vector<std::pair<std::uint64_t, vtkPolyData*>> byAge;
+  for (const auto& entry : this->Meshes)
+  {
+    if (entry.second.LastFrame + 1 < this->Frame)
+    {
+      byAge.emplace_back(entry.second.LastFrame, entry.first);
+    }
+  }
+  std::sort(byAge.begin(), byAge.end());
+  for (const auto& old : byAge)
+  {
+    if (this->CacheBytes <= this->CacheBudget / 2)
+    {
+      break;
+    }
+    const auto it = this->Meshes.find(old.second);
+    this->CacheBytes -= it->second.Bytes();
+    this->Meshes.erase(it);
+  }
+}
+
+vtkOccluderRasterizer::Mesh* vtkOccluderRasterizer::MeshOf(vtkPolyData* data)
+{
+  Mesh& mesh = this->Meshes[data];
+  mesh.LastFrame = this->Frame;
+  if (mesh.Data == data && mesh.Time == data->GetMTime())
+  {
+    return &mesh;
+  }
+  // New, changed, or a new object at a deleted one's address.
+  this->CacheBytes -= mesh.Bytes();
+  mesh.Data = data;
+  mesh.Time = data->GetMTime();
+  mesh.Triangles.clear();
+  vtkPoints* points = data->GetPoints();
+  const vtkIdType pointCount = points ? points->GetNumberOfPoints() : 0;
+  if (pointCount > 0 && pointCount < static_cast<vtkIdType>(UINT32_MAX))
+  {
+    const vtkIdType* ids = nullptr;
+    vtkIdType n = 0;
+    vtkCellArray* polys = data->GetPolys();
+    for (polys->InitTraversal(); polys->GetNextCell(n, ids);)
+    {
+      if (n == 3 || (n > 3 && PlanarConvex(points, ids, n)))
+      {
+        for (vtkIdType i = 1; i + 1 < n; ++i)
+        {
+          mesh.Triangles.insert(mesh.Triangles.end(), { static_cast<std::uint32_t>(ids[0]),
+            static_cast<std::uint32_t>(ids[i]), static_cast<std::uint32_t>(ids[i + 1]) });
+        }
+      }
+    }
+    vtkCellArray* strips = data->GetStrips();
+    for (strips->InitTraversal(); strips->GetNextCell(n, ids);)
+    {
+      for (vtkIdType j = 0; j + 2 < n; ++j)
+      {
+        mesh.Triangles.insert(mesh.Triangles.end(), { static_cast<std::uint32_t>(ids[j]),
+          static_cast<std::uint32_t>(ids[j + 1 + j % 2]),
+          static_cast<std::uint32_t>(ids[j + 1 + (j + 1) % 2]) });
+      }
+    }
+    std::vector<double> xyz(static_cast<std::size_t>(3 * pointCount));
+    for (vtkIdType i = 0; i < pointCount; ++i)
+    {
+      points->GetPoint(i, &xyz[static_cast<std::size_t>(3 * i)]);
+    }
+    mesh.Neighbors = so::buildTriangleNeighbors(xyz.data(), static_cast<std::size_t>(pointCount),
+      mesh.Triangles.data(), mesh.Triangles.size() / 3);
+  }
+  else
+  {
+    mesh.Neighbors.clear();
+  }
+  mesh.Triangles.shrink_to_fit();
+  mesh.Neighbors.shrink_to_fit();
+  this->CacheBytes += mesh.Bytes();
+  return &mesh;
+}
+
+void vtkOccluderRasterizer::Draw(vtkProp* prop)
+{
+  vtkActor* actor = vtkActor::SafeDownCast(prop);
+  if (!actor || !actor->GetVisibility())
+  {
+    return;
+  }
+  vtkPolyDataMapper* mapper = vtkPolyDataMapper::SafeDownCast(actor->GetMapper());
+  vtkPolyData* data = mapper ? mapper->GetInput() : nullptr;
+  vtkProperty* property = actor->GetProperty();
+  if (!data || !data->GetPoints() || property->GetRepresentation() != VTK_SURFACE ||
+    property->GetOpacity() < 1.0 || actor->HasTranslucentPolygonalGeometry() ||
+    !actor->HasOpaqueGeometry() || mapper->GetNumberOfClippingPlanes() > 0 ||
+    vtkMapper::GetResolveCoincidentTopology() == VTK_RESOLVE_SHIFT_ZBUFFER)
+  {
+    return;
+  }
+  const auto start = std::chrono::steady_clock::now();
+  vtkMatrix4x4* model = actor->GetMatrix();
+  so::FaceCulling culling = so::FaceCulling::None;
+  if (property->GetBackfaceCulling() || property->GetFrontfaceCulling())
+  {
+    if (model->Determinant() <= 0.0)
+    {
+      return;
+    }
+    culling = property->GetBackfaceCulling()
+      ? (property->GetFrontfaceCulling() ? so::FaceCulling::Both : so::FaceCulling::Back)
+      : so::FaceCulling::Front;
+  }
+  so::MaskedDepthBuffer& buffer = this->DepthBuffer;
+  buffer.polygonOffsetFactor = 0.0;
+  buffer.polygonOffsetDepth = 0.0;
+  if (vtkMapper::GetResolveCoincidentTopology() == VTK_RESOLVE_POLYGON_OFFSET)
+  {
+    double factor = 0.0, units = 0.0;
+    mapper->GetCoincidentTopologyPolygonOffsetParameters(factor, units);
+    buffer.polygonOffsetFactor = factor;
+    buffer.polygonOffsetDepth = units * std::ldexp(1.0, -23); // r of a 24-bit depth buffer, x2
+  }
+  Mesh* mesh = this->MeshOf(data);
+  if (!mesh->Triangles.empty())
+  {
+    double m[16];
+    vtkMatrix4x4::Multiply4x4(this->ClipFromWorld, &model->GetData()[0], m);
+    vtkPoints* points = data->GetPoints();
+    const vtkIdType n = points->GetNumberOfPoints();
+    this->Clip.resize(static_cast<std::size_t>(n));
+    for (vtkIdType i = 0; i < n; ++i)
+    {
+      double p[3];
+      points->GetPoint(i, p);
+      glm::dvec4& c = this->Clip[static_cast<std::size_t>(i)];
+      c.x = m[0] * p[0] + m[1] * p[1] + m[2] * p[2] + m[3];
+      c.y = m[4] * p[0] + m[5] * p[1] + m[6] * p[2] + m[7];
+      c.z = m[8] * p[0] + m[9] * p[1] + m[10] * p[2] + m[11];
+      c.w = m[12] * p[0] + m[13] * p[1] + m[14] * p[2] + m[15];
+    }
+    buffer.drawTriangles(this->Clip.data(), this->Clip.size(), mesh->Triangles.data(),
+      mesh->Triangles.size() / 3, culling, mesh->Neighbors.data());
+    ++this->OccludersDrawn;
+    this->OccluderTriangles += static_cast<vtkIdType>(mesh->Triangles.size() / 3);
+  }
+  this->DrawSeconds +=
+    std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}

@@ -1,0 +1,81 @@
+/**
+ * @class   vtkOccluderRasterizer
+ * @brief   Module-private: draws VTK actors as occluders into SceneVis's software depth buffer.
+ *
+ * Used by vtkOctreeCuller when occlusion culling is on (vtkOcclusionCuller). Per frame,
+ * BeginFrame() sizes and clears the buffer for the renderer's viewport and camera; Draw(prop)
+ * rasterizes a prop if OpenGL will draw it as an opaque surface, and does nothing otherwise:
+ *
+ * - only plain actors with a vtkPolyDataMapper whose input is a vtkPolyData, surface
+ *   representation, opacity 1 and no translucent geometry (textures / scalars with alpha), no
+ *   mapper clipping planes, no z-buffer shift (VTK_RESOLVE_SHIFT_ZBUFFER) occlude; translucent
+ *   props never occlude (they can still be culled behind opaque ones);
+ * - face culling as the property says (an actor matrix with a negative determinant and face
+ *   culling on: not an occluder, the winding that OpenGL sees is not certain);
+ * - triangles, triangle strips (OpenGL's alternating order) and polygons of 4+ points that are
+ *   planar and convex (then every triangulation, VTK's included, covers the same area); other
+ *   polygons are left out (leaving out an occluder is always conservative);
+ * - polygon offset (VTK_RESOLVE_POLYGON_OFFSET) is added to the occluders' depth bounds.
+ *
+ * Triangle lists and edge neighbours are cached per vtkPolyData (shared by all actors that draw
+ * it: instances cost one entry) and rebuilt when its MTime changes; entries not used for a while
+ * are dropped when the cache exceeds CacheBudget bytes.
+ */
+#ifndef vtkOccluderRasterizer_h
+#define vtkOccluderRasterizer_h
+
+#include "vtkType.h"
+#include "vtkWeakPointer.h"
+
+#include "scenevis/OcclusionBuffer.h"
+
+#include <cstddef>
+#include <cstdint>
+#include <unordered_map>
+#include <vector>
+
+class vtkPolyData;
+class vtkProp;
+
+class vtkOccluderRasterizer
+{
+public:
+  /// Viewport size in pixels and the camera's clip-from-world matrix (VTK's row-major, as
+  /// vtkCamera::GetCompositeProjectionTransformMatrix(aspect, -1, 1) returns it).
+  void BeginFrame(int width, int height, const double clipFromWorldRowMajor[16]);
+  /// Rasterize @p prop if it is an opaque occluder (see the class comment).
+  void Draw(vtkProp* prop);
+
+  scenevis::occlusion::MaskedDepthBuffer& Buffer() { return this->DepthBuffer; }
+
+  ///@{
+  /// This frame: props rasterized, their triangles, seconds spent in Draw().
+  vtkIdType OccludersDrawn = 0;
+  vtkIdType OccluderTriangles = 0;
+  double DrawSeconds = 0.0;
+  ///@}
+  /// Bytes of cached triangle lists and neighbours; budget before unused entries are dropped.
+  std::size_t CacheBytes = 0;
+  std::size_t CacheBudget = std::size_t(256) << 20;
+
+private:
+  struct Mesh
+  {
+    vtkWeakPointer<vtkPolyData> Data;
+    vtkMTimeType Time = 0;
+    std::vector<std::uint32_t> Triangles; // 3 point ids each
+    std::vector<std::uint32_t> Neighbors; // 3 per triangle
+    std::uint64_t LastFrame = 0;
+    std::size_t Bytes() const { return (this->Triangles.size() + this->Neighbors.size()) * 4; }
+  };
+  Mesh* MeshOf(vtkPolyData* data);
+  void Evict();
+
+  scenevis::occlusion::MaskedDepthBuffer DepthBuffer;
+  double ClipFromWorld[16] = { 0 };
+  std::unordered_map<vtkPolyData*, Mesh> Meshes;
+  std::vector<glm::dvec4> Clip;
+  std::uint64_t Frame = 0;
+};
+
+#endif
