@@ -2,7 +2,10 @@
 // a crash: props with empty / NaN bounds, 2D props, unusable cameras, a zero-size viewport, and
 // props added, removed and moved between frames (all four update modes, event-driven included),
 // in every culling mode: frustum, distance, small-feature and normal-cone culling, alone and
-// together.
+// together, and occlusion (vtkOcclusionCuller), which also meets bad occluders: NaN points,
+// zero-area triangles, an eye inside an occluder, its near plane cutting one, a viewport of one
+// pixel, coordinates at 1e7.
+#include "vtkOcclusionCuller.h"
 #include "vtkOctreeCuller.h"
 
 #include "scenevis/testing/RenderWindow.h"
@@ -12,11 +15,13 @@
 #include <vtkActor2D.h>
 #include <vtkCamera.h>
 #include <vtkCubeSource.h>
+#include <vtkCellArray.h>
 #include <vtkCullerCollection.h>
 #include <vtkFrustumCoverageCuller.h>
 #include <vtkNew.h>
 #include <vtkPolyData.h>
 #include <vtkPolyDataMapper.h>
+#include <vtkPoints.h>
 #include <vtkPolyDataMapper2D.h>
 #include <vtkProperty.h>
 #include <vtkRenderWindow.h>
@@ -74,6 +79,111 @@ std::vector<vtkProp*> Run(
 bool Has(const std::vector<vtkProp*>& v, vtkProp* p)
 {
   return std::find(v.begin(), v.end(), p) != v.end();
+}
+
+/// An actor of one polydata of triangles (points 3 per triangle) at @p offset.
+vtkSmartPointer<vtkActor> Triangles(const std::vector<double>& xyz, double offset = 0.0)
+{
+  vtkNew<vtkPoints> points;
+  points->SetDataTypeToDouble();
+  vtkNew<vtkCellArray> cells;
+  for (std::size_t i = 0; i + 8 < xyz.size(); i += 9)
+  {
+    vtkIdType ids[3];
+    for (int k = 0; k < 3; ++k)
+    {
+      ids[k] = points->InsertNextPoint(
+        xyz[i + 3 * k] + offset, xyz[i + 3 * k + 1] + offset, xyz[i + 3 * k + 2]);
+    }
+    cells->InsertNextCell(3, ids);
+  }
+  vtkNew<vtkPolyData> pd;
+  pd->SetPoints(points);
+  pd->SetPolys(cells);
+  vtkNew<vtkPolyDataMapper> mapper;
+  mapper->SetInputData(pd);
+  vtkNew<vtkActor> actor;
+  actor->SetMapper(mapper);
+  return actor;
+}
+
+/// A square wall at z = @p z, half-size @p h, two triangles (plus @p extra coordinates).
+std::vector<double> Wall(double z, double h)
+{
+  return { -h, -h, z, h, -h, z, h, h, z, -h, -h, z, h, h, z, -h, h, z };
+}
+
+bool TestBadOccluders(vtkRenderWindow* window)
+{
+  bool ok = true;
+  for (const double offset : { 0.0, 1e7 })
+  {
+    const std::string at = offset == 0.0 ? "" : " (at 1e7)";
+    vtkNew<vtkRenderer> ren;
+    window->AddRenderer(ren);
+    vtkCamera* cam = ren->GetActiveCamera();
+    cam->SetPosition(offset, offset, 10);
+    cam->SetFocalPoint(offset, offset, 0);
+    cam->SetClippingRange(0.5, 100);
+    vtkNew<vtkOcclusionCuller> culler;
+    vtkSmartPointer<vtkActor> wall = Triangles(Wall(5, 20), offset);
+    vtkSmartPointer<vtkActor> hidden = Cube(offset, offset, 0);
+    std::vector<vtkProp*> drawn = Run(culler, ren, { wall, hidden });
+    ok &= Check(drawn.size() == 1 && Has(drawn, wall) &&
+        culler->GetNumberOfPropsCulledByOcclusion() == 1,
+      "occlusion" + at + ": the cube behind the wall is culled");
+    // The same wall with a NaN point in one triangle and zero-area triangles: the NaN makes the
+    // bounds unusable (always drawn, never an occluder), the cube is kept.
+    std::vector<double> bad = Wall(5, 20);
+    bad[0] = std::nan("");
+    vtkSmartPointer<vtkActor> nanWall = Triangles(bad, offset);
+    drawn = Run(culler, ren, { nanWall, hidden });
+    ok &= Check(drawn.size() == 2, "occlusion" + at + ": a wall with a NaN point occludes nothing");
+    vtkSmartPointer<vtkActor> flatWall =
+      Triangles({ -20, -20, 5, 20, 20, 5, 0, 0, 5, -20, 20, 5, -20, 20, 5, 20, -20, 5 }, offset);
+    drawn = Run(culler, ren, { flatWall, hidden });
+    ok &= Check(drawn.size() == 2, "occlusion" + at + ": zero-area triangles occlude nothing");
+    // Translucent and wireframe walls do not occlude.
+    wall->GetProperty()->SetOpacity(0.5);
+    drawn = Run(culler, ren, { wall, hidden });
+    ok &= Check(drawn.size() == 2, "occlusion" + at + ": a translucent wall occludes nothing");
+    wall->GetProperty()->SetOpacity(1.0);
+    wall->GetProperty()->SetRepresentationToWireframe();
+    drawn = Run(culler, ren, { wall, hidden });
+    ok &= Check(drawn.size() == 2, "occlusion" + at + ": a wireframe wall occludes nothing");
+    wall->GetProperty()->SetRepresentationToSurface();
+    // Back-face culled wall seen from its back: not drawn, does not occlude.
+    wall->GetProperty()->BackfaceCullingOn();
+    cam->SetPosition(offset, offset, -10);
+    cam->SetFocalPoint(offset, offset, 20);
+    vtkSmartPointer<vtkActor> beyond = Cube(offset, offset, 10);
+    drawn = Run(culler, ren, { wall, beyond });
+    ok &= Check(Has(drawn, beyond), "occlusion" + at + ": a culled face does not occlude");
+    wall->GetProperty()->BackfaceCullingOff();
+    // The eye inside a closed occluder (a big cube): what is inside with it stays visible.
+    vtkSmartPointer<vtkActor> room = Cube(offset, offset, 0);
+    room->SetOrigin(offset, offset, 0);
+    room->SetScale(40, 40, 40);
+    vtkSmartPointer<vtkActor> inside = Cube(offset, offset, 5);
+    cam->SetPosition(offset, offset, 10);
+    cam->SetFocalPoint(offset, offset, 0);
+    drawn = Run(culler, ren, { room, inside });
+    ok &= Check(drawn.size() == 2, "occlusion" + at + ": eye inside an occluder");
+    // The near plane cutting the wall (the eye 0.1 before it, near plane 0.5): the wall is cut
+    // away where the eye is; the cube behind it stays drawn (it is seen through the cut).
+    cam->SetPosition(offset, offset, 5.1);
+    cam->SetClippingRange(0.5, 100);
+    drawn = Run(culler, ren, { wall, hidden });
+    ok &= Check(Has(drawn, hidden), "occlusion" + at + ": near plane cutting the occluder");
+    // One-pixel viewport.
+    cam->SetPosition(offset, offset, 10);
+    ren->SetViewport(0, 0, 1.0 / 200, 1.0 / 150);
+    drawn = Run(culler, ren, { wall, hidden });
+    ok &= Check(Has(drawn, wall), "occlusion" + at + ": one-pixel viewport, no crash");
+    ren->SetViewport(0, 0, 1, 1);
+    window->RemoveRenderer(ren);
+  }
+  return ok;
 }
 } // namespace
 
@@ -166,10 +276,12 @@ int TestOctreeCullerBadInput(int, char*[])
       bool normalCones;
       double minimumPixels;
       double maximumDistance;
+      bool occlusion = false;
     };
     const Mode modes[] = { { "normal cones", true, 0.0, VTK_DOUBLE_MAX },
       { "small features 4 px", false, 4.0, VTK_DOUBLE_MAX }, { "distance 100", false, 0.0, 100.0 },
-      { "all modes", true, 4.0, 100.0 } };
+      { "all modes", true, 4.0, 100.0 }, { "occlusion", false, 0.0, VTK_DOUBLE_MAX, true },
+      { "occlusion and all modes", true, 4.0, 100.0, true } };
     for (vtkActor* a : { visible.GetPointer(), behind.GetPointer(), empty.GetPointer(),
            nanActor.GetPointer(), noMapper.GetPointer() })
     {
@@ -178,7 +290,9 @@ int TestOctreeCullerBadInput(int, char*[])
     for (const Mode& m : modes)
     {
       const std::string name = m.name;
-      vtkNew<vtkOctreeCuller> c;
+      vtkSmartPointer<vtkOctreeCuller> c = m.occlusion
+        ? vtkSmartPointer<vtkOctreeCuller>(vtkSmartPointer<vtkOcclusionCuller>::New())
+        : vtkSmartPointer<vtkOctreeCuller>::New();
       c->SetNormalConeCulling(m.normalCones);
       c->SetMinimumPixelSize(m.minimumPixels);
       c->SetMaximumDistance(m.maximumDistance);
@@ -216,6 +330,8 @@ int TestOctreeCullerBadInput(int, char*[])
       a->GetProperty()->BackfaceCullingOff();
     }
   }
+
+  ok &= TestBadOccluders(window);
 
   // Moves between frames, per update mode (UPDATE_ON_EVENTS last: it is the default).
   for (int mode = vtkOctreeCuller::UPDATE_BOUNDS_EVERY_FRAME;
