@@ -113,10 +113,33 @@ void MaskedDepthBuffer::drawTriangles(const glm::dvec4* clip,
     stats_.trianglesRejected += triangleCount;
     return;
   }
+  // Each vertex is projected once (shared vertices get bit-identical window coordinates in every
+  // triangle, which the watertight edge rule relies on). State: 0 not finite, 1 in front of the
+  // near plane (window coordinates valid), 2 finite but behind it (its triangles are clipped).
+  window_.resize(vertexCount);
+  vertexState_.resize(vertexCount);
+  for (std::size_t i = 0; i < vertexCount; ++i)
+  {
+    const glm::dvec4& v = clip[i];
+    if (!finite(v))
+    {
+      vertexState_[i] = 0;
+    }
+    else if (v.z + v.w >= 0.0 && v.w > 0.0)
+    {
+      vertexState_[i] = 1;
+      window_[i] = glm::dvec3((v.x / v.w * 0.5 + 0.5) * width_,
+        (v.y / v.w * 0.5 + 0.5) * height_, v.z / v.w * 0.5 + 0.5);
+    }
+    else
+    {
+      vertexState_[i] = 2;
+    }
+  }
   auto valid = [&](std::size_t t) {
     const std::uint32_t* tri = indices + 3 * t;
     return tri[0] < vertexCount && tri[1] < vertexCount && tri[2] < vertexCount &&
-      finite(clip[tri[0]]) && finite(clip[tri[1]]) && finite(clip[tri[2]]);
+      vertexState_[tri[0]] != 0 && vertexState_[tri[1]] != 0 && vertexState_[tri[2]] != 0;
   };
   if (neighbors)
   {
@@ -159,9 +182,16 @@ void MaskedDepthBuffer::drawTriangles(const glm::dvec4* clip,
         }
       }
     }
-    const glm::dvec4 v[3] = { clip[indices[3 * t]], clip[indices[3 * t + 1]],
-      clip[indices[3 * t + 2]] };
-    drawClippedTriangle(v, culling, outline);
+    const std::uint32_t* tri = indices + 3 * t;
+    if (vertexState_[tri[0]] == 1 && vertexState_[tri[1]] == 1 && vertexState_[tri[2]] == 1)
+    {
+      drawWindowTriangle(window_[tri[0]], window_[tri[1]], window_[tri[2]], culling, outline);
+    }
+    else
+    {
+      const glm::dvec4 v[3] = { clip[tri[0]], clip[tri[1]], clip[tri[2]] };
+      drawClippedTriangle(v, culling, outline);
+    }
   }
 }
 
@@ -283,7 +313,10 @@ struct EdgeTest
     threshold = outline ? margin * std::sqrt(dx * dx + dy * dy) : 0.0;
     includeTie = outline || sign > 0.0;
     slack = 1e-9 * (std::abs(dx) + std::abs(dy)) * extent;
+    gx = -sign * dy;
+    gy = sign * dx;
   }
+  double gx, gy; ///< d value / dx, d value / dy
   double value(double x, double y) const { return sign * (dx * (y - py) - dy * (x - px)); }
   bool inside(double x, double y) const
   {
@@ -339,65 +372,100 @@ void MaskedDepthBuffer::drawWindowTriangle(const glm::dvec3& a, const glm::dvec3
   const double offset = std::max(0.0, polygonOffsetFactor) * std::max(std::abs(zx), std::abs(zy)) +
     std::max(0.0, polygonOffsetDepth);
   const double zFarVertex = std::max({ a.z, b.z, c.z }) + offset;
+  const double zNearVertex = std::min({ a.z, b.z, c.z }) + depthMargin;
   // Rounding of the plane's evaluation, bounded generously; the depth margin comes on top.
   const double planeError =
     1e-12 * ((std::abs(zx) + 1.0) * width_ + (std::abs(zy) + 1.0) * height_ + std::abs(z00));
 
+  // Per edge, over a tile's 8 x 4 pixel centres: value = value at the first centre + i gx + j gy;
+  // its extremes are at corners (offsets below). Decisions within `slack` of the threshold are
+  // made by the exact (canonical) evaluation.
+  double loOffset[3], hiOffset[3];
+  for (int k = 0; k < 3; ++k)
+  {
+    const EdgeTest& e = edges[k];
+    loOffset[k] = std::min(0.0, (kTileWidth - 1) * e.gx) + std::min(0.0, (kTileHeight - 1) * e.gy);
+    hiOffset[k] = std::max(0.0, (kTileWidth - 1) * e.gx) + std::max(0.0, (kTileHeight - 1) * e.gy);
+  }
+  const double zOffset =
+    std::max(0.0, (kTileWidth - 1) * zx) + std::max(0.0, (kTileHeight - 1) * zy);
   bool touched = false;
   const int tx0 = static_cast<int>(px0) / kTileWidth, tx1 = static_cast<int>(px1) / kTileWidth;
   const int ty0 = static_cast<int>(py0) / kTileHeight, ty1 = static_cast<int>(py1) / kTileHeight;
   for (int ty = ty0; ty <= ty1; ++ty)
   {
-    const double y0 = ty * kTileHeight + 0.5, y1 = y0 + (kTileHeight - 1);
+    const double y0 = ty * kTileHeight + 0.5;
+    // The tiles a convex triangle touches in a row are contiguous: stop after the last one.
+    bool inRow = false;
     for (int tx = tx0; tx <= tx1; ++tx)
     {
-      const double x0 = tx * kTileWidth + 0.5, x1 = x0 + (kTileWidth - 1);
-      // Edge values are affine: their extremes over the tile's pixel centres are at its corner
-      // centres (up to rounding: `slack`; undecided tiles test every centre exactly).
-      bool empty = false, full = true;
-      for (const EdgeTest& e : edges)
+      const double x0 = tx * kTileWidth + 0.5;
+      Tile& tile = tiles_[static_cast<std::size_t>(ty) * tilesX_ + tx];
+      if (zNearVertex >= static_cast<double>(tile.z0))
       {
-        const double v00 = e.value(x0, y0), v10 = e.value(x1, y0), v01 = e.value(x0, y1),
-                     v11 = e.value(x1, y1);
-        const double lo = std::min(std::min(v00, v10), std::min(v01, v11));
-        const double hi = std::max(std::max(v00, v10), std::max(v01, v11));
-        if (hi < e.threshold - e.slack)
+        // Entirely behind what the whole tile already has: nothing to add (updateTile would
+        // return at once). Not counted as inside the row: the scan goes on.
+        continue;
+      }
+      double v[3];
+      bool empty = false, full = true;
+      unsigned partial = 0;
+      for (int k = 0; k < 3; ++k)
+      {
+        const EdgeTest& e = edges[k];
+        v[k] = e.value(x0, y0);
+        if (v[k] + hiOffset[k] < e.threshold - e.slack)
         {
           empty = true;
           break;
         }
-        full = full && lo > e.threshold + e.slack;
+        if (!(v[k] + loOffset[k] > e.threshold + e.slack))
+        {
+          full = false;
+          partial |= 1u << k;
+        }
       }
       if (empty)
       {
+        if (inRow)
+        {
+          break;
+        }
         continue;
       }
+      inRow = true;
       std::uint32_t mask = kFullMask;
       if (!full)
       {
-        mask = 0;
-        for (int j = 0; j < kTileHeight; ++j)
+        for (int k = 0; k < 3 && mask; ++k)
         {
-          const double y = y0 + j;
-          for (int i = 0; i < kTileWidth; ++i)
+          if (!(partial & (1u << k)))
           {
-            const double x = x0 + i;
-            if (edges[0].inside(x, y) && edges[1].inside(x, y) && edges[2].inside(x, y))
+            continue;
+          }
+          const EdgeTest& e = edges[k];
+          const double above = e.threshold + e.slack, below = e.threshold - e.slack;
+          std::uint32_t edgeMask = 0;
+          for (int j = 0; j < kTileHeight; ++j)
+          {
+            double value = v[k] + j * e.gy;
+            for (int i = 0; i < kTileWidth; ++i, value += e.gx)
             {
-              mask |= 1u << (j * kTileWidth + i);
+              if (value > above || (value >= below && e.inside(x0 + i, y0 + j)))
+              {
+                edgeMask |= 1u << (j * kTileWidth + i);
+              }
             }
           }
+          mask &= edgeMask;
         }
         if (mask == 0)
         {
           continue;
         }
       }
-      const double zCorners = std::max(std::max(zx * x0 + zy * y0, zx * x1 + zy * y0),
-                                std::max(zx * x0 + zy * y1, zx * x1 + zy * y1)) +
-        z00;
+      const double zCorners = zx * x0 + zy * y0 + z00 + zOffset;
       const double depth = std::min(zCorners + offset + planeError, zFarVertex) + depthMargin;
-      Tile& tile = tiles_[static_cast<std::size_t>(ty) * tilesX_ + tx];
       updateTile(tile, mask, roundUp(depth), outsideX_[tx] | outsideY_[ty]);
       ++stats_.tilesUpdated;
       touched = true;

@@ -164,6 +164,19 @@ vtkOccluderRasterizer::Mesh* vtkOccluderRasterizer::MeshOf(vtkPolyData* data)
     }
     mesh.Neighbors = so::buildTriangleNeighbors(xyz.data(), static_cast<std::size_t>(pointCount),
       mesh.Triangles.data(), mesh.Triangles.size() / 3);
+    mesh.Closed = !mesh.Triangles.empty() &&
+      std::find(mesh.Neighbors.begin(), mesh.Neighbors.end(), so::kNoNeighbor) ==
+        mesh.Neighbors.end();
+    double volume = 0.0;
+    for (std::size_t t = 0; t + 2 < mesh.Triangles.size(); t += 3)
+    {
+      const double* a = &xyz[3 * std::size_t(mesh.Triangles[t])];
+      const double* b = &xyz[3 * std::size_t(mesh.Triangles[t + 1])];
+      const double* c = &xyz[3 * std::size_t(mesh.Triangles[t + 2])];
+      volume += a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0]) +
+        a[2] * (b[0] * c[1] - b[1] * c[0]);
+    }
+    mesh.Outward = volume >= 0.0;
   }
   else
   {
@@ -216,6 +229,12 @@ void vtkOccluderRasterizer::Draw(vtkProp* prop)
     buffer.polygonOffsetDepth = units * std::ldexp(1.0, -23); // r of a 24-bit depth buffer, x2
   }
   Mesh* mesh = this->MeshOf(data);
+  if (culling == so::FaceCulling::None && mesh->Closed)
+  {
+    // The actor's matrix may mirror (negative determinant): then outward faces wind clockwise.
+    const bool outwardIsFront = mesh->Outward == (model->Determinant() > 0.0);
+    culling = outwardIsFront ? so::FaceCulling::Back : so::FaceCulling::Front;
+  }
   if (!mesh->Triangles.empty())
   {
     double m[16];

@@ -15,7 +15,10 @@
  * - triangles, triangle strips (OpenGL's alternating order) and polygons of 4+ points that are
  *   planar and convex (then every triangulation, VTK's included, covers the same area); other
  *   polygons are left out (leaving out an occluder is always conservative);
- * - polygon offset (VTK_RESOLVE_POLYGON_OFFSET) is added to the occluders' depth bounds.
+ * - polygon offset (VTK_RESOLVE_POLYGON_OFFSET) is added to the occluders' depth bounds;
+ * - of a closed, consistently oriented mesh only the outward-facing triangles are rasterized
+ *   (the others are always behind them: a subset of what OpenGL draws, so still conservative,
+ *   at half the work; with the eye inside such a mesh it occludes nothing).
  *
  * Triangle lists and edge neighbours are cached per vtkPolyData (shared by all actors that draw
  * it: instances cost one entry) and rebuilt when its MTime changes; entries not used for a while
@@ -65,6 +68,10 @@ private:
     vtkMTimeType Time = 0;
     std::vector<std::uint32_t> Triangles; // 3 point ids each
     std::vector<std::uint32_t> Neighbors; // 3 per triangle
+    /// Closed and consistently oriented (every edge has a neighbour): only the faces of one
+    /// side can be nearest, those facing out (Outward: the signed volume is positive).
+    bool Closed = false;
+    bool Outward = true;
     std::uint64_t LastFrame = 0;
     std::size_t Bytes() const { return (this->Triangles.size() + this->Neighbors.size()) * 4; }
   };

@@ -184,7 +184,11 @@ private:
   std::vector<Tile> tiles_;
   /// Per tile column / row: bits of pixels beyond the viewport (they count as covered).
   std::vector<std::uint32_t> outsideX_, outsideY_;
-  std::vector<signed char> facing_; ///< drawTriangles scratch: +1 / -1 / 0 per triangle
+  // drawTriangles scratch: facing per triangle (+1 / -1 / 0), window coordinates and state per
+  // vertex.
+  std::vector<signed char> facing_;
+  std::vector<glm::dvec3> window_;
+  std::vector<unsigned char> vertexState_;
   glm::dmat4 clipFromWorld_{ 1.0 };
   /// World-space corners of the near plane's rectangle (a box holding one reaches the eye's
   /// near plane on screen: never occluded); valid only if nearCornersValid_.
