@@ -14,7 +14,8 @@
 //    visible), false negatives (visible props not drawn: must be 0), cull time, time spent
 //    rasterizing occluders, and whole frame time (cull + llvmpipe draw, wall clock);
 //  - the memory of the occlusion buffer and of its occluder cache.
-// Usage: scenevis_occlusion_bench [--grid N] [--size WxH] [--frames K] [--smoke]
+// Usage: scenevis_occlusion_bench [--grid N] [--size WxH] [--frames K]
+//        [--pixels-per-triangle P] [--smoke]
 // (--smoke: 2 x 2 engines at 160x120, one frame: a seconds-long check that it runs, for CI).
 // Needs the data cache (scripts/fetch-data.sh); prints "SKIPPED" and exits 0 without it.
 #include "vtkOcclusionCuller.h"
@@ -303,6 +304,7 @@ Row Measure(Grid& g, vtkRenderWindow* window, vtkOctreeCuller* culler, const cha
 int main(int argc, char* argv[])
 {
   int n = 20, width = 800, height = 600, frames = 3;
+  double pixelsPerTriangle = -1.0; // the culler's default
   for (int i = 1; i < argc; ++i)
   {
     const std::string a = argv[i];
@@ -310,6 +312,8 @@ int main(int argc, char* argv[])
       n = std::max(1, std::atoi(argv[++i]));
     else if (a == "--size" && i + 1 < argc && std::sscanf(argv[++i], "%dx%d", &width, &height) == 2)
       ;
+    else if (a == "--pixels-per-triangle" && i + 1 < argc)
+      pixelsPerTriangle = std::atof(argv[++i]);
     else if (a == "--frames" && i + 1 < argc)
       frames = std::max(1, std::atoi(argv[++i]));
     else if (a == "--smoke")
@@ -321,7 +325,8 @@ int main(int argc, char* argv[])
     }
     else
     {
-      std::cerr << "usage: scenevis_occlusion_bench [--grid N] [--size WxH] [--frames K] [--smoke]\n";
+      std::cerr << "usage: scenevis_occlusion_bench [--grid N] [--size WxH] [--frames K] "
+                   "[--pixels-per-triangle P] [--smoke]\n";
       return 2;
     }
   }
@@ -384,6 +389,10 @@ int main(int argc, char* argv[])
     const std::set<std::size_t> visible = VisibleActors(g, window);
     vtkNew<vtkOctreeCuller> frustum;
     vtkNew<vtkOcclusionCuller> occlusion;
+    if (pixelsPerTriangle >= 0.0)
+    {
+      occlusion->SetOccluderMinimumPixelsPerTriangle(pixelsPerTriangle);
+    }
     const Row rows[] = { Measure(g, window, frustum, "frustum", visible, frames),
       Measure(g, window, occlusion, "occlusion", visible, frames) };
     for (const Row& r : rows)

@@ -7,6 +7,7 @@
 #include "vtkBSPTranslucentPass.h"
 #include "vtkChunkedPolyDataMapper.h"
 #include "vtkDemoSceneSource.h"
+#include "vtkOcclusionCuller.h"
 #include "vtkOctreeCuller.h"
 #include "vtkOrderedTranslucentPass.h"
 #include "vtkPainterSortFilter.h"
@@ -135,6 +136,8 @@ render and cull:
                         octree (vtkOctreeCuller: BVH frustum culling), normal-cones (octree +
                         normal-cone back-face culling; actors drawn with back-face culling),
                         small:N (octree + small-feature culling below N pixels: APPROXIMATE),
+                        occlusion (vtkOcclusionCuller: octree + conservative software
+                        occlusion culling: what is hidden behind opaque parts is not drawn),
                         chunked (one mesh through vtkChunkedPolyDataMapper: chunks culled
                         inside it), portals (vtkPortalCuller, exact frustum narrowing), pvs
                         (vtkPortalCuller with precomputed potentially visible sets).
@@ -397,9 +400,10 @@ Options ParseOptions(int argc, char* argv[])
   }
   const std::string& c = options.cull;
   if (c != "auto" && c != "none" && c != "frustum" && c != "octree" && c != "normal-cones" &&
+    c != "occlusion" &&
     c != "chunked" && c != "portals" && c != "pvs" && c.rfind("small:", 0) != 0)
   {
-    throw UsageError("--cull expects auto, none, frustum, octree, normal-cones, small:N, "
+    throw UsageError("--cull expects auto, none, frustum, octree, normal-cones, occlusion, small:N, "
                      "chunked, portals or pvs, got '" + c + "'");
   }
   if (c.rfind("small:", 0) == 0)
@@ -1403,7 +1407,7 @@ double TrianglesInView(vtkPolyData* pd, vtkCamera* camera, double aspect)
 
 bool IsPropCulling(const std::string& mode)
 {
-  return mode == "frustum" || mode == "octree" || mode == "normal-cones" ||
+  return mode == "frustum" || mode == "octree" || mode == "normal-cones" || mode == "occlusion" ||
     mode.rfind("small:", 0) == 0 || mode == "portals" || mode == "pvs";
 }
 
@@ -1643,9 +1647,11 @@ public:
     {
       inner = vtkSmartPointer<vtkFrustumCoverageCuller>::New();
     }
-    else if (m == "octree" || m == "normal-cones" || plan.smallPixels > 0.0)
+    else if (m == "octree" || m == "normal-cones" || m == "occlusion" || plan.smallPixels > 0.0)
     {
-      this->Octree = vtkSmartPointer<vtkOctreeCuller>::New();
+      this->Octree = m == "occlusion"
+        ? vtkSmartPointer<vtkOctreeCuller>(vtkSmartPointer<vtkOcclusionCuller>::New())
+        : vtkSmartPointer<vtkOctreeCuller>::New();
       if (m == "normal-cones")
       {
         // Normal cones only apply to actors drawn with back-face culling.
@@ -1737,6 +1743,19 @@ public:
            << ", \"culled_by_size\": " << oc->GetNumberOfPropsCulledBySize()
            << ", \"culled_by_normal_cone\": " << oc->GetNumberOfPropsCulledByNormalCone()
            << ", \"rebuilds\": " << oc->GetNumberOfRebuilds() << "}";
+      if (auto* occ = vtkOcclusionCuller::SafeDownCast(oc))
+      {
+        json << ", \"occlusion\": {\"culled_by_occlusion\": "
+             << occ->GetNumberOfPropsCulledByOcclusion()
+             << ", \"occlusion_tests\": " << occ->GetNumberOfOcclusionTests()
+             << ", \"occluders_drawn\": " << occ->GetNumberOfOccludersDrawn()
+             << ", \"occluders_skipped\": " << occ->GetNumberOfOccludersSkipped()
+             << ", \"occluder_triangles\": " << occ->GetNumberOfOccluderTriangles()
+             << ", \"raster_ms\": " << occ->GetOccluderRasterTime()
+             << ", \"cull_ms\": " << occ->GetCullTime()
+             << ", \"depth_buffer_bytes\": " << occ->GetDepthBufferBytes()
+             << ", \"occluder_cache_bytes\": " << occ->GetOccluderCacheBytes() << "}";
+      }
     }
     if (this->Portal)
     {

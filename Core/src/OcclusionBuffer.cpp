@@ -6,7 +6,6 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <unordered_map>
 
 namespace scenevis
 {
@@ -128,8 +127,9 @@ void MaskedDepthBuffer::drawTriangles(const glm::dvec4* clip,
     else if (v.z + v.w >= 0.0 && v.w > 0.0)
     {
       vertexState_[i] = 1;
-      window_[i] = glm::dvec3((v.x / v.w * 0.5 + 0.5) * width_,
-        (v.y / v.w * 0.5 + 0.5) * height_, v.z / v.w * 0.5 + 0.5);
+      const double inverseW = 1.0 / v.w;
+      window_[i] = glm::dvec3((v.x * inverseW * 0.5 + 0.5) * width_,
+        (v.y * inverseW * 0.5 + 0.5) * height_, v.z * inverseW * 0.5 + 0.5);
     }
     else
     {
@@ -141,22 +141,44 @@ void MaskedDepthBuffer::drawTriangles(const glm::dvec4* clip,
     return tri[0] < vertexCount && tri[1] < vertexCount && tri[2] < vertexCount &&
       vertexState_[tri[0]] != 0 && vertexState_[tri[1]] != 0 && vertexState_[tri[2]] != 0;
   };
+  // Triangles with no pixel centre in their bounding box (most triangles of a detailed mesh)
+  // are dropped before anything else.
+  auto coversNoCentre = [&](const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c) {
+    const double xmin = std::min({ a.x, b.x, c.x }), xmax = std::max({ a.x, b.x, c.x });
+    const double ymin = std::min({ a.y, b.y, c.y }), ymax = std::max({ a.y, b.y, c.y });
+    return !(std::ceil(xmin - 0.5) <= std::floor(xmax - 0.5) &&
+      std::ceil(ymin - 0.5) <= std::floor(ymax - 0.5) && xmax > 0.0 && ymax > 0.0 &&
+      xmin < width_ && ymin < height_);
+  };
   if (neighbors)
   {
     // Facing of every triangle first: an edge is inside the occluder only if the neighbour
-    // across it faces the same way. The sign of det[x y w] is the window-space orientation
-    // (homogeneous, so it holds for triangles cut by the near plane too).
+    // across it faces the same way. In front of the near plane it is the sign of the window-
+    // space area; otherwise the sign of det[x y w] (the same orientation, homogeneous). Where
+    // the two disagree (near-degenerate triangles) an edge merely becomes an outline edge.
     facing_.resize(triangleCount);
     for (std::size_t t = 0; t < triangleCount; ++t)
     {
       signed char f = 0;
       if (valid(t))
       {
-        const glm::dvec4& a = clip[indices[3 * t]];
-        const glm::dvec4& b = clip[indices[3 * t + 1]];
-        const glm::dvec4& c = clip[indices[3 * t + 2]];
-        const double det = a.x * (b.y * c.w - b.w * c.y) - a.y * (b.x * c.w - b.w * c.x) +
-          a.w * (b.x * c.y - b.y * c.x);
+        const std::uint32_t* tri = indices + 3 * t;
+        double det;
+        if (vertexState_[tri[0]] == 1 && vertexState_[tri[1]] == 1 && vertexState_[tri[2]] == 1)
+        {
+          const glm::dvec3& a = window_[tri[0]];
+          const glm::dvec3& b = window_[tri[1]];
+          const glm::dvec3& c = window_[tri[2]];
+          det = (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x);
+        }
+        else
+        {
+          const glm::dvec4& a = clip[tri[0]];
+          const glm::dvec4& b = clip[tri[1]];
+          const glm::dvec4& c = clip[tri[2]];
+          det = a.x * (b.y * c.w - b.w * c.y) - a.y * (b.x * c.w - b.w * c.x) +
+            a.w * (b.x * c.y - b.y * c.x);
+        }
         f = det > 0.0 ? 1 : (det < 0.0 ? -1 : 0);
       }
       facing_[t] = f;
@@ -165,6 +187,14 @@ void MaskedDepthBuffer::drawTriangles(const glm::dvec4* clip,
   for (std::size_t t = 0; t < triangleCount; ++t)
   {
     if (!valid(t))
+    {
+      ++stats_.trianglesRejected;
+      continue;
+    }
+    const std::uint32_t* tri = indices + 3 * t;
+    const bool front =
+      vertexState_[tri[0]] == 1 && vertexState_[tri[1]] == 1 && vertexState_[tri[2]] == 1;
+    if (front && coversNoCentre(window_[tri[0]], window_[tri[1]], window_[tri[2]]))
     {
       ++stats_.trianglesRejected;
       continue;
@@ -182,8 +212,7 @@ void MaskedDepthBuffer::drawTriangles(const glm::dvec4* clip,
         }
       }
     }
-    const std::uint32_t* tri = indices + 3 * t;
-    if (vertexState_[tri[0]] == 1 && vertexState_[tri[1]] == 1 && vertexState_[tri[2]] == 1)
+    if (front)
     {
       drawWindowTriangle(window_[tri[0]], window_[tri[1]], window_[tri[2]], culling, outline);
     }
@@ -315,9 +344,37 @@ struct EdgeTest
     slack = 1e-9 * (std::abs(dx) + std::abs(dy)) * extent;
     gx = -sign * dy;
     gy = sign * dx;
+    inverseGx = gx != 0.0 ? 1.0 / gx : 0.0; // 1 / -g == -(1 / g): symmetric between twins
   }
+  double inverseGx;
   double gx, gy; ///< d value / dx, d value / dy
   double value(double x, double y) const { return sign * (dx * (y - py) - dy * (x - px)); }
+
+  /**
+   * Bits i = 0..7 of the centres (x + i, y) inside this edge. Along the row the value is affine
+   * in i and crosses the threshold at t = (threshold - value(x, y)) / gx, computed from the
+   * canonical value: the two triangles of a shared edge (threshold 0, opposite signs) get the
+   * same t bit for bit, and the tie rule gives a centre exactly at t to one of them, so the rule
+   * "inside when i is on the inner side of t" leaves no hole and covers nothing twice.
+   */
+  std::uint32_t rowMask(double x, double y) const
+  {
+    const double rowValue = value(x, y);
+    if (gx == 0.0)
+    {
+      return (rowValue > threshold || (rowValue == threshold && includeTie)) ? 0xFFu : 0u;
+    }
+    const double t = std::max(-16.0, std::min(24.0, (threshold - rowValue) * inverseGx));
+    if (gx > 0.0)
+    {
+      // Inside for i > t (i >= t with the tie).
+      const int first = static_cast<int>(includeTie ? std::ceil(t) : std::floor(t) + 1.0);
+      return first <= 0 ? 0xFFu : (first >= 8 ? 0u : (0xFFu << first) & 0xFFu);
+    }
+    // Inside for i < t (i <= t with the tie).
+    const int end = static_cast<int>(includeTie ? std::floor(t) + 1.0 : std::ceil(t));
+    return end <= 0 ? 0u : (end >= 8 ? 0xFFu : (1u << end) - 1u);
+  }
   bool inside(double x, double y) const
   {
     const double v = value(x, y);
@@ -444,18 +501,10 @@ void MaskedDepthBuffer::drawWindowTriangle(const glm::dvec3& a, const glm::dvec3
             continue;
           }
           const EdgeTest& e = edges[k];
-          const double above = e.threshold + e.slack, below = e.threshold - e.slack;
           std::uint32_t edgeMask = 0;
           for (int j = 0; j < kTileHeight; ++j)
           {
-            double value = v[k] + j * e.gy;
-            for (int i = 0; i < kTileWidth; ++i, value += e.gx)
-            {
-              if (value > above || (value >= below && e.inside(x0 + i, y0 + j)))
-              {
-                edgeMask |= 1u << (j * kTileWidth + i);
-              }
-            }
+            edgeMask |= e.rowMask(x0, y0 + j) << (j * kTileWidth);
           }
           mask &= edgeMask;
         }
@@ -702,42 +751,47 @@ bool MaskedDepthBuffer::boxOccluded(const glm::dvec3& lo, const glm::dvec3& hi)
   return occluded;
 }
 
-namespace
-{
-struct PointKey
-{
-  double x, y, z;
-  bool operator==(const PointKey& o) const { return x == o.x && y == o.y && z == o.z; }
-};
-struct PointKeyHash
-{
-  std::size_t operator()(const PointKey& k) const
-  {
-    std::hash<double> h;
-    return h(k.x) ^ (h(k.y) * 0x9E3779B97F4A7C15ull) ^ (h(k.z) * 0xC2B2AE3D27D4EB4Full);
-  }
-};
-} // namespace
-
 std::vector<std::uint32_t> buildTriangleNeighbors(
   const double* xyz, std::size_t pointCount, const std::uint32_t* indices, std::size_t triangleCount)
 {
   std::vector<std::uint32_t> neighbors(3 * triangleCount, kNoNeighbor);
-  // Weld by exact coordinates (-0.0 == 0.0 hashes differently: std::hash is on the value, and
-  // both are equal doubles; normalise the zero's sign to be sure).
-  std::vector<std::uint32_t> weld(pointCount);
-  std::unordered_map<PointKey, std::uint32_t, PointKeyHash> ids;
-  ids.reserve(pointCount);
+  // Weld by exact coordinates: sort the points (by value; -0.0 == 0.0) and number the runs.
+  std::vector<std::uint32_t> order(pointCount);
   for (std::size_t i = 0; i < pointCount; ++i)
   {
-    const PointKey key{ xyz[3 * i] + 0.0, xyz[3 * i + 1] + 0.0, xyz[3 * i + 2] + 0.0 };
-    weld[i] = ids.emplace(key, static_cast<std::uint32_t>(ids.size())).first->second;
+    order[i] = static_cast<std::uint32_t>(i);
   }
-  // Directed edge (from, to) -> its half-edge; the twin is (to, from).
-  std::unordered_map<std::uint64_t, std::uint32_t> halfEdge;
-  std::unordered_map<std::uint64_t, std::uint32_t> uses; // undirected edge -> number of uses
-  halfEdge.reserve(3 * triangleCount);
-  auto key = [](std::uint32_t a, std::uint32_t b) { return (std::uint64_t(a) << 32) | b; };
+  auto less = [xyz](std::uint32_t a, std::uint32_t b) {
+    const double* p = xyz + 3 * std::size_t(a);
+    const double* q = xyz + 3 * std::size_t(b);
+    if (p[0] != q[0])
+      return p[0] < q[0];
+    if (p[1] != q[1])
+      return p[1] < q[1];
+    return p[2] < q[2];
+  };
+  std::sort(order.begin(), order.end(), less);
+  std::vector<std::uint32_t> weld(pointCount);
+  std::uint32_t id = 0;
+  for (std::size_t i = 0; i < pointCount; ++i)
+  {
+    if (i > 0 && less(order[i - 1], order[i]))
+    {
+      ++id;
+    }
+    weld[order[i]] = id; // NaN coordinates compare unequal to all: they may not weld (fine)
+  }
+  // Every edge as (smaller welded id, larger, half-edge index, direction); sorted, an edge used
+  // by exactly two half-edges of opposite directions joins their triangles.
+  struct HalfEdge
+  {
+    std::uint64_t key;
+    std::uint32_t index;
+    bool forward;
+    bool operator<(const HalfEdge& o) const { return key < o.key; }
+  };
+  std::vector<HalfEdge> edges;
+  edges.reserve(3 * triangleCount);
   for (std::size_t t = 0; t < triangleCount; ++t)
   {
     for (int k = 0; k < 3; ++k)
@@ -748,30 +802,24 @@ std::vector<std::uint32_t> buildTriangleNeighbors(
         continue;
       }
       const std::uint32_t a = weld[i0], b = weld[i1];
-      ++uses[key(std::min(a, b), std::max(a, b))];
-      halfEdge.emplace(key(a, b), static_cast<std::uint32_t>(3 * t + k));
+      edges.push_back({ (std::uint64_t(std::min(a, b)) << 32) | std::max(a, b),
+        static_cast<std::uint32_t>(3 * t + k), a < b });
     }
   }
-  for (std::size_t t = 0; t < triangleCount; ++t)
+  std::sort(edges.begin(), edges.end());
+  for (std::size_t i = 0; i < edges.size();)
   {
-    for (int k = 0; k < 3; ++k)
+    std::size_t j = i + 1;
+    while (j < edges.size() && edges[j].key == edges[i].key)
     {
-      const std::uint32_t i0 = indices[3 * t + k], i1 = indices[3 * t + (k + 1) % 3];
-      if (i0 >= pointCount || i1 >= pointCount || weld[i0] == weld[i1])
-      {
-        continue;
-      }
-      const std::uint32_t a = weld[i0], b = weld[i1];
-      if (uses[key(std::min(a, b), std::max(a, b))] != 2)
-      {
-        continue; // boundary or non-manifold
-      }
-      const auto twin = halfEdge.find(key(b, a));
-      if (twin != halfEdge.end())
-      {
-        neighbors[3 * t + k] = twin->second / 3;
-      }
+      ++j;
     }
+    if (j - i == 2 && edges[i].forward != edges[i + 1].forward)
+    {
+      neighbors[edges[i].index] = edges[i + 1].index / 3;
+      neighbors[edges[i + 1].index] = edges[i].index / 3;
+    }
+    i = j;
   }
   return neighbors;
 }

@@ -84,6 +84,7 @@ void vtkOccluderRasterizer::BeginFrame(int width, int height, const double m[16]
   }
   this->DepthBuffer.setClipFromWorld(clipFromWorld);
   this->OccludersDrawn = 0;
+  this->OccludersSkipped = 0;
   this->OccluderTriangles = 0;
   this->DrawSeconds = 0.0;
   if (this->CacheBytes > this->CacheBudget)
@@ -229,6 +230,43 @@ void vtkOccluderRasterizer::Draw(vtkProp* prop)
     buffer.polygonOffsetDepth = units * std::ldexp(1.0, -23); // r of a 24-bit depth buffer, x2
   }
   Mesh* mesh = this->MeshOf(data);
+  if (this->MinimumPixelsPerTriangle > 0.0 && !mesh->Triangles.empty())
+  {
+    // Screen rectangle of the prop's bounds (clamped to the viewport; a box reaching the near
+    // plane counts as the whole viewport).
+    const double* b = actor->GetBounds();
+    const int w = this->DepthBuffer.width(), h = this->DepthBuffer.height();
+    double x0 = w, x1 = 0, y0 = h, y1 = 0;
+    bool whole = false;
+    for (int k = 0; k < 8 && !whole; ++k)
+    {
+      const double p[3] = { b[k & 1], b[2 + ((k >> 1) & 1)], b[4 + ((k >> 2) & 1)] };
+      const double* m = this->ClipFromWorld;
+      const double cw = m[12] * p[0] + m[13] * p[1] + m[14] * p[2] + m[15];
+      const double cz = m[8] * p[0] + m[9] * p[1] + m[10] * p[2] + m[11];
+      if (!(cw > 0.0) || cz + cw < 0.0)
+      {
+        whole = true;
+        break;
+      }
+      const double x = ((m[0] * p[0] + m[1] * p[1] + m[2] * p[2] + m[3]) / cw * 0.5 + 0.5) * w;
+      const double y = ((m[4] * p[0] + m[5] * p[1] + m[6] * p[2] + m[7]) / cw * 0.5 + 0.5) * h;
+      x0 = std::min(x0, x);
+      x1 = std::max(x1, x);
+      y0 = std::min(y0, y);
+      y1 = std::max(y1, y);
+    }
+    const double area = whole ? double(w) * h
+                              : std::max(0.0, std::min<double>(x1, w) - std::max(0.0, x0)) *
+        std::max(0.0, std::min<double>(y1, h) - std::max(0.0, y0));
+    if (area < this->MinimumPixelsPerTriangle * static_cast<double>(mesh->Triangles.size() / 3))
+    {
+      ++this->OccludersSkipped;
+      this->DrawSeconds +=
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      return;
+    }
+  }
   if (culling == so::FaceCulling::None && mesh->Closed)
   {
     // The actor's matrix may mirror (negative determinant): then outward faces wind clockwise.

@@ -51,6 +51,12 @@ public:
 
   scenevis::occlusion::MaskedDepthBuffer& Buffer() { return this->DepthBuffer; }
 
+  /// Occluder selection: a prop whose screen rectangle has fewer than this many pixels per
+  /// triangle is not rasterized (it costs more than it hides: small, finely tessellated parts).
+  /// 0 rasterizes every visible opaque prop. Leaving occluders out is always conservative.
+  double MinimumPixelsPerTriangle = 0.0;
+  vtkIdType OccludersSkipped = 0; ///< this frame, by MinimumPixelsPerTriangle
+
   ///@{
   /// This frame: props rasterized, their triangles, seconds spent in Draw().
   vtkIdType OccludersDrawn = 0;

@@ -43,7 +43,10 @@ void vtkOcclusionCuller::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "NumberOfPropsCulledByOcclusion: " << this->NumberOfPropsCulledByOcclusion
      << "\n";
   os << indent << "NumberOfOcclusionTests: " << this->NumberOfOcclusionTests << "\n";
+  os << indent << "OccluderMinimumPixelsPerTriangle: " << this->OccluderMinimumPixelsPerTriangle
+     << "\n";
   os << indent << "NumberOfOccludersDrawn: " << this->NumberOfOccludersDrawn << "\n";
+  os << indent << "NumberOfOccludersSkipped: " << this->NumberOfOccludersSkipped << "\n";
   os << indent << "NumberOfOccluderTriangles: " << this->NumberOfOccluderTriangles << "\n";
   os << indent << "OccluderRasterTime: " << this->OccluderRasterTime << " ms\n";
   os << indent << "CullTime: " << this->CullTime << " ms\n";

@@ -66,6 +66,15 @@ public:
   ///@}
 
   ///@{
+  /// Occluder selection: a visible prop is rasterized as an occluder only if its screen
+  /// rectangle has at least this many pixels per triangle (default 1): small, finely
+  /// tessellated parts cost more to rasterize than they hide. 0 rasterizes every visible opaque
+  /// prop. Any value is conservative (fewer occluders only cull less).
+  vtkSetClampMacro(OccluderMinimumPixelsPerTriangle, double, 0.0, VTK_DOUBLE_MAX);
+  vtkGetMacro(OccluderMinimumPixelsPerTriangle, double);
+  ///@}
+
+  ///@{
   /// Statistics of the last Cull().
   vtkIdType GetNumberOfPropsCulledByOcclusion() const
   {
@@ -73,6 +82,8 @@ public:
   }
   vtkIdType GetNumberOfOcclusionTests() const { return this->NumberOfOcclusionTests; }
   vtkIdType GetNumberOfOccludersDrawn() const { return this->NumberOfOccludersDrawn; }
+  /// Visible opaque props not rasterized by OccluderMinimumPixelsPerTriangle.
+  vtkIdType GetNumberOfOccludersSkipped() const { return this->NumberOfOccludersSkipped; }
   vtkIdType GetNumberOfOccluderTriangles() const { return this->NumberOfOccluderTriangles; }
   /// Milliseconds spent rasterizing occluders (part of GetCullTime()).
   double GetOccluderRasterTime() const { return this->OccluderRasterTime; }

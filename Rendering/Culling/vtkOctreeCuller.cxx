@@ -141,8 +141,8 @@ public:
 
   /// Front-to-back cull with occlusion (vtkOcclusionCuller): props found visible are rasterized
   /// as occluders before farther nodes are tested; last frame's visible props occlude first.
-  void CullOccluded(
-    vtkRenderer* ren, const sc::CullParams& params, std::size_t cacheBudget, sc::CullStats& stats)
+  void CullOccluded(vtkRenderer* ren, const sc::CullParams& params, std::size_t cacheBudget,
+    double minimumPixelsPerTriangle, sc::CullStats& stats)
   {
     if (!this->Occlusion)
     {
@@ -150,6 +150,7 @@ public:
     }
     vtkOccluderRasterizer& raster = *this->Occlusion;
     raster.CacheBudget = cacheBudget;
+    raster.MinimumPixelsPerTriangle = minimumPixelsPerTriangle;
     vtkCamera* cam = ren->GetActiveCamera();
     const int* size = ren->GetSize();
     vtkMatrix4x4* m =
@@ -567,6 +568,7 @@ double vtkOctreeCuller::Cull(
   this->CullingSkipped = false;
   this->NumberOfPropsCulledByOcclusion = this->NumberOfOcclusionTests = 0;
   this->NumberOfOccludersDrawn = this->NumberOfOccluderTriangles = 0;
+  this->NumberOfOccludersSkipped = 0;
   this->OccluderRasterTime = this->CullTime = 0.0;
   this->NumberOfNodesVisited = this->NumberOfPropsTested = this->NumberOfPropsCulled = 0;
   this->NumberOfPropsCulledByFrustum = this->NumberOfPropsCulledBySize = 0;
@@ -926,11 +928,13 @@ double vtkOctreeCuller::Cull(
     sc::CullStats stats;
     if (this->OcclusionCulling)
     {
-      in.CullOccluded(ren, params, this->OccluderCacheBudget, stats);
+      in.CullOccluded(ren, params, this->OccluderCacheBudget,
+        this->OccluderMinimumPixelsPerTriangle, stats);
       const vtkOccluderRasterizer& raster = *in.Occlusion;
       this->NumberOfPropsCulledByOcclusion = static_cast<vtkIdType>(stats.culledOcclusion);
       this->NumberOfOcclusionTests = static_cast<vtkIdType>(stats.occlusionTests);
       this->NumberOfOccludersDrawn = raster.OccludersDrawn;
+      this->NumberOfOccludersSkipped = raster.OccludersSkipped;
       this->NumberOfOccluderTriangles = raster.OccluderTriangles;
       this->OccluderRasterTime = 1e3 * raster.DrawSeconds;
       this->DepthBufferBytes = in.Occlusion->Buffer().memoryBytes();

@@ -204,6 +204,8 @@ protected:
   /// software depth buffer, and nodes hidden behind them are culled with their subtrees.
   bool OcclusionCulling = false;
   std::size_t OccluderCacheBudget = std::size_t(256) << 20;
+  double OccluderMinimumPixelsPerTriangle = 1.0;
+  vtkIdType NumberOfOccludersSkipped = 0;
   vtkIdType NumberOfPropsCulledByOcclusion = 0;
   vtkIdType NumberOfOcclusionTests = 0;
   vtkIdType NumberOfOccludersDrawn = 0;
