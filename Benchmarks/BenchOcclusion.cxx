@@ -36,6 +36,7 @@
 #include <vtkPoints.h>
 #include <vtkPolyData.h>
 #include <vtkPolyDataMapper.h>
+#include <vtkPropCollection.h>
 #include <vtkProperty.h>
 #include <vtkRenderWindow.h>
 #include <vtkRenderer.h>
@@ -194,7 +195,9 @@ void BuildGrid(Grid& g, const std::vector<Part>& parts, int n)
         idLook->SetAmbient(1.0);
         idLook->SetDiffuse(0.0);
         idLook->SetSpecular(0.0);
-        g.renderer->AddActor(actor);
+        // AddActor() would scan all props first (O(n^2): 88 s for 46,000 actors).
+        g.renderer->GetViewProps()->AddItem(actor);
+        actor->AddConsumer(g.renderer);
         g.actors.push_back(actor);
         g.looks.push_back(look);
         g.idLooks.push_back(idLook);

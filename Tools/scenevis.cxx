@@ -8,6 +8,7 @@
 #include "vtkChunkedPolyDataMapper.h"
 #include "vtkDemoSceneSource.h"
 #include "vtkOcclusionCuller.h"
+#include "vtkMatrix4x4.h"
 #include "vtkOctreeCuller.h"
 #include "vtkOrderedTranslucentPass.h"
 #include "vtkPainterSortFilter.h"
@@ -144,7 +145,8 @@ render and cull:
                         Prop culling modes draw one actor per part (PartId, and RoomId where
                         present); with those, --sort takes none, oit, multi-actor or peel:N.
                         auto: rooms and portals -> portals; 100+ parts, at most 25 %
-                        translucent, under 90 % of the triangles in the first view -> octree;
+                        translucent, under 90 % of the triangles in the first view -> octree,
+                        or occlusion when their screen rectangles cover the view 4+ times;
                         an opaque mesh of 500k+ triangles -> chunked; otherwise none. The
                         report says why, in numbers. A frame whose camera did not move
                         re-uses the last visible set and order
@@ -992,7 +994,11 @@ public:
       mapper->SetColorModeToDirectScalars();
       auto actor = vtkSmartPointer<vtkActor>::New();
       actor->SetMapper(mapper);
-      renderer->AddActor(actor);
+      // Not renderer->AddActor(): vtkViewport::AddViewProp first scans every prop already there
+      // (HasViewProp), so adding n actors costs O(n^2): 88 s for 46,000 parts. Each actor here is
+      // new, so the scan can be skipped; AddConsumer is the rest of what AddViewProp does.
+      renderer->GetViewProps()->AddItem(actor);
+      actor->AddConsumer(renderer);
       this->Actors.push_back(actor);
       return actor.Get();
     };
@@ -1279,6 +1285,13 @@ constexpr double kMaxTranslucentForActors = 0.25;
 /// cad demo in full view: 1.2-1.5x slower than one mesh; seen from close up: 1.4-1.7x faster).
 constexpr double kMinInViewForNoCulling = 0.9;
 
+/// Estimated depth complexity (the in-view parts' screen rectangles summed, over the viewport)
+/// from which auto prefers occlusion culling to frustum culling alone: most of what is in view
+/// is then hidden behind nearer parts (the 2CylinderEngine grid 4 x 4 seen down a row: 86 parts
+/// drawn per part seen with frustum culling, 2 with occlusion; BENCHMARKS.md). The value 4 is a
+/// first estimate, not yet calibrated over many scenes: the cad demo's views score 1.3-2.7.
+constexpr double kOcclusionDepthComplexity = 4.0;
+
 /// What auto mode decides on, and what the reports quote as the reason.
 struct SceneFacts
 {
@@ -1291,6 +1304,9 @@ struct SceneFacts
   /// Fraction of the triangles in parts whose bounds meet the first camera's view (the side
   /// planes of its frustum); < 0 when not measured.
   double inView = -1.0;
+  /// Sum of the screen rectangles of the parts in view over the viewport's area (a box reaching
+  /// the eye's plane counts as the whole viewport); < 0 when not measured.
+  double depthComplexity = -1.0;
 
   std::string Summary() const
   {
@@ -1300,6 +1316,8 @@ struct SceneFacts
          << " rooms, " << portals << " portals";
     if (inView >= 0.0)
       text << ", " << 100.0 * inView << " % of the triangles in view";
+    if (depthComplexity >= 0.0)
+      text << ", estimated depth complexity " << depthComplexity;
     return text.str();
   }
 };
@@ -1350,7 +1368,8 @@ SceneFacts InspectScene(vtkPolyData* pd, vtkPolyData* portals)
 
 /// The fraction of the triangles of @p pd in PartId parts whose bounding box meets the side
 /// planes of @p camera's frustum (near and far ignored: the clipping range follows the props).
-double TrianglesInView(vtkPolyData* pd, vtkCamera* camera, double aspect)
+double TrianglesInView(
+  vtkPolyData* pd, vtkCamera* camera, double aspect, double* depthComplexity = nullptr)
 {
   struct PartBox
   {
@@ -1387,6 +1406,8 @@ double TrianglesInView(vtkPolyData* pd, vtkCamera* camera, double aspect)
   }
   double planes[24]; // left, right, bottom, top, near, far: ax + by + cz + d >= 0 inside
   camera->GetFrustumPlanes(aspect, planes);
+  vtkMatrix4x4* projection = camera->GetCompositeProjectionTransformMatrix(aspect, -1, 1);
+  double covered = 0.0;
   vtkIdType inView = 0;
   for (const auto& entry : parts)
   {
@@ -1401,6 +1422,35 @@ double TrianglesInView(vtkPolyData* pd, vtkCamera* camera, double aspect)
       outside = distance < 0.0;
     }
     inView += outside ? 0 : part.triangles;
+    if (!outside && depthComplexity)
+    {
+      // Screen rectangle in normalized device coordinates ([-1, 1]^2, area 4).
+      double x0 = 1.0, x1 = -1.0, y0 = 1.0, y1 = -1.0;
+      bool whole = false;
+      for (int k = 0; k < 8 && !whole; ++k)
+      {
+        const double p[4] = { part.box[k & 1], part.box[2 + ((k >> 1) & 1)],
+          part.box[4 + ((k >> 2) & 1)], 1.0 };
+        double q[4];
+        projection->MultiplyPoint(p, q);
+        if (!(q[3] > 0.0))
+        {
+          whole = true;
+          break;
+        }
+        x0 = std::min(x0, q[0] / q[3]);
+        x1 = std::max(x1, q[0] / q[3]);
+        y0 = std::min(y0, q[1] / q[3]);
+        y1 = std::max(y1, q[1] / q[3]);
+      }
+      covered += whole ? 4.0
+                       : std::max(0.0, std::min(x1, 1.0) - std::max(x0, -1.0)) *
+          std::max(0.0, std::min(y1, 1.0) - std::max(y0, -1.0));
+    }
+  }
+  if (depthComplexity)
+  {
+    *depthComplexity = covered / 4.0;
   }
   return static_cast<double>(inView) / static_cast<double>(total);
 }
@@ -1440,9 +1490,21 @@ CullPlan PlanCulling(const std::string& requested, const SceneFacts& facts)
     else if (facts.parts >= kManyProps && facts.translucentFraction <= kMaxTranslucentForActors &&
       facts.inView < kMinInViewForNoCulling)
     {
-      plan.method = "octree";
-      why << facts.parts << " parts (>= " << kManyProps
-          << "): one actor per part, culled by the BVH a whole subtree at a time";
+      if (facts.depthComplexity >= kOcclusionDepthComplexity)
+      {
+        plan.method = "occlusion";
+        why << facts.parts << " parts (>= " << kManyProps
+            << ") and an estimated depth complexity of " << std::setprecision(3)
+            << facts.depthComplexity << " (>= " << kOcclusionDepthComplexity
+            << "): most of what is in view is hidden, so parts hidden behind nearer opaque ones "
+               "are culled too";
+      }
+      else
+      {
+        plan.method = "octree";
+        why << facts.parts << " parts (>= " << kManyProps
+            << "): one actor per part, culled by the BVH a whole subtree at a time";
+      }
     }
     else if (facts.triangles >= kHugeMesh && opaque)
     {
@@ -1809,7 +1871,8 @@ ScenePlan PlanScene(
   if (plan.facts.parts >= kManyProps)
   {
     plan.facts.inView = TrianglesInView(scene.polydata, renderer->GetActiveCamera(),
-      static_cast<double>(options.width) / static_cast<double>(options.height));
+      static_cast<double>(options.width) / static_cast<double>(options.height),
+      &plan.facts.depthComplexity);
   }
   plan.cull = PlanCulling(options.cull, plan.facts);
   if (plan.cull.needsActors)

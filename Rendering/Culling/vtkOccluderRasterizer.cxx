@@ -120,6 +120,10 @@ void vtkOccluderRasterizer::Evict()
 vtkOccluderRasterizer::Mesh* vtkOccluderRasterizer::MeshOf(vtkPolyData* data)
 {
   Mesh& mesh = this->Meshes[data];
+  if (mesh.Data == data && mesh.LastFrame == this->Frame)
+  {
+    return &mesh; // checked this frame already (instances share their polydata)
+  }
   mesh.LastFrame = this->Frame;
   if (mesh.Data == data && mesh.Time == data->GetMTime())
   {
@@ -189,19 +193,21 @@ vtkOccluderRasterizer::Mesh* vtkOccluderRasterizer::MeshOf(vtkPolyData* data)
   return &mesh;
 }
 
-void vtkOccluderRasterizer::Draw(vtkProp* prop)
+void vtkOccluderRasterizer::Draw(vtkProp* prop, const double bounds[6])
 {
-  vtkActor* actor = vtkActor::SafeDownCast(prop);
+  // dynamic_cast, not SafeDownCast: this runs for every visible prop, and SafeDownCast compares
+  // class names along the hierarchy.
+  vtkActor* actor = dynamic_cast<vtkActor*>(prop);
   if (!actor || !actor->GetVisibility())
   {
     return;
   }
-  vtkPolyDataMapper* mapper = vtkPolyDataMapper::SafeDownCast(actor->GetMapper());
-  vtkPolyData* data = mapper ? mapper->GetInput() : nullptr;
+  vtkPolyDataMapper* mapper = dynamic_cast<vtkPolyDataMapper*>(actor->GetMapper());
+  vtkPolyData* data =
+    mapper ? dynamic_cast<vtkPolyData*>(mapper->GetInputDataObject(0, 0)) : nullptr;
   vtkProperty* property = actor->GetProperty();
   if (!data || !data->GetPoints() || property->GetRepresentation() != VTK_SURFACE ||
-    property->GetOpacity() < 1.0 || actor->HasTranslucentPolygonalGeometry() ||
-    !actor->HasOpaqueGeometry() || mapper->GetNumberOfClippingPlanes() > 0 ||
+    property->GetOpacity() < 1.0 || mapper->GetNumberOfClippingPlanes() > 0 ||
     vtkMapper::GetResolveCoincidentTopology() == VTK_RESOLVE_SHIFT_ZBUFFER)
   {
     return;
@@ -234,7 +240,7 @@ void vtkOccluderRasterizer::Draw(vtkProp* prop)
   {
     // Screen rectangle of the prop's bounds (clamped to the viewport; a box reaching the near
     // plane counts as the whole viewport).
-    const double* b = actor->GetBounds();
+    const double* b = bounds;
     const int w = this->DepthBuffer.width(), h = this->DepthBuffer.height();
     double x0 = w, x1 = 0, y0 = h, y1 = 0;
     bool whole = false;
@@ -266,6 +272,13 @@ void vtkOccluderRasterizer::Draw(vtkProp* prop)
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
       return;
     }
+  }
+  // Textures or scalars with alpha (checked after the cheap tests: it may map scalars).
+  if (actor->HasTranslucentPolygonalGeometry() || !actor->HasOpaqueGeometry())
+  {
+    this->DrawSeconds +=
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return;
   }
   if (culling == so::FaceCulling::None && mesh->Closed)
   {

@@ -46,8 +46,9 @@ public:
   /// Viewport size in pixels and the camera's clip-from-world matrix (VTK's row-major, as
   /// vtkCamera::GetCompositeProjectionTransformMatrix(aspect, -1, 1) returns it).
   void BeginFrame(int width, int height, const double clipFromWorldRowMajor[16]);
-  /// Rasterize @p prop if it is an opaque occluder (see the class comment).
-  void Draw(vtkProp* prop);
+  /// Rasterize @p prop if it is an opaque occluder (see the class comment); @p bounds: its world
+  /// bounds as the culler knows them (for occluder selection).
+  void Draw(vtkProp* prop, const double bounds[6]);
 
   scenevis::occlusion::MaskedDepthBuffer& Buffer() { return this->DepthBuffer; }
 

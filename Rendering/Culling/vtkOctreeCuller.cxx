@@ -164,7 +164,7 @@ public:
     {
       if (s < this->Present.size() && this->Present[s])
       {
-        raster.Draw(this->Slots[s].Prop);
+        raster.Draw(this->Slots[s].Prop, this->Slots[s].Bounds);
       }
     };
     occlusion.seeds = &this->LastVisible;
