@@ -10,6 +10,7 @@
 #   SCENEVIS_ASAN_BUILD_DIR   build directory (default <repo>/build-asan)
 #   SCENEVIS_FUZZ_BUILD_DIR   fuzzer build directory (default <repo>/build-fuzz)
 #   SCENEVIS_FUZZ_SECONDS     length of the fuzz run (default 60; 0 skips fuzzing)
+#   SCENEVIS_FUZZ_OCCLUSION_SECONDS  length of the occlusion fuzz run after it (default 30)
 #   SCENEVIS_SANITIZE_CXX     compiler for the ASan build (default: CMake's default, g++ on Debian)
 #
 # Only SceneVis' own code is instrumented (CMake option SCENEVIS_SANITIZE); VTK, GoogleTest and the
@@ -20,6 +21,7 @@ root=$(cd "$(dirname "$0")/.." && pwd)
 build=${SCENEVIS_ASAN_BUILD_DIR:-$root/build-asan}
 fuzzbuild=${SCENEVIS_FUZZ_BUILD_DIR:-$root/build-fuzz}
 fuzzseconds=${SCENEVIS_FUZZ_SECONDS:-60}
+occlusionseconds=${SCENEVIS_FUZZ_OCCLUSION_SECONDS:-30}
 jobs=$(nproc)
 start=$(date +%s)
 
@@ -41,6 +43,7 @@ export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
 
 # gtest_discover_tests runs the test binary at build time, so the options above already apply.
 cmake --build "$build" -j"$jobs" --target scenevis_core_tests scenevis_fuzz_bsp_replay \
+  scenevis_fuzz_occlusion_replay \
   SceneVisFiltersSortingCxxTests SceneVisFiltersSortingRenderingCxxTests \
   SceneVisFiltersSourcesCxxTests SceneVisRenderingCullingCxxTests \
   SceneVisRenderingPortalsCxxTests SceneVisRenderingTranslucencyCxxTests
@@ -78,7 +81,7 @@ cmake -S "$root" -B "$fuzzbuild" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   -DSCENEVIS_BUILD_FUZZERS=ON -DSCENEVIS_SANITIZE=address,undefined \
   -DBUILD_TESTING=OFF -DSCENEVIS_BUILD_BENCHMARKS=OFF -DSCENEVIS_BUILD_EXAMPLES=OFF \
   >"$fuzzbuild.configure.log" 2>&1 || { cat "$fuzzbuild.configure.log"; exit 1; }
-cmake --build "$fuzzbuild" -j"$jobs" --target scenevis_fuzz_bsp
+cmake --build "$fuzzbuild" -j"$jobs" --target scenevis_fuzz_bsp scenevis_fuzz_occlusion
 # New inputs go to a scratch directory; the committed seed corpus is only read.
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
@@ -90,5 +93,18 @@ trap 'rm -rf "$work"' EXIT
   exit 1
 }
 grep -E '^(#[0-9]+ +DONE|stat::number_of_executed_units|stat::peak_rss_mb)' "$work/fuzz.log" || true
-echo "sanitize: fuzzing ${fuzzseconds} s passed (build+run $(( $(date +%s) - fuzzstart )) s)"
+# The occlusion buffer against its ray oracle (Core/Fuzz/FuzzOcclusion.cpp).
+if [ "$occlusionseconds" != "0" ]; then
+  mkdir -p "$work/occlusion"
+  (cd "$work/occlusion" && "$fuzzbuild/bin/scenevis_fuzz_occlusion" \
+    -max_total_time="$occlusionseconds" -timeout=20 -rss_limit_mb=2048 -print_final_stats=1 \
+    "$work/occlusion" "$root/Core/Fuzz/occlusion-corpus" 2>"$work/occlusion.log") || {
+    tail -n 40 "$work/occlusion.log"
+    echo "sanitize: the occlusion fuzzer failed; reproducer:"
+    ls -l "$work"/occlusion/crash-* 2>/dev/null || true
+    exit 1
+  }
+  grep -E '^(#[0-9]+ +DONE|stat::number_of_executed_units)' "$work/occlusion.log" || true
+fi
+echo "sanitize: fuzzing ${fuzzseconds} s + occlusion ${occlusionseconds} s passed (build+run $(( $(date +%s) - fuzzstart )) s)"
 echo "sanitize: done in $(( $(date +%s) - start )) s"

@@ -1,12 +1,14 @@
 // Specification of the conservative occlusion buffer (OcclusionBuffer.h) and of the BVH's
-// front-to-back occlusion cull, against an independent oracle: a ray cast through the centre of
-// every pixel (the sample OpenGL uses), exact to double precision, with no margins.
+// front-to-back occlusion cull, against an independent oracle (OcclusionOracle.h): a ray cast
+// through the centre of every pixel (the sample OpenGL uses), exact to double precision, with no
+// margins.
 //
 // "Conservative" means: a box (or object) reported hidden has no pixel where a point of it lies
 // nearer than the nearest occluder. Efficiency checks make sure the buffer is not conservative by
 // doing nothing: walls occlude, walls of many small triangles occlude, peeking boxes do not.
 #include "scenevis/Bvh.h"
 #include "scenevis/OcclusionBuffer.h"
+#include "scenevis/OcclusionOracle.h"
 
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/matrix_inverse.hpp>
@@ -58,13 +60,15 @@ Camera parallelCamera(const glm::dvec3& eye, const glm::dvec3& target, double ha
   return c;
 }
 
-struct Triangle
-{
-  glm::dvec3 a, b, c;
-};
+using Triangle = OracleTriangle;
 
-/// The ray through the centre of pixel (i, j): from the near plane (t = 0) to the far plane
-/// (t = 1). Depth order along it is the order of t.
+int visiblePixels(const Camera& cam, const std::vector<Triangle>& occluders, const glm::dvec3& lo,
+  const glm::dvec3& hi)
+{
+  return occlusion::visiblePixels(cam.clipFromWorld, cam.width, cam.height, occluders, lo, hi);
+}
+
+/// The ray through the centre of pixel (i, j) from the near plane (t = 0) to the far plane.
 struct Ray
 {
   glm::dvec3 origin, direction;
@@ -80,29 +84,7 @@ Ray pixelRay(const Camera& cam, const glm::dmat4& worldFromClip, int i, int j)
   return { p0, p1 - p0 };
 }
 
-/// Nearest t in [0, 1] where the ray hits the triangle (Moller-Trumbore, both sides), or +inf.
-double hitTriangle(const Ray& r, const Triangle& t)
-{
-  const glm::dvec3 e1 = t.b - t.a, e2 = t.c - t.a;
-  const glm::dvec3 p = glm::cross(r.direction, e2);
-  const double det = glm::dot(e1, p);
-  if (std::abs(det) < 1e-300)
-  {
-    return kInf;
-  }
-  const glm::dvec3 s = r.origin - t.a;
-  const double u = glm::dot(s, p) / det;
-  const glm::dvec3 q = glm::cross(s, e1);
-  const double v = glm::dot(r.direction, q) / det;
-  const double hit = glm::dot(e2, q) / det;
-  if (u < 0.0 || v < 0.0 || u + v > 1.0 || hit < 0.0 || hit > 1.0)
-  {
-    return kInf;
-  }
-  return hit;
-}
-
-/// Nearest t in [0, 1] of the ray inside the box, or +inf.
+/// Nearest t in [0, 1] of the ray inside the box, or +inf (for the BVH test's nearest object).
 double hitBox(const Ray& r, const glm::dvec3& lo, const glm::dvec3& hi)
 {
   double t0 = 0.0, t1 = 1.0;
@@ -126,33 +108,6 @@ double hitBox(const Ray& r, const glm::dvec3& lo, const glm::dvec3& hi)
     t1 = std::min(t1, b);
   }
   return t0 <= t1 ? t0 : kInf;
-}
-
-/// Pixels where some point of the box is nearer than every occluder (the oracle's visible set).
-int visiblePixels(const Camera& cam, const std::vector<Triangle>& occluders, const glm::dvec3& lo,
-  const glm::dvec3& hi)
-{
-  const glm::dmat4 inv = glm::inverse(cam.clipFromWorld);
-  int visible = 0;
-  for (int j = 0; j < cam.height; ++j)
-  {
-    for (int i = 0; i < cam.width; ++i)
-    {
-      const Ray r = pixelRay(cam, inv, i, j);
-      const double box = hitBox(r, lo, hi);
-      if (box == kInf)
-      {
-        continue;
-      }
-      double nearest = kInf;
-      for (const Triangle& t : occluders)
-      {
-        nearest = std::min(nearest, hitTriangle(r, t));
-      }
-      visible += box < nearest ? 1 : 0;
-    }
-  }
-  return visible;
 }
 
 /// Draws a soup (every triangle with its own three points, as many CAD files store them); with
