@@ -7,10 +7,13 @@
 //  - occlusion does cull (a culler that keeps everything would pass the first check);
 // on the CAD demo assembly (cameras inside, between and outside the parts, grazing views, the
 // eye next to a part, parallel projections, the assembly at 1e7) and the generated building
-// (one actor per room and part: eyes in rooms, on the stairs, outside; 90 degree views).
+// (one actor per room and part: eyes in rooms, on the stairs, outside; 90 degree views), and the
+// building with vtkPortalCuller first and vtkOcclusionCuller after it (the renderer's culler
+// list): rooms seen through portals, furniture hidden behind their walls.
 // Over-draw (parts kept / parts visible) is printed beside vtkOctreeCuller's.
 #include "vtkOcclusionCuller.h"
 #include "vtkOctreeCuller.h"
+#include "vtkPortalCuller.h"
 
 #include "scenevis/Scenes.h"
 #include "scenevis/testing/IdBuffer.h"
@@ -23,6 +26,7 @@
 #include <vtkCellData.h>
 #include <vtkCullerCollection.h>
 #include <vtkIdTypeArray.h>
+#include <vtkIntArray.h>
 #include <vtkImageData.h>
 #include <vtkNew.h>
 #include <vtkPoints.h>
@@ -133,11 +137,17 @@ void Build(SceneActors& s, const scenevis::PolygonMesh& mesh, const glm::dvec3& 
     mesh, s.groups, every, [&](std::size_t g) { return s.groups[g].opacity >= 1.0; }, shift);
 }
 
-std::vector<std::uint32_t> DirectCull(vtkOctreeCuller* culler, SceneActors& s)
+/// The props drawn after @p first (if any) and then @p culler, as the renderer runs its cullers.
+std::vector<std::uint32_t> DirectCull(
+  vtkOctreeCuller* culler, SceneActors& s, vtkCuller* first = nullptr)
 {
   std::vector<vtkProp*> props(s.actors.begin(), s.actors.end());
   int length = static_cast<int>(props.size());
   int initialized = 0;
+  if (first)
+  {
+    first->Cull(s.renderer, props.data(), length, initialized);
+  }
   culler->Cull(s.renderer, props.data(), length, initialized);
   std::map<vtkProp*, std::uint32_t> index;
   for (std::size_t i = 0; i < s.actors.size(); ++i)
@@ -168,13 +178,14 @@ struct Tally
 
 /// Culls with both cullers at the renderer's camera and checks against the ID buffer.
 void CheckView(SceneActors& s, vtkRenderWindow* window, vtkOcclusionCuller* occlusion,
-  vtkOctreeCuller* frustum, bool compareImages, const std::string& label, Tally& t)
+  vtkOctreeCuller* frustum, bool compareImages, const std::string& label, Tally& t,
+  vtkCuller* first = nullptr)
 {
   window->GetRenderers()->RemoveAllItems();
   window->AddRenderer(s.renderer);
   s.renderer->ResetCameraClippingRange();
-  const std::vector<std::uint32_t> drawn = DirectCull(occlusion, s);
-  const std::vector<std::uint32_t> drawnFrustum = DirectCull(frustum, s);
+  const std::vector<std::uint32_t> drawn = DirectCull(occlusion, s, first);
+  const std::vector<std::uint32_t> drawnFrustum = DirectCull(frustum, s, first);
   st::IdRenderOptions options;
   options.originalIdArray = "OriginalId";
   options.cameraClippingRange = true;
@@ -238,6 +249,10 @@ void CheckView(SceneActors& s, vtkRenderWindow* window, vtkOcclusionCuller* occl
     window->AddRenderer(s.renderer);
     s.renderer->GetCullers()->RemoveAllItems();
     vtkSmartPointer<vtkImageData> reference = st::CaptureImage(window);
+    if (first)
+    {
+      s.renderer->AddCuller(first);
+    }
     s.renderer->AddCuller(occlusion);
     vtkSmartPointer<vtkImageData> culled = st::CaptureImage(window);
     s.renderer->GetCullers()->RemoveAllItems();
@@ -348,7 +363,33 @@ bool TestCad(vtkRenderWindow* window, const glm::dvec3& origin, int cameras, con
   return Report(name, t);
 }
 
-bool TestBuilding(vtkRenderWindow* window, int cameras)
+vtkSmartPointer<vtkPolyData> PortalPolyData(const sn::BuildingScene& b)
+{
+  vtkNew<vtkPoints> points;
+  vtkNew<vtkCellArray> polys;
+  vtkNew<vtkIntArray> a, c;
+  a->SetName("RoomA");
+  c->SetName("RoomB");
+  for (const auto& p : b.portals)
+  {
+    polys->InsertNextCell(static_cast<vtkIdType>(p.polygon.size()));
+    for (const auto& q : p.polygon)
+    {
+      polys->InsertCellPoint(points->InsertNextPoint(q.x, q.y, q.z));
+    }
+    a->InsertNextValue(p.roomA);
+    c->InsertNextValue(p.roomB);
+  }
+  vtkNew<vtkPolyData> pd;
+  pd->SetPoints(points);
+  pd->SetPolys(polys);
+  pd->GetCellData()->AddArray(a);
+  pd->GetCellData()->AddArray(c);
+  return pd;
+}
+
+/// @p withPortals: vtkPortalCuller (exact frustum narrowing) runs before both cullers compared.
+bool TestBuilding(vtkRenderWindow* window, int cameras, bool withPortals)
 {
   const sn::BuildingScene b = sn::building(2, 4, 3, 5);
   // One group per (room, part): walls of a room hide the furniture of the next.
@@ -369,6 +410,12 @@ bool TestBuilding(vtkRenderWindow* window, int cameras)
     s.groups[it->second].polygons.push_back(i);
   }
   Build(s, b.mesh, glm::dvec3(0.0));
+  vtkNew<vtkPortalCuller> portals;
+  portals->SetPortals(PortalPolyData(b));
+  for (const auto& entry : groupOf)
+  {
+    portals->SetPropRoom(s.actors[entry.second], entry.first.first);
+  }
   vtkNew<vtkCamera> camera;
   s.renderer->SetActiveCamera(camera);
   vtkNew<vtkOcclusionCuller> occlusion;
@@ -399,9 +446,11 @@ bool TestBuilding(vtkRenderWindow* window, int cameras)
       focal = eye + glm::dvec3(std::cos(a), std::sin(a), 0.2 * (u(gen) - 0.5));
     }
     LookAt(camera, eye, focal, 90.0, parallel, glm::length(bounds.hi - bounds.lo) * 0.3);
-    CheckView(s, window, occlusion, frustum, c % 4 == 0, "building camera " + std::to_string(c), t);
+    const std::string name = withPortals ? "building with portals" : "building";
+    CheckView(s, window, occlusion, frustum, c % 4 == 0, name + " camera " + std::to_string(c), t,
+      withPortals ? portals.GetPointer() : nullptr);
   }
-  return Report("building", t);
+  return Report(withPortals ? "building, portals then occlusion" : "building", t);
 }
 } // namespace
 
@@ -412,7 +461,8 @@ int TestOcclusionCullerAccuracy(int, char*[])
   bool ok = true;
   ok &= TestCad(window, glm::dvec3(0.0), 40, "cad");
   ok &= TestCad(window, glm::dvec3(1e7, -1e7, 5e6), 10, "cad at 1e7");
-  ok &= TestBuilding(window, 36);
+  ok &= TestBuilding(window, 36, false);
+  ok &= TestBuilding(window, 36, true);
   {
     vtkNew<vtkOcclusionCuller> culler;
     std::ostringstream print;
