@@ -13,11 +13,17 @@
 //  - vtkOctreeCuller (frustum only) and vtkOcclusionCuller: props drawn, over-draw (drawn /
 //    visible), false negatives (visible props not drawn: must be 0), cull time, time spent
 //    rasterizing occluders, and whole frame time (cull + llvmpipe draw, wall clock);
-//  - the memory of the occlusion buffer and of its occluder cache.
+//  - the memory of the occlusion buffer and of its occluder cache;
+//  - OpenGL occlusion queries for comparison (OcclusionQueries.h): the visible set drawn first as
+//    the occluders (the best case of CHC++-style reuse: last frame's visible set exactly), then one
+//    query per remaining prop the frustum keeps, on its bounding box; drawn = the occluders + the
+//    props whose query passed; "cull ms" = issuing and reading the queries, "frame ms" = the
+//    occluders' frame + the queries + drawing what passed.
 // Usage: scenevis_occlusion_bench [--grid N] [--size WxH] [--frames K]
 //        [--pixels-per-triangle P] [--smoke]
 // (--smoke: 2 x 2 engines at 160x120, one frame: a seconds-long check that it runs, for CI).
 // Needs the data cache (scripts/fetch-data.sh); prints "SKIPPED" and exits 0 without it.
+#include "OcclusionQueries.h"
 #include "vtkOcclusionCuller.h"
 #include "vtkOctreeCuller.h"
 
@@ -25,6 +31,7 @@
 #include "scenevis/testing/RenderWindow.h"
 
 #include <vtkActor.h>
+#include <vtkCallbackCommand.h>
 #include <vtkCamera.h>
 #include <vtkCellArray.h>
 #include <vtkCellData.h>
@@ -47,6 +54,8 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <map>
+#include <array>
 #include <iostream>
 #include <set>
 #include <string>
@@ -244,6 +253,8 @@ struct Row
   double cullMs = 0, rasterMs = 0, frameMs = 0;
   vtkIdType culledByOcclusion = 0, occluders = 0, occluderTriangles = 0, trianglesDrawn = 0;
   vtkIdType bufferBytes = 0, cacheBytes = 0;
+  bool missed_ok = true;     ///< gl-queries: the queries ran without a GL error
+  std::size_t queries = 0;   ///< gl-queries: boxes queried
 };
 
 Row Measure(Grid& g, vtkRenderWindow* window, vtkOctreeCuller* culler, const char* name,
@@ -300,6 +311,84 @@ Row Measure(Grid& g, vtkRenderWindow* window, vtkOctreeCuller* culler, const cha
   }
   row.trianglesDrawn = culler->GetNumberOfTrianglesDrawn();
   g.renderer->GetCullers()->RemoveAllItems();
+  return row;
+}
+/// The GL-queries row (see the file comment).
+Row MeasureQueries(Grid& g, vtkRenderWindow* window, const std::set<std::size_t>& visible)
+{
+  Row row;
+  row.culler = "gl-queries";
+  // The frustum's props (octree), without the visible set: the boxes to query.
+  vtkNew<vtkOctreeCuller> frustum;
+  std::vector<vtkProp*> props(g.actors.begin(), g.actors.end());
+  int length = static_cast<int>(props.size()), initialized = 0;
+  frustum->Cull(g.renderer, props.data(), length, initialized);
+  std::vector<std::size_t> candidates;
+  std::vector<std::array<double, 6>> boxes;
+  std::map<vtkProp*, std::size_t> index;
+  for (std::size_t a = 0; a < g.actors.size(); ++a)
+  {
+    index[g.actors[a]] = a;
+  }
+  for (int i = 0; i < length; ++i)
+  {
+    const std::size_t a = index[props[i]];
+    if (!visible.count(a))
+    {
+      candidates.push_back(a);
+      std::array<double, 6> b;
+      g.actors[a]->GetBounds(b.data());
+      boxes.push_back(b);
+    }
+  }
+  for (std::size_t a = 0; a < g.actors.size(); ++a)
+  {
+    g.actors[a]->SetVisibility(visible.count(a) ? 1 : 0);
+  }
+  g.renderer->GetCullers()->RemoveAllItems();
+  window->Render(); // warm-up
+  auto start = Clock::now();
+  window->Render();
+  const double occludersMs = 1e3 * Seconds(start);
+  scenevis::bench::QueryResult queries;
+  vtkNew<vtkCallbackCommand> onEnd;
+  struct Context
+  {
+    vtkRenderer* renderer;
+    const std::vector<std::array<double, 6>>* boxes;
+    scenevis::bench::QueryResult* result;
+  } context{ g.renderer, &boxes, &queries };
+  onEnd->SetClientData(&context);
+  onEnd->SetCallback([](vtkObject*, unsigned long, void* data, void*) {
+    auto* c = static_cast<Context*>(data);
+    *c->result = scenevis::bench::QueryBoxes(c->renderer, *c->boxes);
+  });
+  const unsigned long tag = g.renderer->AddObserver(vtkCommand::EndEvent, onEnd);
+  window->Render();
+  g.renderer->RemoveObserver(tag);
+  // Then the props whose query passed are drawn too.
+  std::size_t passed = 0;
+  for (std::size_t i = 0; i < candidates.size(); ++i)
+  {
+    if (i < queries.visible.size() && queries.visible[i])
+    {
+      g.actors[candidates[i]]->SetVisibility(1);
+      ++passed;
+    }
+  }
+  start = Clock::now();
+  window->Render();
+  const double drawMs = 1e3 * Seconds(start);
+  for (const auto& actor : g.actors)
+  {
+    actor->SetVisibility(1);
+  }
+  row.drawn = visible.size() + passed;
+  row.missed_ok = queries.ok;
+  row.cullMs = queries.issueMs + queries.waitMs;
+  row.frameMs = occludersMs + row.cullMs + (passed > 0 ? drawMs - occludersMs : 0.0);
+  row.occluders = static_cast<vtkIdType>(visible.size());
+  row.queries = candidates.size();
   return row;
 }
 } // namespace
@@ -398,6 +487,13 @@ int main(int argc, char* argv[])
     }
     const Row rows[] = { Measure(g, window, frustum, "frustum", visible, frames),
       Measure(g, window, occlusion, "occlusion", visible, frames) };
+    const Row glRow = MeasureQueries(g, window, visible);
+    std::printf("%-12s %-10s %8zu %8zu %9.2f %6s %9.3f %9s %10.1f %9lld %10s %12s  (%zu box "
+                "queries%s)\n",
+      v.name, glRow.culler.c_str(), visible.size(), glRow.drawn,
+      double(glRow.drawn) / std::max<std::size_t>(1, visible.size()), "0", glRow.cullMs, "-",
+      glRow.frameMs, static_cast<long long>(glRow.occluders), "-", "-", glRow.queries,
+      glRow.missed_ok ? "" : ", GL ERROR");
     for (const Row& r : rows)
     {
       std::printf("%-12s %-10s %8zu %8zu %9.2f %6zu %9.3f %9.3f %10.1f %9lld %10lld %12lld\n",

@@ -32,9 +32,10 @@ CAD = ["--scene", "cad", "--parts", "5000", "--triangles", "2000000",
 BUILDING = ["--scene", "building", "--camera", "-7.5,-4,1.6,0,-4,1.6"]
 CULLING_SCENES = [
     ("cad 2M, close camera", CAD,
-     ["none", "frustum", "octree", "normal-cones", "small:4", "small:16", "small:64", "chunked"]),
+     ["none", "frustum", "octree", "normal-cones", "occlusion", "small:4", "small:16", "small:64",
+      "chunked"]),
     ("building, inside a room", BUILDING,
-     ["none", "frustum", "octree", "portals", "pvs", "small:16"]),
+     ["none", "frustum", "octree", "occlusion", "portals", "pvs", "small:16"]),
 ]
 
 # Demo scenes for auto vs fixed; the fixed choices are the exact ones valid for the scene
@@ -50,10 +51,11 @@ AUTO_SCENES = [
       ("multi-actor", "octree")]),
     ("cad, close camera", ["--scene", "cad", "--camera", "60,60,60,140,140,0"],
      [("bsp", "none"), ("bsp-mapper", "none"), ("multi-actor", "none"),
-      ("multi-actor", "octree")]),
+      ("multi-actor", "octree"), ("multi-actor", "occlusion")]),
     ("building, inside", BUILDING,
      [("bsp", "none"), ("bsp-mapper", "none"), ("multi-actor", "none"),
-      ("multi-actor", "octree"), ("multi-actor", "portals"), ("multi-actor", "pvs")]),
+      ("multi-actor", "octree"), ("multi-actor", "occlusion"), ("multi-actor", "portals"),
+      ("multi-actor", "pvs")]),
 ]
 
 
