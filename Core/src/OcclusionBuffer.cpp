@@ -365,14 +365,20 @@ struct EdgeTest
       return (rowValue > threshold || (rowValue == threshold && includeTie)) ? 0xFFu : 0u;
     }
     const double t = std::max(-16.0, std::min(24.0, (threshold - rowValue) * inverseGx));
+    // floor and ceil by truncating positive numbers (t is clamped): both twins of a shared edge
+    // evaluate the same expressions of the same t, which is all that watertightness needs, and
+    // an off-by-one only where t is within rounding of an integer moves a centre that lies on
+    // the edge itself (inside an occluder) or within rounding of a 1/64-pixel margin.
+    const int below = static_cast<int>(t + 32.0) - 32; // floor(t)
+    const int above = 32 - static_cast<int>(32.0 - t); // ceil(t)
     if (gx > 0.0)
     {
       // Inside for i > t (i >= t with the tie).
-      const int first = static_cast<int>(includeTie ? std::ceil(t) : std::floor(t) + 1.0);
+      const int first = includeTie ? above : below + 1;
       return first <= 0 ? 0xFFu : (first >= 8 ? 0u : (0xFFu << first) & 0xFFu);
     }
     // Inside for i < t (i <= t with the tie).
-    const int end = static_cast<int>(includeTie ? std::floor(t) + 1.0 : std::ceil(t));
+    const int end = includeTie ? below + 1 : above;
     return end <= 0 ? 0u : (end >= 8 ? 0xFFu : (1u << end) - 1u);
   }
   bool inside(double x, double y) const
