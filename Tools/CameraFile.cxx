@@ -233,7 +233,8 @@ private:
   double ParseNumber()
   {
     const std::size_t start = this->Pos;
-    auto digits = [this]() {
+    auto digits = [this]()
+    {
       const std::size_t from = this->Pos;
       while (this->Pos < this->Text.size() && this->Text[this->Pos] >= '0' &&
         this->Text[this->Pos] <= '9')
@@ -406,9 +407,8 @@ public:
       "clipping_range" };
     for (const auto& member : this->Object.members)
     {
-      if (std::find_if(std::begin(kKnown), std::end(kKnown), [&](const char* known) {
-            return member.first == known;
-          }) == std::end(kKnown))
+      if (std::find_if(std::begin(kKnown), std::end(kKnown),
+            [&](const char* known) { return member.first == known; }) == std::end(kKnown))
         this->Fail(": unknown member '" + member.first +
           "' (expected eye, focal, up, view_angle, parallel_scale, clipping_range)");
     }
@@ -493,13 +493,12 @@ private:
       return false;
     }
     const std::string shape = count == 1 ? "a number"
-      : count == 2                      ? "[near, far] (2 numbers)"
-                                        : "[x, y, z] (3 numbers)";
+      : count == 2                       ? "[near, far] (2 numbers)"
+                                         : "[x, y, z] (3 numbers)";
     if (count == 1)
     {
       if (value->kind != JsonValue::Kind::Number)
-        this->Fail(": '" + std::string(name) + "' must be " + shape + ", got " +
-          value->KindName());
+        this->Fail(": '" + std::string(name) + "' must be " + shape + ", got " + value->KindName());
       *out = value->number;
       return true;
     }
@@ -571,8 +570,8 @@ std::vector<CameraSpec> ReadCameraFile(const std::string& path, const CameraSpec
     throw std::runtime_error(prefix + "not valid JSON: " + e.what());
   }
   if (document.kind != JsonValue::Kind::Array)
-    throw std::runtime_error(prefix + "expects a JSON array of cameras, got " +
-      document.KindName());
+    throw std::runtime_error(
+      prefix + "expects a JSON array of cameras, got " + document.KindName());
   if (document.items.empty())
     throw std::runtime_error(prefix + "has no cameras (an empty array)");
   std::vector<CameraSpec> cameras;

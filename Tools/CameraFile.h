@@ -40,9 +40,9 @@ struct CameraSpec
   bool hasUp = false;
   double up[3] = { 0, 1, 0 };
   bool parallel = false;
-  double viewAngle = 0.0;              ///< degrees in (0, 180); 0: not given
-  double parallelScale = 0.0;          ///< > 0: given (and parallel is true); 0: fitted
-  double clippingRange[2] = { 0, 0 };  ///< near < far: fixed; else reset to the props
+  double viewAngle = 0.0;             ///< degrees in (0, 180); 0: not given
+  double parallelScale = 0.0;         ///< > 0: given (and parallel is true); 0: fitted
+  double clippingRange[2] = { 0, 0 }; ///< near < far: fixed; else reset to the props
 
   bool FixedClippingRange() const { return this->clippingRange[0] < this->clippingRange[1]; }
 };

@@ -50,10 +50,10 @@
 #include <vtkPen.h>
 #include <vtkPlot.h>
 #include <vtkPlotPoints.h>
+#include <vtkPointData.h>
 #include <vtkPoints.h>
 #include <vtkPolyData.h>
 #include <vtkPolyDataAlgorithm.h>
-#include <vtkPointData.h>
 #include <vtkPolyDataMapper.h>
 #include <vtkPolyDataNormals.h>
 #include <vtkProperty.h>
@@ -74,8 +74,8 @@
 #include <unistd.h>
 
 #include <algorithm>
-#include <chrono>
 #include <cerrno>
+#include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -129,7 +129,9 @@ Scene (all commands):
                         or --room-array; -1 = outside). The building demo brings its own
   --triangles N         approximate triangle count of the spheres/cad demos (default 20000)
   --parts N             parts of the cad demo (default 1000)
-  --opacity A           opacity given to a model file's surface (default 0.4)
+  --opacity A           opacity given to every cell of a model file, in (0, 1] (default: the
+                        file's own: the materials of glTF/VRML parts or a Colors RGBA cell
+                        array, else opaque). The demo scenes keep their own (translucent)
   --part-array NAME     render, cull, bench: the integer cell array naming parts (default
                         PartId); one value per cell, at most 1,000,000 distinct values
   --room-array NAME     render, cull, bench: the integer cell array naming rooms, -1 = outside
@@ -239,7 +241,8 @@ struct Options
   bool trianglesSet = false;
   vtkIdType triangles = 20000;
   vtkIdType parts = 1000;
-  double opacity = 0.4;
+  double opacity = 0.4; ///< a model file's: only with --opacity (else its own materials')
+  bool opacitySet = false;
   /// --camera, --up, --parallel, --view-angle, --parallel-scale, --clipping-range.
   scenevis::tool::CameraSpec camera;
   /// --cameras FILE.json: one run per camera (the command line's camera options as defaults).
@@ -368,6 +371,7 @@ Options ParseOptions(int argc, char* argv[])
     else if (flag == "--opacity")
     {
       options.opacity = ParseNumber(flag, value());
+      options.opacitySet = true;
       if (options.opacity <= 0.0 || options.opacity > 1.0)
         throw UsageError("--opacity expects a value in (0, 1]");
     }
@@ -873,8 +877,10 @@ LoadedScene LoadScene(const Options& options)
     if (loaded.polydata->GetNumberOfCells() == 0)
       throw std::runtime_error("cannot use '" + name + "': every cell has a NaN/Inf point");
   }
-  // A translucent colour as RGBA cell scalars like the demo scenes: the parts' own colours of
-  // imported scenes (glTF, VRML: a "Colors" array) with --opacity, else one uniform colour.
+  // RGBA cell scalars like the demo scenes: the parts' own colours and opacities of imported
+  // scenes (glTF, VRML, or a .vtp written by --export-scene: a "Colors" array), else one uniform
+  // opaque colour. --opacity replaces every cell's alpha: a file says how translucent it is
+  // unless the user asks for translucency.
   const vtkIdType cells = loaded.polydata->GetNumberOfCells();
   auto* own =
     vtkUnsignedCharArray::SafeDownCast(loaded.polydata->GetCellData()->GetArray("Colors"));
@@ -882,17 +888,19 @@ LoadedScene LoadScene(const Options& options)
   {
     own = nullptr;
   }
+  const bool ownAlpha = own && own->GetNumberOfComponents() >= 4 && !options.opacitySet;
   vtkNew<vtkUnsignedCharArray> colors;
   colors->SetName("Colors");
   colors->SetNumberOfComponents(4);
   colors->SetNumberOfTuples(cells);
-  const auto alpha = static_cast<unsigned char>(std::lround(options.opacity * 255.0));
+  const auto alpha =
+    static_cast<unsigned char>(options.opacitySet ? std::lround(options.opacity * 255.0) : 255);
   unsigned char rgba[4] = { 200, 170, 120, alpha };
   for (vtkIdType c = 0; c < cells; ++c)
   {
     if (own)
     {
-      for (int k = 0; k < 3; ++k)
+      for (int k = 0; k < (ownAlpha ? 4 : 3); ++k)
         rgba[k] = own->GetTypedComponent(c, k);
     }
     colors->SetTypedTuple(c, rgba);
@@ -946,8 +954,8 @@ void SetUpCamera(
       std::sqrt((bounds[1] - bounds[0]) * (bounds[1] - bounds[0]) +
         (bounds[3] - bounds[2]) * (bounds[3] - bounds[2]) +
         (bounds[5] - bounds[4]) * (bounds[5] - bounds[4]));
-    camera->SetParallelScale(spec.parallelScale > 0.0 ? spec.parallelScale
-                                                      : std::max(radius, 1e-12) / 1.1);
+    camera->SetParallelScale(
+      spec.parallelScale > 0.0 ? spec.parallelScale : std::max(radius, 1e-12) / 1.1);
     ResetClippingRange(spec, renderer);
     return;
   }
@@ -1463,8 +1471,7 @@ void CheckKeyArrays(vtkPolyData* pd, const Options& options)
         names += (i ? ", " : "") + std::string(name ? name : "(unnamed)");
       }
       throw std::runtime_error("the scene has no " + what +
-        (pd->GetPointData()->GetAbstractArray(key.name.c_str()) ? " (it is a point array)"
-                                                                 : "") +
+        (pd->GetPointData()->GetAbstractArray(key.name.c_str()) ? " (it is a point array)" : "") +
         "; its cell arrays: " + (names.empty() ? "none" : names));
     }
     auto* values = vtkDataArray::SafeDownCast(array);
@@ -1602,7 +1609,8 @@ SceneFacts InspectScene(vtkPolyData* pd, vtkPolyData* portals, const Options& op
 /// The fraction of the triangles of @p pd in parts (of @p partArray) whose bounding box meets the
 /// side planes of @p camera's frustum (near and far ignored: the clipping range follows the
 /// props).
-double TrianglesInView(vtkPolyData* pd, const std::string& partArray, vtkCamera* camera, double aspect)
+double TrianglesInView(
+  vtkPolyData* pd, const std::string& partArray, vtkCamera* camera, double aspect)
 {
   struct PartBox
   {
@@ -1674,7 +1682,8 @@ struct CullPlan
   std::string roomArray = "RoomId"; ///< the cell array the portal culler reads rooms from
 };
 
-CullPlan PlanCulling(const std::string& requested, const SceneFacts& facts, const std::string& roomArray)
+CullPlan PlanCulling(
+  const std::string& requested, const SceneFacts& facts, const std::string& roomArray)
 {
   CullPlan plan;
   plan.method = requested;
@@ -2048,9 +2057,9 @@ ScenePlan PlanScene(
   plan.facts = InspectScene(scene.polydata, scene.portals, options);
   if (plan.facts.parts >= kManyProps)
   {
-    plan.facts.inView = TrianglesInView(scene.polydata, options.partArray,
-      renderer->GetActiveCamera(),
-      static_cast<double>(options.width) / static_cast<double>(options.height));
+    plan.facts.inView =
+      TrianglesInView(scene.polydata, options.partArray, renderer->GetActiveCamera(),
+        static_cast<double>(options.width) / static_cast<double>(options.height));
   }
   plan.cull = PlanCulling(options.cull, plan.facts, options.roomArray);
   if (plan.cull.needsActors)
@@ -2172,9 +2181,9 @@ int Render(const Options& options)
     }
     if (scenevis::testing::CoveredFraction(image, kBackgroundRgb) <= 0.0)
     {
-      throw std::runtime_error((perCamera ? "camera " + std::to_string(f) + " of " +
-                                   options.camerasFile + ": "
-                                          : std::string()) +
+      throw std::runtime_error(
+        (perCamera ? "camera " + std::to_string(f) + " of " + options.camerasFile + ": "
+                   : std::string()) +
         "the rendered image is empty (nothing in view?)");
     }
     frames.push_back(frame);
@@ -2221,8 +2230,8 @@ int Render(const Options& options)
          << ", \"sort_ms\": " << frame.sortMs << ", \"cull_ms\": " << frame.cullMs
          << ", \"render_ms\": " << frame.renderMs << ", \"props_drawn\": " << frame.propsDrawn
          << ", \"triangles_drawn\": " << frame.trianglesDrawn
-         << ", \"polygons_drawn\": " << frame.polygonsDrawn << ",\n     \"camera\": " << frame.camera
-         << "}";
+         << ", \"polygons_drawn\": " << frame.polygonsDrawn
+         << ",\n     \"camera\": " << frame.camera << "}";
   }
   json << "\n  ]\n}\n";
   if (!options.report.empty())
@@ -2508,8 +2517,7 @@ int Cull(const Options& options)
     }
     if (options.exact)
     {
-      DescribeExact(
-        json, window, camera, spec.FixedClippingRange(), pd, keys, pipeline, culling);
+      DescribeExact(json, window, camera, spec.FixedClippingRange(), pd, keys, pipeline, culling);
     }
     if (!exported.empty())
     {
@@ -2618,8 +2626,8 @@ const char* const kReferenceMethod = "peel:100";
 /// Runs one method on a loaded scene; `reference` holds peel:100's frames (filled when `method`
 /// is the reference itself); `parts` are the scene's parts (multi-actor draws one actor each).
 BenchRow BenchMethod(const Options& options, const std::string& method, const std::string& label,
-  vtkPolyData* pd, const std::vector<vtkSmartPointer<vtkPolyData>>& parts,
-  vtkRenderWindow* window, std::vector<vtkSmartPointer<vtkImageData>>& reference)
+  vtkPolyData* pd, const std::vector<vtkSmartPointer<vtkPolyData>>& parts, vtkRenderWindow* window,
+  std::vector<vtkSmartPointer<vtkImageData>>& reference)
 {
   namespace st = scenevis::testing;
   BenchRow row;
@@ -3106,8 +3114,8 @@ int Sort(const Options& options)
               << ", " << scene.polydata->GetNumberOfCells() << " polygons -> "
               << sorter->GetNumberOfFragments() << " fragments (" << sorter->GetNumberOfSplits()
               << " splits), build " << sorter->GetLastBuildTime() * 1e3 << " ms, order "
-              << sorter->GetLastOrderTime() * 1e3 << " ms, eye " << JsonVector(camera->GetPosition())
-              << " -> " << out << "\n";
+              << sorter->GetLastOrderTime() * 1e3 << " ms, eye "
+              << JsonVector(camera->GetPosition()) << " -> " << out << "\n";
   }
   return EXIT_SUCCESS;
 }

@@ -239,8 +239,9 @@ int main(int argc, char* argv[])
     {
       const std::string png = scratch + "/frame.png";
       std::remove(png.c_str());
-      const Run run = RunChild(
-        { tool, "render", "--scene", file, "--sort", method, "--size", "64x48", "--out", png },
+      // At opacity 0.4: a model file is opaque by default, and these methods are for translucency.
+      const Run run = RunChild({ tool, "render", "--scene", file, "--opacity", "0.4", "--sort",
+                                 method, "--size", "64x48", "--out", png },
         scratch);
       const std::vector<std::string> errLines = Lines(run.err);
       std::vector<std::string> toolLines;
