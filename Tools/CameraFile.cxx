@@ -169,8 +169,15 @@ private:
       value.kind = JsonValue::Kind::Null;
     else if (c == 'N' || c == 'n' || c == 'I' || c == 'i')
       this->Fail("NaN and Infinity are not numbers in JSON");
-    else
+    else if (c > ' ' && c < 0x7F)
       this->Fail(std::string("unexpected character '") + c + "'");
+    else
+    {
+      // Never echo a control or non-ASCII byte: the message is one printable line.
+      static const char* const kHex = "0123456789abcdef";
+      const auto byte = static_cast<unsigned char>(c);
+      this->Fail(std::string("unexpected byte 0x") + kHex[byte >> 4] + kHex[byte & 0xF]);
+    }
     return value;
   }
 
