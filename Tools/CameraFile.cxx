@@ -425,9 +425,10 @@ public:
     this->Numbers("focal", 3, camera.focal, true);
     if (std::equal(camera.eye, camera.eye + 3, camera.focal))
       this->Fail(": 'eye' equals 'focal' (no view direction)");
-    if (this->Numbers("up", 3, camera.up, false))
+    const bool ownUp = this->Numbers("up", 3, camera.up, false);
+    camera.hasUp = camera.hasUp || ownUp;
+    if (camera.hasUp)
     {
-      camera.hasUp = true;
       const double d[3] = { camera.focal[0] - camera.eye[0], camera.focal[1] - camera.eye[1],
         camera.focal[2] - camera.eye[2] };
       const double* u = camera.up;
@@ -440,7 +441,8 @@ public:
       // VTK would orthogonalise such an up vector to nothing (a NaN view).
       if (std::sqrt(cross[0] * cross[0] + cross[1] * cross[1] + cross[2] * cross[2]) <=
         1e-9 * upLength * dLength)
-        this->Fail(": 'up' is parallel to the view direction");
+        this->Fail(ownUp ? ": 'up' is parallel to the view direction"
+                         : ": --up is parallel to its view direction (give it an 'up')");
     }
     double angle = 0.0;
     double scale = 0.0;

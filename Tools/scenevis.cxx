@@ -127,6 +127,7 @@ Scene (all commands):
   --portals FILE.vtp    portals of a model file: one polygon per portal with integer cell
                         arrays RoomA and RoomB; the model needs a room cell array (RoomId
                         or --room-array; -1 = outside). The building demo brings its own
+                        portals
   --triangles N         approximate triangle count of the spheres/cad demos (default 20000)
   --parts N             parts of the cad demo (default 1000)
   --opacity A           opacity given to every cell of a model file, in (0, 1] (default: the
@@ -942,8 +943,22 @@ void SetUpCamera(
     if (!spec.hasFocal && std::equal(spec.eye, spec.eye + 3, center))
       throw UsageError("--camera: the eye is the scene's centre, the default focal point; give "
                        "a focal point too (EX,EY,EZ,FX,FY,FZ)");
+    const double* focal = spec.hasFocal ? spec.focal : center;
+    const double direction[3] = { focal[0] - spec.eye[0], focal[1] - spec.eye[1],
+      focal[2] - spec.eye[2] };
+    double side[3];
+    vtkMath::Cross(direction, up, side);
+    // An up along the view direction leaves VTK no view plane (a NaN view-up): an up given is
+    // a usage error, the default one is swapped for the other default axis.
+    const double alternativeUp[3] = { 0.0, zUp ? 1.0 : 0.0, zUp ? 0.0 : 1.0 };
+    if (vtkMath::Norm(side) <= 1e-9 * vtkMath::Norm(direction) * vtkMath::Norm(up))
+    {
+      if (spec.hasUp)
+        throw UsageError("--up is parallel to the view direction from --camera");
+      up = alternativeUp;
+    }
     camera->SetPosition(spec.eye);
-    camera->SetFocalPoint(spec.hasFocal ? spec.focal : center);
+    camera->SetFocalPoint(focal);
     camera->SetViewUp(up[0], up[1], up[2]);
     camera->OrthogonalizeViewUp();
     // Everything the camera does not give is reset: with --cameras, the renderer's camera still
