@@ -1,6 +1,11 @@
 # Runs COMMAND (a ;-list) and checks its exit code is EXIT and its stderr+stdout matches MATCH.
 # ONE_LINE=ON: the whole output (stdout and stderr) must be one line.
-# Usage: cmake -DCOMMAND=... -DEXIT=2 -DMATCH=regex [-DONE_LINE=ON] -P expect_exit.cmake
+# ABSENT=a;b: files the command must not write (removed first): nothing half-written on errors.
+# Usage: cmake -DCOMMAND=... -DEXIT=2 -DMATCH=regex [-DONE_LINE=ON] [-DABSENT=...]
+#        -P expect_exit.cmake
+foreach(file IN LISTS ABSENT)
+  file(REMOVE "${file}")
+endforeach()
 execute_process(COMMAND ${COMMAND} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
 message("exit ${rc}\n${out}${err}")
 if(NOT "${rc}" STREQUAL "${EXIT}")
@@ -16,3 +21,8 @@ if(ONE_LINE)
     message(FATAL_ERROR "expected exactly one line of output, got ${lines} line break(s)")
   endif()
 endif()
+foreach(file IN LISTS ABSENT)
+  if(EXISTS "${file}")
+    message(FATAL_ERROR "the command wrote '${file}' although it failed")
+  endif()
+endforeach()

@@ -1,7 +1,7 @@
 # Runs COMMAND (a ;-list), expects exit code 0, and checks members of the JSON it printed on
 # stdout (or of JSON_FILE, when given, e.g. a `render --report` file).
 # CHECKS is a ;-list of "PATH|OP|VALUE": PATH names a member with dots (array elements by index,
-# e.g. frames.1.cull_ms); OP is one of
+# e.g. frames.1.cull_ms; "." is the whole document, e.g. ".|LENGTH|3"); OP is one of
 #   STREQUAL MATCHES                        text (booleans read as ON / OFF)
 #   EQUAL LESS GREATER LESS_EQUAL GREATER_EQUAL   numbers against VALUE
 #   LESS_PATH GREATER_PATH EQUAL_PATH       numbers against the member named by VALUE
@@ -45,8 +45,18 @@ else()
   set(json "${out}")
 endif()
 
+# The members of a dotted PATH as a list ("." names the document itself: no members).
+function(json_path path result)
+  if(path STREQUAL ".")
+    set(${result} "" PARENT_SCOPE)
+  else()
+    string(REPLACE "." ";" members "${path}")
+    set(${result} "${members}" PARENT_SCOPE)
+  endif()
+endfunction()
+
 function(json_member path result)
-  string(REPLACE "." ";" members "${path}")
+  json_path("${path}" members)
   string(JSON value ERROR_VARIABLE problem GET "${json}" ${members})
   if(problem)
     message(FATAL_ERROR "no member '${path}' in the JSON: ${problem}")
@@ -65,7 +75,7 @@ foreach(check IN LISTS CHECKS)
   list(GET fields 1 op)
   list(GET fields 2 expected)
   if(op STREQUAL "LENGTH")
-    string(REPLACE "." ";" members "${path}")
+    json_path("${path}" members)
     string(JSON value ERROR_VARIABLE problem LENGTH "${json}" ${members})
     if(problem)
       message(FATAL_ERROR "no array '${path}' in the JSON: ${problem}")
@@ -79,7 +89,7 @@ foreach(check IN LISTS CHECKS)
       message(FATAL_ERROR "no reference JSON '${expected}' (its test must run first)")
     endif()
     file(READ "${expected}" reference)
-    string(REPLACE "." ";" members "${path}")
+    json_path("${path}" members)
     string(JSON expected ERROR_VARIABLE problem GET "${reference}" ${members})
     if(problem)
       message(FATAL_ERROR "no member '${path}' in the reference JSON: ${problem}")

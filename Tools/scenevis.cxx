@@ -16,11 +16,14 @@
 
 #include "scenevis/Scenes.h"
 
+#include "CameraFile.h"
+
 #include "scenevis/testing/IdBuffer.h"
 #include "scenevis/testing/ImageCompare.h"
 #include "scenevis/testing/Models.h"
 #include "scenevis/testing/RenderWindow.h"
 
+#include <vtkAbstractArray.h>
 #include <vtkActor.h>
 #include <vtkAutoInit.h>
 #include <vtkAxis.h>
@@ -43,15 +46,16 @@
 #include <vtkImageData.h>
 #include <vtkIntArray.h>
 #include <vtkLogger.h>
+#include <vtkMath.h>
 #include <vtkNew.h>
 #include <vtkOutputWindow.h>
 #include <vtkPen.h>
 #include <vtkPlot.h>
 #include <vtkPlotPoints.h>
+#include <vtkPointData.h>
 #include <vtkPoints.h>
 #include <vtkPolyData.h>
 #include <vtkPolyDataAlgorithm.h>
-#include <vtkPointData.h>
 #include <vtkPolyDataMapper.h>
 #include <vtkPolyDataNormals.h>
 #include <vtkProperty.h>
@@ -72,8 +76,8 @@
 #include <unistd.h>
 
 #include <algorithm>
-#include <chrono>
 #include <cerrno>
+#include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -90,6 +94,7 @@
 #include <stdexcept>
 #include <string>
 #include <unordered_map>
+#include <unordered_set>
 #include <vector>
 
 // The chart (bench plot) needs the 2D context device and text rendering; the harness initialises
@@ -122,15 +127,37 @@ Scene (all commands):
                         (.vtp .vtk .ply .stl .obj .glb .gltf .wrl; glTF and VRML parts
                         become PartId parts with their own colours). bench: repeatable
   --portals FILE.vtp    portals of a model file: one polygon per portal with integer cell
-                        arrays RoomA and RoomB; the model needs a RoomId cell array (-1 =
-                        outside). The building demo brings its own portals
+                        arrays RoomA and RoomB; the model needs a room cell array (RoomId
+                        or --room-array; -1 = outside). The building demo brings its own
+                        portals
   --triangles N         approximate triangle count of the spheres/cad demos (default 20000)
   --parts N             parts of the cad demo (default 1000)
-  --opacity A           opacity given to a model file's surface (default 0.4)
+  --opacity A           opacity given to every cell of a model file, in (0, 1] (default: the
+                        file's own: the materials of glTF/VRML parts or a Colors RGBA cell
+                        array, else opaque). The demo scenes keep their own (translucent)
+  --part-array NAME     render, cull, bench: the integer cell array naming parts (default
+                        PartId); one value per cell, at most 1,000,000 distinct values
+  --room-array NAME     render, cull, bench: the integer cell array naming rooms, -1 = outside
+                        (default RoomId)
+
+Camera (render, sort, cull; bench: one orbit from it):
   --camera EX,EY,EZ[,FX,FY,FZ]   eye (and focal point; default: the scene's centre);
                         default camera: a three-quarter view that fits the scene
-  --parallel            parallel projection
   --up X,Y,Z            camera view-up (default: +z for the cad and building demos, else +y)
+  --parallel            parallel projection (scale fitted to the scene)
+  --parallel-scale S    parallel projection with half-height S in world units (> 0);
+                        implies --parallel
+  --view-angle DEG      perspective view angle in degrees, in (0, 180) (default 30; the
+                        default camera moves to fit the scene into it)
+  --clipping-range NEAR,FAR  fixed near and far distances, 0 < NEAR < FAR (default: fitted
+                        to the visible props after every camera move)
+  --cameras FILE.json   run once per camera of FILE: a JSON array of objects
+                        {"eye": [x,y,z], "focal": [x,y,z], "up": [x,y,z],
+                        "view_angle": DEG or "parallel_scale": S, "clipping_range": [n,f]};
+                        eye and focal are required, the rest default to the options above.
+                        render writes OUT-i.png and one frame per camera in the report, sort
+                        writes OUT-i.vtp, cull prints a JSON array of one result per camera.
+                        Not with --camera, --frames or --orbit
 
 render and cull:
   --cull MODE           auto (default), none, frustum (VTK's vtkFrustumCoverageCuller),
@@ -142,8 +169,9 @@ render and cull:
                         chunked (one mesh through vtkChunkedPolyDataMapper: chunks culled
                         inside it), portals (vtkPortalCuller, exact frustum narrowing), pvs
                         (vtkPortalCuller with precomputed potentially visible sets).
-                        Prop culling modes draw one actor per part (PartId, and RoomId where
-                        present); with those, --sort takes none, oit, multi-actor or peel:N.
+                        Prop culling modes draw one actor per part (--part-array, and room
+                        where present); with those, --sort takes none, oit, multi-actor or
+                        peel:N.
                         auto: rooms and portals -> portals; 100+ parts, at most 25 %
                         translucent, under 90 % of the triangles in the first view -> octree,
                         or occlusion when their screen rectangles cover the view 4+ times;
@@ -157,8 +185,8 @@ render:
                         Newell's painter's algorithm with splits, redone every frame),
                         bsp (vtkBSPSortFilter), bsp-mapper (vtkBSPSortedPolyDataMapper: the BSP
                         order rewritten into the index buffer only), multi-actor (one actor per
-                        part of the scene's PartId array, ordered across actors by
-                        vtkBSPTranslucentPass), peel:N (dual depth peeling, at most N peels)
+                        part (--part-array), ordered across actors by vtkBSPTranslucentPass),
+                        peel:N (dual depth peeling, at most N peels)
   --size WxH            image size in pixels (default 800x600)
   --frames N            orbit frames (default 1); frame i is written as OUT-000i.png
   --orbit DEG           camera azimuth step per frame (default 5)
@@ -196,7 +224,10 @@ bench:
   --out-dir DIR         where accuracy-vs-time.csv and accuracy-vs-time.png go (default .)
 
 A progress bar (BSP build, PVS precompute, frames) is drawn on stderr when it is a terminal.
-Exit codes: 0 success, 1 failure (unreadable file, rendering failed), 2 bad usage.
+The render report and cull's JSON give the camera used (position, focal_point, view_up,
+parallel, view_angle, parallel_scale, clipping_range, clipping_range_fixed).
+Exit codes: 0 success, 1 failure (unreadable or invalid file, e.g. a camera file or a part
+array; rendering failed), 2 bad usage. Errors are one line on stderr.
 )";
 
 struct UsageError : std::runtime_error
@@ -216,14 +247,18 @@ struct Options
   bool trianglesSet = false;
   vtkIdType triangles = 20000;
   vtkIdType parts = 1000;
-  double opacity = 0.4;
-  bool hasCamera = false;
-  bool hasFocal = false;
-  double eye[3] = { 0, 0, 0 };
-  double focal[3] = { 0, 0, 0 };
-  bool parallel = false;
-  bool hasUp = false;
-  double up[3] = { 0, 1, 0 };
+  double opacity = 0.4; ///< a model file's: only with --opacity (else its own materials')
+  bool opacitySet = false;
+  /// --camera, --up, --parallel, --view-angle, --parallel-scale, --clipping-range.
+  scenevis::tool::CameraSpec camera;
+  /// --cameras FILE.json: one run per camera (the command line's camera options as defaults).
+  std::string camerasFile;
+  std::vector<scenevis::tool::CameraSpec> cameras;
+  /// The integer cell arrays that name parts and rooms (--part-array, --room-array).
+  std::string partArray = "PartId";
+  std::string roomArray = "RoomId";
+  bool partArraySet = false;
+  bool roomArraySet = false;
   std::string sort = "auto";
   std::string cull = "auto";
   std::string portals;      ///< --portals FILE.vtp
@@ -280,6 +315,30 @@ std::vector<double> ParseList(const std::string& flag, const std::string& text)
   return values;
 }
 
+/// The camera options together: conflicts are usage errors; --cameras is read here, before
+/// anything is loaded or written.
+void CheckCameraOptions(Options& options)
+{
+  const scenevis::tool::CameraSpec& camera = options.camera;
+  if (camera.viewAngle > 0.0 && camera.parallel)
+  {
+    throw UsageError("--view-angle is for perspective projection; with --parallel, "
+                     "--parallel-scale sets the view's size");
+  }
+  if (options.camerasFile.empty())
+    return;
+  if (options.command == "bench")
+    throw UsageError("--cameras belongs to render, sort and cull (bench orbits its own camera)");
+  if (camera.hasEye)
+    throw UsageError("--cameras and --camera both give the eye: use one of them");
+  if (options.framesSet || options.orbitSet)
+  {
+    throw UsageError(std::string(options.framesSet ? "--frames" : "--orbit") +
+      " orbits one camera; with --cameras, every camera of the file is one frame");
+  }
+  options.cameras = scenevis::tool::ReadCameraFile(options.camerasFile, camera);
+}
+
 Options ParseOptions(int argc, char* argv[])
 {
   Options options;
@@ -318,6 +377,7 @@ Options ParseOptions(int argc, char* argv[])
     else if (flag == "--opacity")
     {
       options.opacity = ParseNumber(flag, value());
+      options.opacitySet = true;
       if (options.opacity <= 0.0 || options.opacity > 1.0)
         throw UsageError("--opacity expects a value in (0, 1]");
     }
@@ -326,25 +386,62 @@ Options ParseOptions(int argc, char* argv[])
       const std::vector<double> v = ParseList(flag, value());
       if (v.size() != 3 && v.size() != 6)
         throw UsageError("--camera expects EX,EY,EZ or EX,EY,EZ,FX,FY,FZ");
-      std::copy_n(v.begin(), 3, options.eye);
-      options.hasCamera = true;
+      std::copy_n(v.begin(), 3, options.camera.eye);
+      options.camera.hasEye = true;
       if (v.size() == 6)
       {
-        std::copy_n(v.begin() + 3, 3, options.focal);
-        options.hasFocal = true;
+        std::copy_n(v.begin() + 3, 3, options.camera.focal);
+        options.camera.hasFocal = true;
         if (std::equal(v.begin(), v.begin() + 3, v.begin() + 3))
           throw UsageError("--camera: the eye equals the focal point (no view direction)");
       }
     }
+    else if (flag == "--cameras")
+      options.camerasFile = value();
     else if (flag == "--parallel")
-      options.parallel = true;
+      options.camera.parallel = true;
+    else if (flag == "--parallel-scale")
+    {
+      const std::string text = value();
+      options.camera.parallelScale = ParseNumber(flag, text);
+      const std::string problem = scenevis::tool::CheckParallelScale(options.camera.parallelScale);
+      if (!problem.empty())
+        throw UsageError(flag + " " + problem);
+      options.camera.parallel = true; // a parallel scale only means something in parallel
+    }
+    else if (flag == "--view-angle")
+    {
+      options.camera.viewAngle = ParseNumber(flag, value());
+      const std::string problem = scenevis::tool::CheckViewAngle(options.camera.viewAngle);
+      if (!problem.empty())
+        throw UsageError(flag + " " + problem);
+    }
+    else if (flag == "--clipping-range")
+    {
+      const std::string text = value();
+      const std::vector<double> v = ParseList(flag, text);
+      if (v.size() != 2)
+        throw UsageError(flag + " expects NEAR,FAR, got '" + text + "'");
+      const std::string problem = scenevis::tool::CheckClippingRange(v[0], v[1]);
+      if (!problem.empty())
+        throw UsageError(flag + " " + problem);
+      std::copy_n(v.begin(), 2, options.camera.clippingRange);
+    }
     else if (flag == "--up")
     {
       const std::vector<double> v = ParseList(flag, value());
       if (v.size() != 3 || (v[0] == 0.0 && v[1] == 0.0 && v[2] == 0.0))
         throw UsageError("--up expects a non-zero vector X,Y,Z");
-      std::copy_n(v.begin(), 3, options.up);
-      options.hasUp = true;
+      std::copy_n(v.begin(), 3, options.camera.up);
+      options.camera.hasUp = true;
+    }
+    else if (flag == "--part-array" || flag == "--room-array")
+    {
+      const std::string name = value();
+      if (name.empty())
+        throw UsageError(flag + " expects the name of an integer cell array");
+      (flag == "--part-array" ? options.partArray : options.roomArray) = name;
+      (flag == "--part-array" ? options.partArraySet : options.roomArraySet) = true;
     }
     else if (flag == "--cull")
       options.cull = value();
@@ -423,6 +520,13 @@ Options ParseOptions(int argc, char* argv[])
   if (options.command == "sort" && options.out.empty())
   {
     throw UsageError("sort needs --out FILE.vtp");
+  }
+  CheckCameraOptions(options);
+  if ((options.partArraySet || options.roomArraySet) && options.command == "sort")
+  {
+    // The BSP order is one over all polygons: sort never splits the scene into parts or rooms.
+    throw UsageError(std::string(options.partArraySet ? "--part-array" : "--room-array") +
+      " belongs to render, cull and bench (sort orders all polygons as one)");
   }
   if (options.out.empty())
   {
@@ -780,8 +884,10 @@ LoadedScene LoadScene(const Options& options)
     if (loaded.polydata->GetNumberOfCells() == 0)
       throw std::runtime_error("cannot use '" + name + "': every cell has a NaN/Inf point");
   }
-  // A translucent colour as RGBA cell scalars like the demo scenes: the parts' own colours of
-  // imported scenes (glTF, VRML: a "Colors" array) with --opacity, else one uniform colour.
+  // RGBA cell scalars like the demo scenes: the parts' own colours and opacities of imported
+  // scenes (glTF, VRML, or a .vtp written by --export-scene: a "Colors" array), else one uniform
+  // opaque colour. --opacity replaces every cell's alpha: a file says how translucent it is
+  // unless the user asks for translucency.
   const vtkIdType cells = loaded.polydata->GetNumberOfCells();
   auto* own =
     vtkUnsignedCharArray::SafeDownCast(loaded.polydata->GetCellData()->GetArray("Colors"));
@@ -789,17 +895,19 @@ LoadedScene LoadScene(const Options& options)
   {
     own = nullptr;
   }
+  const bool ownAlpha = own && own->GetNumberOfComponents() >= 4 && !options.opacitySet;
   vtkNew<vtkUnsignedCharArray> colors;
   colors->SetName("Colors");
   colors->SetNumberOfComponents(4);
   colors->SetNumberOfTuples(cells);
-  const auto alpha = static_cast<unsigned char>(std::lround(options.opacity * 255.0));
+  const auto alpha =
+    static_cast<unsigned char>(options.opacitySet ? std::lround(options.opacity * 255.0) : 255);
   unsigned char rgba[4] = { 200, 170, 120, alpha };
   for (vtkIdType c = 0; c < cells; ++c)
   {
     if (own)
     {
-      for (int k = 0; k < 3; ++k)
+      for (int k = 0; k < (ownAlpha ? 4 : 3); ++k)
         rgba[k] = own->GetTypedComponent(c, k);
     }
     colors->SetTypedTuple(c, rgba);
@@ -815,26 +923,61 @@ LoadedScene LoadScene(const Options& options)
   return loaded;
 }
 
-void SetUpCamera(const Options& options, vtkRenderer* renderer, vtkPolyData* pd, bool zUp = false)
+/// The camera's fixed clipping range (--clipping-range, a camera's "clipping_range"), else one
+/// fitted to the visible props, as after every camera move.
+void ResetClippingRange(const scenevis::tool::CameraSpec& spec, vtkRenderer* renderer)
+{
+  if (spec.FixedClippingRange())
+    renderer->GetActiveCamera()->SetClippingRange(spec.clippingRange);
+  else
+    renderer->ResetCameraClippingRange();
+}
+
+void SetUpCamera(
+  const scenevis::tool::CameraSpec& spec, vtkRenderer* renderer, vtkPolyData* pd, bool zUp = false)
 {
   vtkCamera* camera = renderer->GetActiveCamera();
-  camera->SetParallelProjection(options.parallel);
+  camera->SetParallelProjection(spec.parallel);
   double bounds[6];
   pd->GetBounds(bounds); // finite: LoadScene removed cells with NaN/Inf points
   const double center[3] = { (bounds[0] + bounds[1]) / 2, (bounds[2] + bounds[3]) / 2,
     (bounds[4] + bounds[5]) / 2 };
   const double defaultUp[3] = { 0.0, zUp ? 0.0 : 1.0, zUp ? 1.0 : 0.0 };
-  const double* up = options.hasUp ? options.up : defaultUp;
-  if (options.hasCamera)
+  const double* up = spec.hasUp ? spec.up : defaultUp;
+  if (spec.hasEye)
   {
-    if (!options.hasFocal && std::equal(options.eye, options.eye + 3, center))
+    if (!spec.hasFocal && std::equal(spec.eye, spec.eye + 3, center))
       throw UsageError("--camera: the eye is the scene's centre, the default focal point; give "
                        "a focal point too (EX,EY,EZ,FX,FY,FZ)");
-    camera->SetPosition(options.eye);
-    camera->SetFocalPoint(options.hasFocal ? options.focal : center);
+    const double* focal = spec.hasFocal ? spec.focal : center;
+    const double direction[3] = { focal[0] - spec.eye[0], focal[1] - spec.eye[1],
+      focal[2] - spec.eye[2] };
+    double side[3];
+    vtkMath::Cross(direction, up, side);
+    // An up along the view direction leaves VTK no view plane (a NaN view-up): an up given is
+    // a usage error, the default one is swapped for the other default axis.
+    const double alternativeUp[3] = { 0.0, zUp ? 1.0 : 0.0, zUp ? 0.0 : 1.0 };
+    if (vtkMath::Norm(side) <= 1e-9 * vtkMath::Norm(direction) * vtkMath::Norm(up))
+    {
+      if (spec.hasUp)
+        throw UsageError("--up is parallel to the view direction from --camera");
+      up = alternativeUp;
+    }
+    camera->SetPosition(spec.eye);
+    camera->SetFocalPoint(focal);
     camera->SetViewUp(up[0], up[1], up[2]);
     camera->OrthogonalizeViewUp();
-    renderer->ResetCameraClippingRange();
+    // Everything the camera does not give is reset: with --cameras, the renderer's camera still
+    // holds the previous camera's values. Unless given, the parallel scale shows the whole scene
+    // (its bounding sphere, with the default view's margin) from anywhere.
+    camera->SetViewAngle(spec.viewAngle > 0.0 ? spec.viewAngle : 30.0);
+    const double radius = 0.5 *
+      std::sqrt((bounds[1] - bounds[0]) * (bounds[1] - bounds[0]) +
+        (bounds[3] - bounds[2]) * (bounds[3] - bounds[2]) +
+        (bounds[5] - bounds[4]) * (bounds[5] - bounds[4]));
+    camera->SetParallelScale(
+      spec.parallelScale > 0.0 ? spec.parallelScale : std::max(radius, 1e-12) / 1.1);
+    ResetClippingRange(spec, renderer);
     return;
   }
   camera->SetFocalPoint(center);
@@ -848,9 +991,26 @@ void SetUpCamera(const Options& options, vtkRenderer* renderer, vtkPolyData* pd,
   camera->Azimuth(30.0);
   camera->Elevation(25.0);
   camera->OrthogonalizeViewUp();
-  // From the scene's bounds, not the props': the sorted pipeline has not run yet.
+  // From the scene's bounds, not the props': the sorted pipeline has not run yet. VTK fits the
+  // scene's bounding sphere into its default 30-degree view angle (and resets the angle to it).
   renderer->ResetCamera(bounds);
-  camera->Zoom(1.1);
+  if (spec.viewAngle > 0.0 && !spec.parallel)
+  {
+    // The same fit in the angle given: the distance that keeps the sphere in view goes with
+    // 1 / sin(angle / 2). Zoom(1.1) would narrow the angle, so the margin is a dolly too.
+    const double halfAngle = vtkMath::RadiansFromDegrees(spec.viewAngle / 2.0);
+    camera->SetViewAngle(spec.viewAngle);
+    camera->Dolly(1.1 * std::sin(halfAngle) / std::sin(vtkMath::RadiansFromDegrees(15.0)));
+    renderer->ResetCameraClippingRange(bounds);
+  }
+  else
+  {
+    camera->Zoom(1.1);
+  }
+  if (spec.parallelScale > 0.0)
+    camera->SetParallelScale(spec.parallelScale);
+  if (spec.FixedClippingRange())
+    camera->SetClippingRange(spec.clippingRange);
 }
 
 std::string JsonString(const std::string& text)
@@ -865,6 +1025,40 @@ std::string JsonString(const std::string& text)
     out += c;
   }
   return out + "\"";
+}
+
+std::string JsonVector(const double* v)
+{
+  std::ostringstream out;
+  out << std::setprecision(9) << "[" << v[0] << ", " << v[1] << ", " << v[2] << "]";
+  return out.str();
+}
+
+/// The camera a frame or result used, as it was when drawn: eye, focal point, up, projection,
+/// view angle (perspective) or parallel scale, and the clipping range and whether it was fixed.
+std::string JsonCamera(vtkCamera* camera, bool fixedClippingRange)
+{
+  std::ostringstream out;
+  out << std::setprecision(9) << "{\"position\": " << JsonVector(camera->GetPosition())
+      << ", \"focal_point\": " << JsonVector(camera->GetFocalPoint())
+      << ", \"view_up\": " << JsonVector(camera->GetViewUp())
+      << ", \"parallel\": " << (camera->GetParallelProjection() ? "true" : "false")
+      << ", \"view_angle\": " << camera->GetViewAngle()
+      << ", \"parallel_scale\": " << camera->GetParallelScale() << ", \"clipping_range\": ["
+      << camera->GetClippingRange()[0] << ", " << camera->GetClippingRange()[1]
+      << "], \"clipping_range_fixed\": " << (fixedClippingRange ? "true" : "false") << "}";
+  return out.str();
+}
+
+/// The output of camera @p index of --cameras: OUT-INDEX.EXT (out-0.png, out-1.png, ...).
+std::string CameraFileName(const std::string& out, std::size_t index, const char* extension)
+{
+  const auto slash = out.find_last_of('/');
+  auto dot = out.find_last_of('.');
+  if (dot != std::string::npos && slash != std::string::npos && dot < slash)
+    dot = std::string::npos; // a dot in a directory name
+  return out.substr(0, dot) + "-" + std::to_string(index) +
+    (dot == std::string::npos ? std::string(extension) : out.substr(dot));
 }
 
 std::string FrameFileName(const std::string& out, int frame, int frames)
@@ -957,15 +1151,16 @@ std::vector<vtkSmartPointer<vtkPolyData>> SplitByKeys(
   return result;
 }
 
-std::vector<vtkSmartPointer<vtkPolyData>> SplitByPart(vtkPolyData* pd)
+std::vector<vtkSmartPointer<vtkPolyData>> SplitByPart(vtkPolyData* pd, const std::string& partArray)
 {
-  return SplitByKeys(pd, { "PartId" });
+  return SplitByKeys(pd, { partArray });
 }
 
 /// One translucency method set up on a renderer: what `render`, `cull` and `bench` share. The
 /// caller owns the renderer (background, camera, cullers); the pipeline adds its actors and pass.
 /// With @p groups of more than one polydata, one actor per group is drawn (for prop culling; the
-/// method must then be none, oit, multi-actor or peel:N); @p chunked draws the one mesh through
+/// method must then be none, oit, multi-actor or peel:N); multi-actor draws one actor per group
+/// (the parts) and one actor without @p groups. @p chunked draws the one mesh through
 /// vtkChunkedPolyDataMapper (method none, oit or peel:N).
 class MethodPipeline
 {
@@ -1009,7 +1204,8 @@ public:
     }
     else if (method == "multi-actor" || split)
     {
-      for (const auto& part : split ? *groups : SplitByPart(pd))
+      const std::vector<vtkSmartPointer<vtkPolyData>> whole{ pd };
+      for (const auto& part : groups && !groups->empty() ? *groups : whole)
       {
         auto mapper = vtkSmartPointer<vtkPolyDataMapper>::New();
         mapper->SetInputData(part);
@@ -1244,10 +1440,91 @@ private:
   vtkMTimeType OrderCountBefore = 0;
 };
 
-/// The scene as loaded, with smooth normals when it has none.
+/// Above this many distinct part (or room) values, one actor each would take minutes to set up
+/// and gigabytes to hold: such an array is almost certainly not one of parts (e.g. a cell id).
+constexpr std::size_t kMaxDistinctKeys = 1000000;
+
+bool IsIntegerType(int type)
+{
+  switch (type)
+  {
+    case VTK_CHAR:
+    case VTK_SIGNED_CHAR:
+    case VTK_UNSIGNED_CHAR:
+    case VTK_SHORT:
+    case VTK_UNSIGNED_SHORT:
+    case VTK_INT:
+    case VTK_UNSIGNED_INT:
+    case VTK_LONG:
+    case VTK_UNSIGNED_LONG:
+    case VTK_LONG_LONG:
+    case VTK_UNSIGNED_LONG_LONG:
+    case VTK_ID_TYPE:
+      return true;
+    default:
+      return false;
+  }
+}
+
+/**
+ * The part and room arrays render, cull and bench split the scene by: one integer per cell and
+ * at most kMaxDistinctKeys values. One named with --part-array / --room-array must exist; the
+ * default names may be absent (a scene without parts or rooms). Checked before anything costly
+ * is built or anything is written. Errors name the arrays the scene has.
+ */
+void CheckKeyArrays(vtkPolyData* pd, const Options& options)
+{
+  struct Key
+  {
+    const char* flag;
+    const std::string& name;
+    bool named;
+  };
+  for (const Key& key : { Key{ "--part-array", options.partArray, options.partArraySet },
+         Key{ "--room-array", options.roomArray, options.roomArraySet } })
+  {
+    vtkAbstractArray* array = pd->GetCellData()->GetAbstractArray(key.name.c_str());
+    const std::string what = std::string("cell array '") + key.name + "' (" + key.flag + ")";
+    if (!array)
+    {
+      if (!key.named)
+        continue;
+      std::string names;
+      for (int i = 0; i < pd->GetCellData()->GetNumberOfArrays(); ++i)
+      {
+        const char* name = pd->GetCellData()->GetArrayName(i);
+        names += (i ? ", " : "") + std::string(name ? name : "(unnamed)");
+      }
+      throw std::runtime_error("the scene has no " + what +
+        (pd->GetPointData()->GetAbstractArray(key.name.c_str()) ? " (it is a point array)" : "") +
+        "; its cell arrays: " + (names.empty() ? "none" : names));
+    }
+    auto* values = vtkDataArray::SafeDownCast(array);
+    if (!values || !IsIntegerType(array->GetDataType()) || array->GetNumberOfComponents() != 1)
+    {
+      throw std::runtime_error("the " + what + " holds " +
+        std::to_string(array->GetNumberOfComponents()) + "-component " +
+        array->GetDataTypeAsString() + " values, not one integer per cell");
+    }
+    std::unordered_set<long long> distinct;
+    for (vtkIdType c = 0; c < values->GetNumberOfTuples(); ++c)
+    {
+      distinct.insert(static_cast<long long>(values->GetTuple1(c)));
+      if (distinct.size() > kMaxDistinctKeys)
+      {
+        throw std::runtime_error("the " + what + " has more than " +
+          std::to_string(kMaxDistinctKeys) +
+          " distinct values: refusing to make an actor of each (is it an array of parts?)");
+      }
+    }
+  }
+}
+
+/// The scene as loaded, its part and room arrays checked, with smooth normals when it has none.
 LoadedScene LoadSceneWithNormals(const Options& options)
 {
   LoadedScene scene = LoadScene(options);
+  CheckKeyArrays(scene.polydata, options);
   if (!scene.polydata->GetPointData()->GetNormals())
   {
     // Smooth shading; sharp edges (CAD, buildings) stay sharp. The sorters carry normals along.
@@ -1343,12 +1620,12 @@ std::set<long long> DistinctValues(
   return values;
 }
 
-SceneFacts InspectScene(vtkPolyData* pd, vtkPolyData* portals)
+SceneFacts InspectScene(vtkPolyData* pd, vtkPolyData* portals, const Options& options)
 {
   SceneFacts facts;
   facts.polygons = pd->GetNumberOfCells();
   facts.triangles = CountTriangles(pd);
-  facts.parts = std::max<std::size_t>(1, DistinctValues(pd, "PartId").size());
+  facts.parts = std::max<std::size_t>(1, DistinctValues(pd, options.partArray.c_str()).size());
   if (auto* colors = vtkUnsignedCharArray::SafeDownCast(pd->GetCellData()->GetScalars()))
   {
     if (colors->GetNumberOfComponents() == 4 && facts.polygons > 0)
@@ -1360,16 +1637,17 @@ SceneFacts InspectScene(vtkPolyData* pd, vtkPolyData* portals)
         static_cast<double>(translucent) / static_cast<double>(facts.polygons);
     }
   }
-  for (const long long room : DistinctValues(pd, "RoomId"))
+  for (const long long room : DistinctValues(pd, options.roomArray.c_str()))
     facts.rooms += room >= 0 ? 1 : 0;
   facts.portals = portals ? portals->GetNumberOfCells() : 0;
   return facts;
 }
 
-/// The fraction of the triangles of @p pd in PartId parts whose bounding box meets the side
-/// planes of @p camera's frustum (near and far ignored: the clipping range follows the props).
-double TrianglesInView(
-  vtkPolyData* pd, vtkCamera* camera, double aspect, double* depthComplexity = nullptr)
+/// The fraction of the triangles of @p pd in parts (of @p partArray) whose bounding box meets the
+/// side planes of @p camera's frustum (near and far ignored: the clipping range follows the
+/// props); @p depthComplexity: the in-view parts' screen rectangles over the viewport.
+double TrianglesInView(vtkPolyData* pd, const std::string& partArray, vtkCamera* camera,
+  double aspect, double* depthComplexity = nullptr)
 {
   struct PartBox
   {
@@ -1377,7 +1655,7 @@ double TrianglesInView(
       VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX };
     vtkIdType triangles = 0;
   };
-  vtkDataArray* partIds = pd->GetCellData()->GetArray("PartId");
+  vtkDataArray* partIds = pd->GetCellData()->GetArray(partArray.c_str());
   std::unordered_map<long long, PartBox> parts;
   vtkCellArray* polys = pd->GetPolys();
   vtkIdType npts = 0;
@@ -1469,12 +1747,15 @@ struct CullPlan
   bool needsActors = false; ///< a prop culler: one actor per part / room
   bool chunked = false;
   double smallPixels = 0.0;
+  std::string roomArray = "RoomId"; ///< the cell array the portal culler reads rooms from
 };
 
-CullPlan PlanCulling(const std::string& requested, const SceneFacts& facts)
+CullPlan PlanCulling(
+  const std::string& requested, const SceneFacts& facts, const std::string& roomArray)
 {
   CullPlan plan;
   plan.method = requested;
+  plan.roomArray = roomArray;
   plan.reason = "requested with --cull (" + facts.Summary() + ")";
   const bool rooms = facts.rooms > 0 && facts.portals > 0;
   if (requested == "auto")
@@ -1540,8 +1821,8 @@ CullPlan PlanCulling(const std::string& requested, const SceneFacts& facts)
   if ((plan.method == "portals" || plan.method == "pvs") && !rooms)
   {
     throw UsageError("--cull " + plan.method +
-      " needs rooms and portals: the building demo, or a "
-      "model with a RoomId cell array and --portals FILE.vtp");
+      " needs rooms and portals: the building demo, or a model with a " + roomArray +
+      " cell array (--room-array) and --portals FILE.vtp");
   }
   plan.needsActors = IsPropCulling(plan.method);
   plan.chunked = plan.method == "chunked";
@@ -1728,6 +2009,7 @@ public:
     {
       this->Portal = vtkSmartPointer<vtkPortalCuller>::New();
       this->Portal->SetPortals(portals);
+      this->Portal->SetRoomIdArrayName(plan.roomArray.c_str());
       this->Portal->SetMode(
         m == "pvs" ? vtkPortalCuller::MODE_PVS : vtkPortalCuller::MODE_EXACT_FRUSTUM);
       inner = this->Portal;
@@ -1867,21 +2149,24 @@ ScenePlan PlanScene(
   const Options& options, const LoadedScene& scene, const std::string& sort, vtkRenderer* renderer)
 {
   ScenePlan plan;
-  plan.facts = InspectScene(scene.polydata, scene.portals);
+  plan.facts = InspectScene(scene.polydata, scene.portals, options);
   if (plan.facts.parts >= kManyProps)
   {
-    plan.facts.inView = TrianglesInView(scene.polydata, renderer->GetActiveCamera(),
-      static_cast<double>(options.width) / static_cast<double>(options.height),
-      &plan.facts.depthComplexity);
+    plan.facts.inView =
+      TrianglesInView(scene.polydata, options.partArray, renderer->GetActiveCamera(),
+        static_cast<double>(options.width) / static_cast<double>(options.height),
+        &plan.facts.depthComplexity);
   }
-  plan.cull = PlanCulling(options.cull, plan.facts);
+  plan.cull = PlanCulling(options.cull, plan.facts, options.roomArray);
   if (plan.cull.needsActors)
   {
     // Rooms first: an actor must lie in one room for the portal culler to cull it.
-    plan.groups = SplitByKeys(scene.polydata, { "RoomId", "PartId" });
+    plan.groups = SplitByKeys(scene.polydata, { options.roomArray, options.partArray });
   }
   plan.sort = ChooseSort(sort, plan.facts.translucentFraction > 0.0, plan.cull,
     plan.groups.size() > 1, plan.groups.size(), plan.sortReason);
+  if (plan.sort == "multi-actor" && plan.groups.empty())
+    plan.groups = SplitByPart(scene.polydata, options.partArray);
   return plan;
 }
 
@@ -1902,7 +2187,12 @@ int Render(const Options& options)
   vtkNew<vtkRenderer> renderer;
   renderer->SetBackground(kBackground[0], kBackground[1], kBackground[2]);
   window->AddRenderer(renderer);
-  SetUpCamera(options, renderer, pd, scene.zUp); // auto looks at what the first frame sees
+  // With --cameras, every camera is one frame; else the command line's camera, orbited.
+  const bool perCamera = !options.cameras.empty();
+  const std::vector<scenevis::tool::CameraSpec> cameras =
+    perCamera ? options.cameras : std::vector<scenevis::tool::CameraSpec>{ options.camera };
+  const int frameCount = perCamera ? static_cast<int>(cameras.size()) : options.frames;
+  SetUpCamera(cameras[0], renderer, pd, scene.zUp); // auto looks at what the first frame sees
   const ScenePlan plan = PlanScene(options, scene, options.sort, renderer);
   const bool translucent = plan.facts.translucentFraction > 0.0;
   const std::string& method = plan.sort;
@@ -1911,19 +2201,20 @@ int Render(const Options& options)
   MethodPipeline pipeline(method, pd, renderer, onTerminal, &plan.groups, plan.cull.chunked);
   if (method == "multi-actor")
   {
+    const std::string& part = options.partArray;
     reason += "; " + std::to_string(pipeline.Parts()) +
-      (pipeline.Parts() == 1 ? " actor (the scene has no PartId parts)"
-          : plan.groups.size() > 1
-          ? (plan.facts.rooms > 0 ? " actors, one per part (PartId) and room (RoomId)"
-                                  : " actors, one per part (PartId)")
-          : " actors, one per PartId");
+      (pipeline.Parts() == 1 ? " actor (the scene has no " + part + " parts)"
+          : plan.cull.needsActors && plan.facts.rooms > 0
+          ? " actors, one per part (" + part + ") and room (" + options.roomArray + ")"
+          : " actors, one per part (" + part + ")");
   }
-  SetUpCamera(options, renderer, pd, scene.zUp); // again: the clipping range from the actors
+  SetUpCamera(cameras[0], renderer, pd, scene.zUp); // again: the clipping range from the actors
   const CullSetup culling(plan.cull, pipeline, renderer, pd, scene.portals, onTerminal);
 
   struct Frame
   {
     std::string file;
+    std::string camera; ///< JSON
     bool cameraUnchanged = false;
     bool sorted = false;
     bool cullReused = false;
@@ -1937,18 +2228,28 @@ int Render(const Options& options)
   std::vector<Frame> frames;
   double buildMs = 0.0;
   vtkNew<ProgressBar> progress;
-  progress->Label = "rendering " + std::to_string(options.frames) + " frames";
-  const bool showFrames = onTerminal && options.frames > 1;
-  for (int f = 0; f < options.frames; ++f)
+  progress->Label = "rendering " + std::to_string(frameCount) + " frames";
+  const bool showFrames = onTerminal && frameCount > 1;
+  for (int f = 0; f < frameCount; ++f)
   {
+    const scenevis::tool::CameraSpec& spec = cameras[perCamera ? static_cast<std::size_t>(f) : 0];
     Frame frame;
-    frame.file = FrameFileName(options.out, f, options.frames);
-    // An orbit of 0 degrees leaves the camera as it is: nothing needs sorting or culling again.
-    frame.cameraUnchanged = f > 0 && options.orbit == 0.0;
-    if (f > 0 && !frame.cameraUnchanged)
+    if (perCamera)
     {
-      renderer->GetActiveCamera()->Azimuth(options.orbit);
-      renderer->ResetCameraClippingRange();
+      frame.file = CameraFileName(options.out, static_cast<std::size_t>(f), ".png");
+      if (f > 0)
+        SetUpCamera(spec, renderer, pd, scene.zUp);
+    }
+    else
+    {
+      frame.file = FrameFileName(options.out, f, options.frames);
+      // An orbit of 0 degrees leaves the camera as it is: nothing needs sorting or culling again.
+      frame.cameraUnchanged = f > 0 && options.orbit == 0.0;
+      if (f > 0 && !frame.cameraUnchanged)
+      {
+        renderer->GetActiveCamera()->Azimuth(options.orbit);
+        ResetClippingRange(spec, renderer);
+      }
     }
     pipeline.Update();
     const auto renderStart = std::chrono::steady_clock::now();
@@ -1965,6 +2266,7 @@ int Render(const Options& options)
     frame.propsDrawn = culling.PropsDrawn();
     frame.trianglesDrawn = culling.TrianglesDrawn();
     frame.polygonsDrawn = pipeline.Fragments();
+    frame.camera = JsonCamera(renderer->GetActiveCamera(), spec.FixedClippingRange());
     if (f == 0)
     {
       buildMs = pipeline.BuildMs();
@@ -1975,12 +2277,15 @@ int Render(const Options& options)
     }
     if (scenevis::testing::CoveredFraction(image, kBackgroundRgb) <= 0.0)
     {
-      throw std::runtime_error("the rendered image is empty (nothing in view?)");
+      throw std::runtime_error(
+        (perCamera ? "camera " + std::to_string(f) + " of " + options.camerasFile + ": "
+                   : std::string()) +
+        "the rendered image is empty (nothing in view?)");
     }
     frames.push_back(frame);
     if (showFrames)
     {
-      progress->Show(static_cast<double>(f + 1) / options.frames);
+      progress->Show(static_cast<double>(f + 1) / frameCount);
     }
   }
 
@@ -2007,6 +2312,8 @@ int Render(const Options& options)
        << "],\n  \"load_ms\": " << scene.loadMs << ",\n  \"window_ms\": " << windowMs
        << ",\n  \"build_ms\": " << buildMs << ",\n  \"cull_setup_ms\": " << culling.SetupMs()
        << ",\n  \"sort_in_render\": " << (pipeline.SortsInRender() ? "true" : "false");
+  if (perCamera)
+    json << ",\n  \"cameras_file\": " << JsonString(options.camerasFile);
   pipeline.Describe(json, details);
   json << ",\n  \"frames\": [";
   for (std::size_t i = 0; i < frames.size(); ++i)
@@ -2019,7 +2326,8 @@ int Render(const Options& options)
          << ", \"sort_ms\": " << frame.sortMs << ", \"cull_ms\": " << frame.cullMs
          << ", \"render_ms\": " << frame.renderMs << ", \"props_drawn\": " << frame.propsDrawn
          << ", \"triangles_drawn\": " << frame.trianglesDrawn
-         << ", \"polygons_drawn\": " << frame.polygonsDrawn << "}";
+         << ", \"polygons_drawn\": " << frame.polygonsDrawn
+         << ",\n     \"camera\": " << frame.camera << "}";
   }
   json << "\n  ]\n}\n";
   if (!options.report.empty())
@@ -2084,13 +2392,6 @@ std::string JsonIds(const std::set<long long>& ids)
   return out.str() + "]";
 }
 
-std::string JsonVector(const double* v)
-{
-  std::ostringstream out;
-  out << std::setprecision(9) << "[" << v[0] << ", " << v[1] << ", " << v[2] << "]";
-  return out.str();
-}
-
 /// The key of a cell: its values of the arrays the scene is split into actors by.
 std::vector<long long> CellKey(const std::vector<vtkDataArray*>& arrays, vtkIdType cell)
 {
@@ -2100,12 +2401,13 @@ std::vector<long long> CellKey(const std::vector<vtkDataArray*>& arrays, vtkIdTy
   return key;
 }
 
-std::vector<vtkDataArray*> KeyArrays(vtkPolyData* pd)
+/// The arrays of @p names (the room and the part array) that @p pd has.
+std::vector<vtkDataArray*> KeyArrays(vtkPolyData* pd, const std::vector<std::string>& names)
 {
   std::vector<vtkDataArray*> arrays;
-  for (const char* name : { "RoomId", "PartId" })
+  for (const std::string& name : names)
   {
-    if (vtkDataArray* array = pd->GetCellData()->GetArray(name))
+    if (vtkDataArray* array = pd->GetCellData()->GetArray(name.c_str()))
       arrays.push_back(array);
   }
   return arrays;
@@ -2115,18 +2417,22 @@ std::vector<vtkDataArray*> KeyArrays(vtkPolyData* pd)
 /// whole scene) against what the mode drew. False negatives break the promise of a conservative
 /// mode; over-draw is what it costs. Translucent surfaces are opaque in the ID render, so what
 /// is seen only through glass counts as over-draw, never as a false negative.
-void DescribeExact(std::ostream& json, vtkRenderWindow* window, vtkCamera* camera, vtkPolyData* pd,
+void DescribeExact(std::ostream& json, vtkRenderWindow* window, vtkCamera* camera,
+  bool fixedClippingRange, vtkPolyData* pd, const std::vector<std::string>& keys,
   const MethodPipeline& pipeline, const CullSetup& culling)
 {
   namespace st = scenevis::testing;
   const auto start = std::chrono::steady_clock::now();
-  const st::IdImage visibleIds = st::RenderVisibleIds(window, pd, camera);
+  st::IdRenderOptions idOptions;
+  // A fixed clipping range clips what the mode draws too: the exact set must be clipped alike.
+  idOptions.cameraClippingRange = fixedClippingRange;
+  const st::IdImage visibleIds = st::RenderIdBuffer(window, pd, camera, idOptions);
   const std::vector<std::uint32_t> visibleCells = st::VisibleSet(visibleIds);
   const double exactMs = Milliseconds(start);
 
   // Which cells of the scene were drawn: the chunked mapper's cells, the cells of the actors
-  // kept (matched by their RoomId/PartId key), or all cells of the one actor if it was kept.
-  const std::vector<vtkDataArray*> arrays = KeyArrays(pd);
+  // kept (matched by their room and part key), or all cells of the one actor if it was kept.
+  const std::vector<vtkDataArray*> arrays = KeyArrays(pd, keys);
   const vtkIdType cells = pd->GetNumberOfCells();
   std::vector<char> drawn(static_cast<std::size_t>(cells), 0);
   std::set<std::vector<long long>> drawnKeys;
@@ -2147,7 +2453,7 @@ void DescribeExact(std::ostream& json, vtkRenderWindow* window, vtkCamera* camer
       auto* input =
         actor ? vtkPolyData::SafeDownCast(actor->GetMapper()->GetInputDataObject(0, 0)) : nullptr;
       if (input && input->GetNumberOfCells() > 0)
-        drawnKeys.insert(CellKey(KeyArrays(input), 0));
+        drawnKeys.insert(CellKey(KeyArrays(input, keys), 0));
     }
     for (vtkIdType c = 0; c < cells; ++c)
       drawn[static_cast<std::size_t>(c)] = drawnKeys.count(CellKey(arrays, c)) ? 1 : 0;
@@ -2199,8 +2505,9 @@ void DescribeExact(std::ostream& json, vtkRenderWindow* window, vtkCamera* camer
   json << ", \"id_render_ms\": " << exactMs << "}";
 }
 
-/// `scenevis cull`: what a mode keeps for one camera, as JSON on stdout. The visible set is that
-/// of a real (offscreen) render, so it is exactly what `render` would draw.
+/// `scenevis cull`: what a mode keeps for one camera (or each camera of --cameras: an array), as
+/// JSON on stdout. The visible set is that of a real (offscreen) render, so it is exactly what
+/// `render` would draw.
 int Cull(const Options& options)
 {
   if (!options.backend.empty())
@@ -2220,97 +2527,122 @@ int Cull(const Options& options)
       WritePolyData(scene.portals, exported.back());
     }
   }
+  const bool perCamera = !options.cameras.empty();
+  const std::vector<scenevis::tool::CameraSpec> cameras =
+    perCamera ? options.cameras : std::vector<scenevis::tool::CameraSpec>{ options.camera };
   vtkSmartPointer<vtkRenderWindow> window =
     scenevis::testing::MakeRenderWindow(options.width, options.height);
   vtkNew<vtkRenderer> renderer;
   window->AddRenderer(renderer);
-  SetUpCamera(options, renderer, pd, scene.zUp);
+  SetUpCamera(cameras[0], renderer, pd, scene.zUp);
   // Visibility does not depend on the drawing order: nothing is sorted.
   const ScenePlan plan = PlanScene(options, scene, "none", renderer);
   MethodPipeline pipeline("none", pd, renderer, false, &plan.groups, plan.cull.chunked);
-  SetUpCamera(options, renderer, pd, scene.zUp);
+  SetUpCamera(cameras[0], renderer, pd, scene.zUp); // again: the clipping range from the actors
   const CullSetup culling(
     plan.cull, pipeline, renderer, pd, scene.portals, ProgressBar::OnTerminal());
-  window->Render();
+  const std::vector<std::string> keys = { options.roomArray, options.partArray };
+  const char* const partArray = options.partArray.c_str();
+  const char* const roomArray = options.roomArray.c_str();
 
-  // What was drawn: the visible actors' polygons, or the chunked mapper's drawn cells.
-  std::set<long long> parts;
-  std::set<long long> rooms;
-  vtkIdType propsVisible = culling.PropsDrawn();
-  if (vtkChunkedPolyDataMapper* chunked = pipeline.GetChunkedMapper())
+  std::vector<std::string> results;
+  for (std::size_t c = 0; c < cameras.size(); ++c)
   {
-    std::vector<vtkIdType> cells;
-    chunked->GetDrawnCellIds(cells);
-    parts = DistinctValues(pd, "PartId", &cells);
-    rooms = DistinctValues(pd, "RoomId", &cells);
-    propsVisible = cells.empty() ? 0 : 1;
+    const scenevis::tool::CameraSpec& spec = cameras[c];
+    if (c > 0)
+      SetUpCamera(spec, renderer, pd, scene.zUp);
+    window->Render();
+
+    // What was drawn: the visible actors' polygons, or the chunked mapper's drawn cells.
+    std::set<long long> parts;
+    std::set<long long> rooms;
+    vtkIdType propsVisible = culling.PropsDrawn();
+    if (vtkChunkedPolyDataMapper* chunked = pipeline.GetChunkedMapper())
+    {
+      std::vector<vtkIdType> cells;
+      chunked->GetDrawnCellIds(cells);
+      parts = DistinctValues(pd, partArray, &cells);
+      rooms = DistinctValues(pd, roomArray, &cells);
+      propsVisible = cells.empty() ? 0 : 1;
+    }
+    else
+    {
+      std::set<vtkProp*> visible;
+      if (const std::vector<vtkProp*>* kept = culling.Visible())
+        visible.insert(kept->begin(), kept->end());
+      for (const auto& actor : pipeline.GetActors())
+      {
+        if (culling.Visible() && !visible.count(actor))
+          continue;
+        auto* input = vtkPolyData::SafeDownCast(actor->GetMapper()->GetInputDataObject(0, 0));
+        if (!input)
+          continue;
+        const std::set<long long> p = DistinctValues(input, partArray);
+        const std::set<long long> r = DistinctValues(input, roomArray);
+        parts.insert(p.begin(), p.end());
+        rooms.insert(r.begin(), r.end());
+      }
+    }
+    vtkCamera* camera = renderer->GetActiveCamera();
+    std::ostringstream json;
+    json << std::fixed << std::setprecision(3);
+    json << "{\n  \"command\": \"cull\",\n  \"scene\": " << JsonString(scene.description)
+         << ",\n  \"camera\": " << JsonCamera(camera, spec.FixedClippingRange())
+         << ",\n  \"size\": [" << options.width << ", " << options.height
+         << "],\n  \"culling\": {\"method\": " << JsonString(plan.cull.method)
+         << ", \"reason\": " << JsonString(plan.cull.reason);
+    culling.Describe(json);
+    json << "},\n  \"cull_ms\": " << culling.CullMs()
+         << ",\n  \"props\": {\"total\": " << pipeline.Parts() << ", \"visible\": " << propsVisible
+         << "},\n  \"triangles\": {\"total\": " << plan.facts.triangles
+         << ", \"visible\": " << culling.TrianglesDrawn()
+         << "},\n  \"parts\": {\"total\": " << plan.facts.parts << ", \"visible\": " << parts.size()
+         << ", \"ids\": " << JsonIds(parts) << "}";
+    if (plan.facts.rooms > 0)
+    {
+      // -1 is the outside (facade, roof): listed when its props are drawn, not counted as a room.
+      const auto insideRooms =
+        std::count_if(rooms.begin(), rooms.end(), [](long long room) { return room >= 0; });
+      json << ",\n  \"rooms\": {\"total\": " << plan.facts.rooms << ", \"visible\": " << insideRooms
+           << ", \"ids\": " << JsonIds(rooms) << "}";
+    }
+    if (vtkChunkedPolyDataMapper* chunked = pipeline.GetChunkedMapper())
+    {
+      json << ",\n  \"chunks\": {\"total\": " << chunked->GetNumberOfChunks()
+           << ", \"visible\": " << chunked->GetNumberOfChunksDrawn() << "}";
+    }
+    if (options.exact)
+    {
+      DescribeExact(json, window, camera, spec.FixedClippingRange(), pd, keys, pipeline, culling);
+    }
+    if (!exported.empty())
+    {
+      json << ",\n  \"exported\": [";
+      for (std::size_t i = 0; i < exported.size(); ++i)
+        json << (i ? ", " : "") << JsonString(exported[i]);
+      json << "]";
+    }
+    json << "\n}";
+    results.push_back(json.str());
+  }
+  std::string text;
+  if (perCamera)
+  {
+    // One result per camera, in the file's order.
+    text = "[\n";
+    for (std::size_t i = 0; i < results.size(); ++i)
+      text += results[i] + (i + 1 < results.size() ? ",\n" : "\n");
+    text += "]\n";
   }
   else
   {
-    std::set<vtkProp*> visible;
-    if (const std::vector<vtkProp*>* kept = culling.Visible())
-      visible.insert(kept->begin(), kept->end());
-    for (const auto& actor : pipeline.GetActors())
-    {
-      if (culling.Visible() && !visible.count(actor))
-        continue;
-      auto* input = vtkPolyData::SafeDownCast(actor->GetMapper()->GetInputDataObject(0, 0));
-      if (!input)
-        continue;
-      const std::set<long long> p = DistinctValues(input, "PartId");
-      const std::set<long long> r = DistinctValues(input, "RoomId");
-      parts.insert(p.begin(), p.end());
-      rooms.insert(r.begin(), r.end());
-    }
+    text = results.front() + "\n";
   }
-  vtkCamera* camera = renderer->GetActiveCamera();
-  std::ostringstream json;
-  json << std::fixed << std::setprecision(3);
-  json << "{\n  \"command\": \"cull\",\n  \"scene\": " << JsonString(scene.description)
-       << ",\n  \"camera\": {\"position\": " << JsonVector(camera->GetPosition())
-       << ", \"focal_point\": " << JsonVector(camera->GetFocalPoint())
-       << ", \"view_up\": " << JsonVector(camera->GetViewUp())
-       << ", \"parallel\": " << (camera->GetParallelProjection() ? "true" : "false")
-       << "},\n  \"size\": [" << options.width << ", " << options.height
-       << "],\n  \"culling\": {\"method\": " << JsonString(plan.cull.method)
-       << ", \"reason\": " << JsonString(plan.cull.reason);
-  culling.Describe(json);
-  json << "},\n  \"cull_ms\": " << culling.CullMs()
-       << ",\n  \"props\": {\"total\": " << pipeline.Parts() << ", \"visible\": " << propsVisible
-       << "},\n  \"triangles\": {\"total\": " << plan.facts.triangles
-       << ", \"visible\": " << culling.TrianglesDrawn()
-       << "},\n  \"parts\": {\"total\": " << plan.facts.parts << ", \"visible\": " << parts.size()
-       << ", \"ids\": " << JsonIds(parts) << "}";
-  if (plan.facts.rooms > 0)
-  {
-    // -1 is the outside (facade, roof): listed when its props are drawn, not counted as a room.
-    const auto insideRooms =
-      std::count_if(rooms.begin(), rooms.end(), [](long long room) { return room >= 0; });
-    json << ",\n  \"rooms\": {\"total\": " << plan.facts.rooms << ", \"visible\": " << insideRooms
-         << ", \"ids\": " << JsonIds(rooms) << "}";
-  }
-  if (vtkChunkedPolyDataMapper* chunked = pipeline.GetChunkedMapper())
-  {
-    json << ",\n  \"chunks\": {\"total\": " << chunked->GetNumberOfChunks()
-         << ", \"visible\": " << chunked->GetNumberOfChunksDrawn() << "}";
-  }
-  if (options.exact)
-  {
-    DescribeExact(json, window, renderer->GetActiveCamera(), pd, pipeline, culling);
-  }
-  if (!exported.empty())
-  {
-    json << ",\n  \"exported\": [";
-    for (std::size_t i = 0; i < exported.size(); ++i)
-      json << (i ? ", " : "") << JsonString(exported[i]);
-    json << "]";
-  }
-  json << "\n}\n";
-  std::cout << json.str();
+  std::cout << text;
   if (!options.report.empty())
   {
     std::ofstream report(options.report);
-    report << json.str();
+    report << text;
     if (!report)
       throw std::runtime_error("cannot write '" + options.report + "'");
   }
@@ -2388,9 +2720,9 @@ const char* const kBenchMethods[] = { "none", "oit", "depth-sort", "painter", "b
 const char* const kReferenceMethod = "peel:100";
 
 /// Runs one method on a loaded scene; `reference` holds peel:100's frames (filled when `method`
-/// is the reference itself).
+/// is the reference itself); `parts` are the scene's parts (multi-actor draws one actor each).
 BenchRow BenchMethod(const Options& options, const std::string& method, const std::string& label,
-  vtkPolyData* pd, vtkRenderWindow* window,
+  vtkPolyData* pd, const std::vector<vtkSmartPointer<vtkPolyData>>& parts, vtkRenderWindow* window,
   std::vector<vtkSmartPointer<vtkImageData>>& reference)
 {
   namespace st = scenevis::testing;
@@ -2404,8 +2736,9 @@ BenchRow BenchMethod(const Options& options, const std::string& method, const st
   renderer->SetBackground(kBackground[0], kBackground[1], kBackground[2]);
   window->AddRenderer(renderer);
   {
-    MethodPipeline pipeline(method, pd, renderer, false);
-    SetUpCamera(options, renderer, pd);
+    MethodPipeline pipeline(
+      method, pd, renderer, false, method == "multi-actor" ? &parts : nullptr);
+    SetUpCamera(options.camera, renderer, pd);
     vtkCamera* camera = renderer->GetActiveCamera();
 
     // Warm-up frame at the start camera: tree builds, shader compilation, first uploads.
@@ -2420,7 +2753,7 @@ BenchRow BenchMethod(const Options& options, const std::string& method, const st
     for (int f = 0; f < options.frames; ++f)
     {
       camera->Azimuth(options.orbit);
-      renderer->ResetCameraClippingRange();
+      ResetClippingRange(options.camera, renderer);
       start = std::chrono::steady_clock::now();
       pipeline.Update();
       window->Render();
@@ -2745,7 +3078,8 @@ int Bench(const Options& options)
       const std::string label = SceneLabel(scene);
       labels.push_back(label);
       const vtkIdType triangles = CountTriangles(pd);
-      const std::size_t parts = SplitByPart(pd).size();
+      const std::vector<vtkSmartPointer<vtkPolyData>> groups = SplitByPart(pd, options.partArray);
+      const std::size_t parts = groups.size();
       std::cout << "  " << label << ": " << loaded.description << ", " << triangles
                 << " triangles, " << parts << " part(s)\n";
 
@@ -2768,7 +3102,7 @@ int Bench(const Options& options)
         }
         else if (method == "multi-actor" && parts < 2)
         {
-          row.note = "skipped: the scene has no parts (PartId)";
+          row.note = "skipped: the scene has no parts (" + options.partArray + ")";
         }
         if (!row.note.empty())
         {
@@ -2781,7 +3115,7 @@ int Bench(const Options& options)
         }
         else
         {
-          row = BenchMethod(sceneOptions, method, label, pd, window, reference);
+          row = BenchMethod(sceneOptions, method, label, pd, groups, window, reference);
           std::cout << "    " << std::setw(11) << std::left << method << std::right
                     << " frame " << std::setw(9) << row.frameMs << " ms, sort " << std::setw(9)
                     << row.sortMs << " ms, error " << std::setw(6) << row.meanAbsError
@@ -2807,27 +3141,19 @@ int Bench(const Options& options)
   return EXIT_SUCCESS;
 }
 
+/// `scenevis sort`: the polydata in BSP order for the camera, or for each camera of --cameras
+/// (OUT-0.vtp, OUT-1.vtp, ...: the tree is built once, each camera only re-orders it).
 int Sort(const Options& options)
 {
   const LoadedScene scene = LoadScene(options);
-  vtkNew<vtkCamera> camera;
-  camera->SetParallelProjection(options.parallel);
   double bounds[6];
   scene.polydata->GetBounds(bounds);
   const double center[3] = { (bounds[0] + bounds[1]) / 2, (bounds[2] + bounds[3]) / 2,
     (bounds[4] + bounds[5]) / 2 };
-  if (options.hasCamera)
-  {
-    camera->SetPosition(options.eye);
-    camera->SetFocalPoint(options.hasFocal ? options.focal : center);
-  }
-  else
-  {
-    const double size =
-      std::max({ bounds[1] - bounds[0], bounds[3] - bounds[2], bounds[5] - bounds[4], 1e-12 });
-    camera->SetFocalPoint(center);
-    camera->SetPosition(center[0] + size, center[1] + size, center[2] + 2 * size);
-  }
+  const bool perCamera = !options.cameras.empty();
+  const std::vector<scenevis::tool::CameraSpec> cameras =
+    perCamera ? options.cameras : std::vector<scenevis::tool::CameraSpec>{ options.camera };
+  vtkNew<vtkCamera> camera;
   vtkNew<vtkBSPSortFilter> sorter;
   sorter->SetInputData(scene.polydata);
   sorter->SetCamera(camera);
@@ -2841,22 +3167,55 @@ int Sort(const Options& options)
   {
     sorter->AddObserver(vtkCommand::ProgressEvent, progress);
   }
-  sorter->Update();
   vtkNew<vtkXMLPolyDataWriter> writer;
   writer->SetInputConnection(sorter->GetOutputPort());
-  writer->SetFileName(options.out.c_str());
   writer->SetDataModeToBinary();
-  if (writer->Write() != 1)
+  for (std::size_t c = 0; c < cameras.size(); ++c)
   {
-    throw std::runtime_error("cannot write '" + options.out + "'");
+    // The order depends on the eye (perspective) or the view direction (parallel) only; the rest
+    // is set so that the output is what a renderer with this camera would see in this order.
+    const scenevis::tool::CameraSpec& spec = cameras[c];
+    camera->SetParallelProjection(spec.parallel);
+    if (spec.hasEye)
+    {
+      camera->SetPosition(spec.eye);
+      camera->SetFocalPoint(spec.hasFocal ? spec.focal : center);
+    }
+    else
+    {
+      const double size =
+        std::max({ bounds[1] - bounds[0], bounds[3] - bounds[2], bounds[5] - bounds[4], 1e-12 });
+      camera->SetFocalPoint(center);
+      camera->SetPosition(center[0] + size, center[1] + size, center[2] + 2 * size);
+    }
+    if (spec.hasUp)
+    {
+      camera->SetViewUp(spec.up);
+      camera->OrthogonalizeViewUp();
+    }
+    if (spec.viewAngle > 0.0)
+      camera->SetViewAngle(spec.viewAngle);
+    if (spec.parallelScale > 0.0)
+      camera->SetParallelScale(spec.parallelScale);
+    if (spec.FixedClippingRange())
+      camera->SetClippingRange(spec.clippingRange);
+    sorter->Update();
+    const std::string out = perCamera ? CameraFileName(options.out, c, ".vtp") : options.out;
+    writer->SetFileName(out.c_str());
+    if (writer->Write() != 1)
+    {
+      throw std::runtime_error("cannot write '" + out + "'");
+    }
+    std::cout << std::fixed << std::setprecision(2) << "scenevis sort: " << scene.description
+              << ", " << scene.polydata->GetNumberOfCells() << " polygons -> "
+              << sorter->GetNumberOfFragments() << " fragments (" << sorter->GetNumberOfSplits()
+              << " splits), build " << sorter->GetLastBuildTime() * 1e3 << " ms, order "
+              << sorter->GetLastOrderTime() * 1e3 << " ms, eye "
+              << JsonVector(camera->GetPosition()) << " -> " << out << "\n";
   }
-  std::cout << std::fixed << std::setprecision(2) << "scenevis sort: " << scene.description << ", "
-            << scene.polydata->GetNumberOfCells() << " polygons -> " << sorter->GetNumberOfFragments()
-            << " fragments (" << sorter->GetNumberOfSplits() << " splits), build "
-            << sorter->GetLastBuildTime() * 1e3 << " ms, order " << sorter->GetLastOrderTime() * 1e3
-            << " ms -> " << options.out << "\n";
   return EXIT_SUCCESS;
 }
+
 /// A message as the one line the exit-code contract promises: VTK's "ERROR: In FILE, line N"
 /// headers dropped, line breaks folded.
 std::string OneLine(const std::string& message)

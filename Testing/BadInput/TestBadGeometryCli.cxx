@@ -8,6 +8,11 @@
 //   Rejected   exit 1 with exactly one "scenevis: ..." line on stderr matching the pattern.
 //
 // A crash, a hang, exit 0 with an empty image or any other outcome than the table's fails.
+//
+// A second table holds bad inputs beside the geometry, each run once and Rejected (exit 1, one
+// line, no image written): part arrays that are not one integer per cell or have more than a
+// million distinct values, a part array named but missing, and camera files (--cameras) that
+// are not JSON, nest without end, hold NaN or bytes, or describe no camera.
 // Needs no fetched data: the files are written by this test.
 //
 // Usage: scenevis_bad_input_geometry <path of scenevis> <scratch directory>
@@ -17,6 +22,7 @@
 
 #include <vtkCellArray.h>
 #include <vtkCellData.h>
+#include <vtkFloatArray.h>
 #include <vtkIdTypeArray.h>
 #include <vtkImageData.h>
 #include <vtkNew.h>
@@ -30,9 +36,11 @@
 
 #include <cstdio>
 #include <cstdlib>
+#include <fstream>
 #include <functional>
 #include <iostream>
 #include <limits>
+#include <optional>
 #include <regex>
 #include <string>
 #include <vector>
@@ -174,6 +182,56 @@ vtkSmartPointer<vtkPolyData> AwkwardPolygons()
   return pd;
 }
 
+/// The two spheres with their PartId array replaced by @p parts (same name, one tuple a cell).
+vtkSmartPointer<vtkPolyData> WithPartArray(vtkSmartPointer<vtkDataArray> parts)
+{
+  vtkSmartPointer<vtkPolyData> pd = TwoSpheres();
+  const vtkIdType cells = pd->GetNumberOfCells();
+  parts->SetName("PartId");
+  parts->SetNumberOfTuples(cells);
+  for (vtkIdType c = 0; c < cells; ++c)
+  {
+    for (int k = 0; k < parts->GetNumberOfComponents(); ++k)
+      parts->SetComponent(c, k, c < cells / 2 ? 0.0 : 1.0);
+  }
+  pd->GetCellData()->RemoveArray("PartId");
+  pd->GetCellData()->AddArray(parts);
+  return pd;
+}
+
+/// 1,000,001 triangles (all on the same three points) with a distinct PartId each: one actor
+/// per part would be a million actors.
+vtkSmartPointer<vtkPolyData> MillionParts()
+{
+  constexpr vtkIdType kCells = 1000001;
+  auto pd = vtkSmartPointer<vtkPolyData>::New();
+  vtkNew<vtkPoints> points;
+  points->InsertNextPoint(0, 0, 0);
+  points->InsertNextPoint(1, 0, 0);
+  points->InsertNextPoint(0, 1, 0);
+  vtkNew<vtkIdTypeArray> offsets;
+  vtkNew<vtkIdTypeArray> connectivity;
+  offsets->SetNumberOfValues(kCells + 1);
+  connectivity->SetNumberOfValues(3 * kCells);
+  vtkNew<vtkIdTypeArray> parts;
+  parts->SetName("PartId");
+  parts->SetNumberOfValues(kCells);
+  for (vtkIdType c = 0; c < kCells; ++c)
+  {
+    offsets->SetValue(c, 3 * c);
+    for (vtkIdType k = 0; k < 3; ++k)
+      connectivity->SetValue(3 * c + k, k);
+    parts->SetValue(c, c);
+  }
+  offsets->SetValue(kCells, 3 * kCells);
+  vtkNew<vtkCellArray> polys;
+  polys->SetData(offsets, connectivity);
+  pd->SetPoints(points);
+  pd->SetPolys(polys);
+  pd->GetCellData()->AddArray(parts);
+  return pd;
+}
+
 enum class Outcome
 {
   Renders,
@@ -189,6 +247,61 @@ struct Case
 };
 
 const char* const kMethods[] = { "bsp", "painter", "bsp-mapper", "multi-actor", "depth-sort" };
+
+/// A bad input other than geometry: a scene file (@p make) or a camera file (@p text), and the
+/// options that read it; always Rejected.
+struct InputCase
+{
+  const char* name;
+  std::function<vtkSmartPointer<vtkPolyData>()> make; ///< null: the two spheres
+  std::optional<std::string> cameras;                 ///< camera file text; none: no --cameras
+  std::vector<std::string> options;
+  const char* message;
+};
+
+bool WriteText(const std::string& path, const std::string& text)
+{
+  std::ofstream out(path, std::ios::binary);
+  out << text;
+  return static_cast<bool>(out);
+}
+
+/// One line "ok"/"FAIL" for a run expected to exit 1 with one "scenevis: " line matching
+/// @p message and to write no image @p png; returns whether it failed.
+bool ReportRejected(
+  const std::string& label, const Run& run, const char* message, const std::string& png)
+{
+  std::vector<std::string> toolLines;
+  const std::vector<std::string> errLines = Lines(run.err);
+  for (const std::string& line : errLines)
+  {
+    if (line.rfind("scenevis: ", 0) == 0)
+      toolLines.push_back(line);
+  }
+  std::string problem;
+  if (run.timedOut)
+    problem = "the tool hangs";
+  else if (run.signal != 0)
+    problem = "the tool crashes (signal " + std::to_string(run.signal) + ")";
+  else if (run.exitCode != 1)
+    problem = "exit " + std::to_string(run.exitCode) + ", expected 1";
+  else if (toolLines.size() != 1 || errLines.size() != 1)
+    problem = "not exactly one line on stderr, a 'scenevis: ' one";
+  else if (!std::regex_search(toolLines.front(), std::regex(message)))
+    problem = std::string("error line does not match '") + message + "'";
+  else if (std::ifstream(png).good())
+    problem = "an image was written although the input was rejected";
+  std::cout << (problem.empty() ? "ok   " : "FAIL ") << label << ": "
+            << (toolLines.empty() ? std::string("(no error line)") : toolLines.front()) << " ("
+            << static_cast<int>(run.seconds * 1000) << " ms)\n";
+  if (!problem.empty())
+  {
+    std::cout << "     " << problem << "\n";
+    for (std::size_t l = 0; l < errLines.size() && l < 12; ++l)
+      std::cout << "     | " << errLines[l] << "\n";
+  }
+  return !problem.empty();
+}
 } // namespace
 
 int main(int argc, char* argv[])
@@ -239,8 +352,9 @@ int main(int argc, char* argv[])
     {
       const std::string png = scratch + "/frame.png";
       std::remove(png.c_str());
-      const Run run = RunChild(
-        { tool, "render", "--scene", file, "--sort", method, "--size", "64x48", "--out", png },
+      // At opacity 0.4: a model file is opaque by default, and these methods are for translucency.
+      const Run run = RunChild({ tool, "render", "--scene", file, "--opacity", "0.4", "--sort",
+                                 method, "--size", "64x48", "--out", png },
         scratch);
       const std::vector<std::string> errLines = Lines(run.err);
       std::vector<std::string> toolLines;
@@ -312,6 +426,67 @@ int main(int argc, char* argv[])
       }
     }
   }
+  const std::string deep = std::string(100000, '[') + std::string(100000, ']');
+  std::string bytes;
+  for (int b = 0; b < 256; ++b)
+    bytes += static_cast<char>(b);
+  const InputCase inputs[] = {
+    { "part-array-float", [] { return WithPartArray(vtkSmartPointer<vtkFloatArray>::New()); },
+      std::nullopt, {}, "cell array 'PartId' .*float values, not one integer per cell" },
+    { "part-array-2-components",
+      []
+      {
+        auto parts = vtkSmartPointer<vtkIdTypeArray>::New();
+        parts->SetNumberOfComponents(2);
+        return WithPartArray(parts);
+      },
+      std::nullopt, {}, "cell array 'PartId' .*2-component" },
+    { "part-array-1000001-values", MillionParts, std::nullopt, { "--sort", "none" },
+      "more than 1000000 distinct values" },
+    { "part-array-named-missing", nullptr, std::nullopt, { "--part-array", "Body" },
+      "no cell array 'Body' .*its cell arrays: PartId" },
+    { "cameras-not-json", nullptr, "eye 0 0 15", {}, "--cameras .*not valid JSON" },
+    { "cameras-nested-100000-deep", nullptr, deep, {}, "nested deeper than" },
+    { "cameras-bytes-0-255", nullptr, bytes, {}, "not valid JSON: .*unexpected byte 0x00$" },
+    { "cameras-nan", nullptr, R"([{"eye": [NaN, 0, 15], "focal": [0, 0, 0]}])", {},
+      "NaN and Infinity" },
+    { "cameras-none", nullptr, "[]", {}, "has no cameras" },
+    { "cameras-eye-is-focal", nullptr, R"([{"eye": [0, 0, 0], "focal": [0, 0, 0]}])", {},
+      "'eye' equals 'focal'" },
+  };
+  for (const InputCase& c : inputs)
+  {
+    const std::string file = scratch + "/" + c.name + ".vtp";
+    vtkNew<vtkXMLPolyDataWriter> writer;
+    writer->SetInputData(c.make ? c.make() : TwoSpheres());
+    writer->SetFileName(file.c_str());
+    if (writer->Write() != 1)
+    {
+      std::cout << "FAIL cannot write " << file << "\n";
+      ++failures;
+      continue;
+    }
+    const std::string png = scratch + "/input.png";
+    std::remove(png.c_str());
+    std::remove((scratch + "/input-0.png").c_str());
+    std::vector<std::string> command = { tool, "render", "--scene", file, "--size", "64x48",
+      "--out", png };
+    if (c.cameras)
+    {
+      const std::string cameras = scratch + "/" + c.name + ".json";
+      if (!WriteText(cameras, *c.cameras))
+      {
+        std::cout << "FAIL cannot write " << cameras << "\n";
+        ++failures;
+        continue;
+      }
+      command.insert(command.end(), { "--cameras", cameras });
+    }
+    command.insert(command.end(), c.options.begin(), c.options.end());
+    const Run run = RunChild(command, scratch);
+    failures += ReportRejected(c.name, run, c.message, png) ? 1 : 0;
+  }
+
   std::cout << failures << " failed\n";
   return failures == 0 ? EXIT_SUCCESS : EXIT_FAILURE;
 }
