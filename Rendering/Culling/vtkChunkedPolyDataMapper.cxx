@@ -268,6 +268,9 @@ void vtkChunkedPolyDataMapper::Internals::Build(vtkPolyData* input, int chunkSiz
   // Leaf: box of its finite points and normal cone of its triangles (as wound when drawn).
   auto makeLeaf = [&](std::uint32_t nodeIndex, std::uint32_t begin, std::uint32_t end)
   {
+    // The splits left the chunk's triangles in arbitrary order; the input's order keeps the
+    // vertex locality of the mesh and the plain mapper's order (coplanar z ties) inside a chunk.
+    std::sort(perm.begin() + begin, perm.begin() + end);
     Node& node = this->Nodes[nodeIndex];
     const auto chunk = static_cast<std::uint32_t>(this->ChunkBegin.size());
     this->ChunkBegin.push_back(begin);
