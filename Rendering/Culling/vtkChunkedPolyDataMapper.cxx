@@ -72,6 +72,7 @@ struct vtkChunkedPolyDataMapper::Internals
   std::vector<std::uint32_t> ChunkBegin; // chunk c: triangles [b[c], b[c+1]) of the copy
   std::vector<Node> Nodes;               // depth first, root 0 (none without triangles)
   bool HasSurface = false;               // polygons or strips in the input
+  bool DrawsCopy = false;                // the last render drew the copy, not the input
   bool WarnedMismatch = false;
 
   // This frame.
@@ -613,7 +614,7 @@ vtkIdType vtkChunkedPolyDataMapper::GetInputCellId(vtkIdType id) const
   {
     return -1;
   }
-  if (!in.Chunked || id < in.PolyBase)
+  if (!in.Chunked || !in.DrawsCopy || id < in.PolyBase)
   {
     return id; // the input itself is drawn, or a vert / line (shared with the input)
   }
@@ -654,7 +655,19 @@ void vtkChunkedPolyDataMapper::UpdateCameraShiftScale(vtkRenderer* ren, vtkActor
   {
     in.Build(input, this->ChunkSize);
   }
-  if (in.Chunked)
+  // Wireframe, points and edges show the outlines of the cells: those of the input's polygons,
+  // not of our triangles (a quad would show its diagonal). Nothing is culled then anyway.
+  vtkProperty* property = actor->GetProperty();
+  const bool drawsCopy =
+    in.Chunked && property->GetRepresentation() == VTK_SURFACE && !property->GetEdgeVisibility();
+  if (drawsCopy != in.DrawsCopy)
+  {
+    // The mapped colours and the buffers are cached against the MTimes of the mapper and of the
+    // data drawn, which say nothing about which of the two is drawn.
+    in.DrawsCopy = drawsCopy;
+    this->Modified();
+  }
+  if (in.DrawsCopy)
   {
     this->CurrentInput = in.Chunked;
   }

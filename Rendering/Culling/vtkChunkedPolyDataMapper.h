@@ -42,13 +42,15 @@
  * shaders and buffers, the chunk order among the triangles drawn, cell scalars / cell normals
  * through the gl_PrimitiveID offset set per range. Degenerate triangles, polygons of any size,
  * strips and verts / lines / polygons / strips in one input are all culled. Culling is skipped
- * (the superclass draws the whole copy; GetCullingSkipped() says so) only for what it cannot
- * express as triangle ranges: a hardware selector (picking), representations other than
- * surface, edge or vertex visibility, an unusable camera, and more than 2^31 / 3 triangles.
+ * (the superclass draws everything; GetCullingSkipped() says so) only for what it cannot
+ * express as triangle ranges: a hardware selector (picking: the copy is drawn, see below),
+ * vertex visibility, an unusable camera, more than 2^31 / 3 triangles, and representations
+ * other than surface or edge visibility: those show cell outlines, so the superclass draws the
+ * input itself rather than the copy (switching rebuilds the buffers).
  *
- * Limits: picking reports cell ids of the copy (GetInputCellId() maps them back); memory: the
- * copy's triangle connectivity (32-bit ids below 2^31 points) and one cell-data tuple per
- * triangle are a second copy of the input's.
+ * Limits: picking a surface reports cell ids of the copy (GetInputCellId() maps them back);
+ * memory: the copy's triangle connectivity (32-bit ids below 2^31 points) and one cell-data
+ * tuple per triangle are a second copy of the input's.
  *
  * Statistics of the last render: nodes visited, chunks tested / drawn / culled by reason,
  * triangles drawn, draw calls; counters of partition builds and vertex buffer builds.

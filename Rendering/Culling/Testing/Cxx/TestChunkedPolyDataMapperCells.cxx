@@ -13,8 +13,9 @@
 //  (d) back-face culling: normal cones cull (cameras below the surface), images still equal;
 //  (e) picking: cell ids of a hardware selection mapped by GetInputCellId() are exactly the ids
 //      the plain mapper's selection reports;
-//  (f) empty input, verts and lines only, polygons that are all degenerate: drawn without a
-//      warning, nothing reported as skipped.
+//  (f) wireframe: the plain mapper's image (polygon outlines, not our triangles), culling
+//      reported as skipped; empty input, verts and lines only, polygons that are all
+//      degenerate: drawn without a warning, nothing reported as skipped.
 #include "vtkChunkedPolyDataMapper.h"
 
 #include "ChunkedMapperTesting.h"
@@ -419,6 +420,20 @@ int TestChunkedPolyDataMapperCells(int, char*[])
   ok &= Check(chunkedMapper->GetNumberOfVertexBufferBuilds() <= 2,
     "vertex buffers built once per property state (" +
       std::to_string(chunkedMapper->GetNumberOfVertexBufferBuilds()) + ")");
+  // Wireframe and edges outline the input's polygons (no fan diagonals): the input is drawn.
+  for (vtkActor* a : { plain.GetPointer(), chunked.GetPointer() })
+  {
+    a->GetProperty()->SetBackfaceCulling(false);
+    a->GetProperty()->SetRepresentationToWireframe();
+  }
+  RandomCamera(camera, gen, bounds, 0, false);
+  vtkSmartPointer<vtkImageData> plainWires = renderWith(plainRenderer);
+  vtkSmartPointer<vtkImageData> chunkedWires = renderWith(chunkedRenderer);
+  std::string why;
+  const bool sameWires = st::ImagesIdentical(plainWires, chunkedWires, &why);
+  ok &= Check(
+    sameWires && chunkedMapper->GetCullingSkipped() && chunkedMapper->GetInputCellId(1000) == 1000,
+    "wireframe: the input drawn as the plain mapper draws it, ids unmapped " + why);
   ok &= SmallInputs(window);
   return vtkOutput.ExitCode(ok ? EXIT_SUCCESS : EXIT_FAILURE);
 }
