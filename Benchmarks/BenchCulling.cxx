@@ -10,7 +10,9 @@
 //    a part sharing its mapper) with no culler / VTK's vtkFrustumCoverageCuller / vtkOctreeCuller
 //    (frustum; + front-to-back sorting; + back-face culling alone; + normal cones, which need
 //    back-face culling; + 4 px small features), and as one merged mesh (plain vs chunked mapper);
-//  - the embedded synthetic assembly (cadAssembly(20000, 500)) as 20,000 actors, same cullers.
+//  - the embedded synthetic assembly (cadAssembly(20000, 500)) as 20,000 actors, same cullers;
+//  - a real glTF, the 2CylinderEngine (engine-glb; skipped when absent), as one merged mesh with
+//    its degenerate triangles left in, plain vs chunked mapper at a close-up camera.
 // The core culling benchmarks (Core/Benchmarks/BenchCulling.cpp) are linked into the same
 // executable so one run shows everything side by side. `--benchmark_filter=Smoke` runs small
 // variants. SCENEVIS_BENCH_MESH_TRIANGLES overrides the 10M scene sizes (default 10'000'000).
@@ -21,6 +23,7 @@
 #include "scenevis/Scenes.h"
 
 #include "scenevis/testing/KiCadBoard.h"
+#include "scenevis/testing/Models.h"
 #include "scenevis/testing/RenderWindow.h"
 #include <glm/common.hpp>
 
@@ -47,6 +50,7 @@
 #include <cstdlib>
 #include <map>
 #include <memory>
+#include <string>
 #include <vector>
 
 namespace
@@ -285,19 +289,20 @@ void MeshView(MeshScene& s, std::size_t frame)
   BoardView(s.camera, s.bounds, frame);
 }
 
-void MeshSceneFrame(benchmark::State& state, MeshScene& s, bool chunked)
+void MeshSceneFrame(benchmark::State& state, MeshScene& s, bool chunked,
+  void (*view)(MeshScene&, std::size_t) = MeshView)
 {
   vtkRenderer* ren = chunked ? s.chunkedRenderer.GetPointer() : s.plainRenderer.GetPointer();
   s.window->GetRenderers()->RemoveAllItems();
   s.window->AddRenderer(ren);
-  MeshView(s, 0);
+  view(s, 0);
   s.window->Render(); // builds the buffers (and the partition), untimed
   s.window->Render();
   std::size_t frame = 0;
   double drawn = 0.0, calls = 0.0;
   for (auto _ : state)
   {
-    MeshView(s, ++frame);
+    view(s, ++frame);
     s.window->Render();
     if (chunked)
     {
@@ -315,6 +320,7 @@ void MeshSceneFrame(benchmark::State& state, MeshScene& s, bool chunked)
   state.counters["in view %"] = 100.0 * drawn / frames / static_cast<double>(s.triangles);
   if (chunked)
   {
+    state.counters["skipped"] = s.chunked->GetCullingSkipped() ? 1.0 : 0.0;
     state.counters["draw calls"] = calls / frames;
     state.counters["chunks"] = static_cast<double>(s.chunked->GetNumberOfChunks());
     state.counters["VBO builds"] = static_cast<double>(s.chunked->GetNumberOfVertexBufferBuilds());
@@ -681,6 +687,65 @@ void BM_Smoke_KiCadMeshFrame_ChunkedMapper(benchmark::State& s)
 {
   KiCadMeshFrame(s, KiCadMesh(200000, 12), true);
 }
+
+// ---- A real glTF as one mesh (degenerate triangles left in): plain vs chunked mapper. -------
+std::unique_ptr<MeshScene> engineMesh;
+MeshScene* EngineMesh()
+{
+  static bool tried = false;
+  std::unique_ptr<MeshScene>& s = engineMesh;
+  if (!tried)
+  {
+    tried = true;
+    const std::string path = scenevis::testing::DataFile("engine-glb");
+    vtkSmartPointer<vtkPolyData> mesh = path.empty() ? nullptr : scenevis::testing::LoadModel(path);
+    if (mesh)
+    {
+      s = std::make_unique<MeshScene>();
+      SetUpMeshScene(*s, OpaqueCopy(mesh));
+    }
+  }
+  return s.get();
+}
+/// A close-up of one end of the engine: the eye just outside the -y face of its bounds, a fifth
+/// of the way along x, looking across it (+y) with a 30 degree view angle; @p frame pans slowly.
+void EngineCloseUp(MeshScene& s, std::size_t frame)
+{
+  const double* b = s.bounds;
+  const double w = b[1] - b[0], h = b[3] - b[2];
+  const double x = b[0] + (0.2 + 0.001 * static_cast<double>(frame % 50)) * w;
+  const double z = 0.5 * (b[4] + b[5]);
+  s.camera->SetFocalPoint(x, 0.5 * (b[2] + b[3]), z);
+  s.camera->SetPosition(x, b[2] - 0.05 * h, z);
+  s.camera->SetViewUp(0, 0, 1);
+  s.camera->SetViewAngle(30);
+  s.camera->SetClippingRange(0.01 * h, 2.0 * h);
+}
+void EngineMeshFrame(benchmark::State& state, bool chunked, bool culling = true)
+{
+  MeshScene* s = EngineMesh();
+  if (!s)
+  {
+    state.SkipWithError("data absent: engine-glb (2CylinderEngine) not in the data cache");
+    return;
+  }
+  // Culling off: the same buffers and triangle order, everything drawn (what culling saves).
+  s->chunked->SetFrustumCulling(culling);
+  MeshSceneFrame(state, *s, chunked, EngineCloseUp);
+  s->chunked->SetFrustumCulling(true);
+}
+void BM_EngineMeshFrame_PlainMapper(benchmark::State& s)
+{
+  EngineMeshFrame(s, false);
+}
+void BM_EngineMeshFrame_ChunkedMapperCullingOff(benchmark::State& s)
+{
+  EngineMeshFrame(s, true, false);
+}
+void BM_EngineMeshFrame_ChunkedMapper(benchmark::State& s)
+{
+  EngineMeshFrame(s, true);
+}
 } // namespace
 
 BENCHMARK(BM_VtkFrustumCoverageCuller_100k)->Unit(benchmark::kMillisecond);
@@ -769,6 +834,18 @@ BENCHMARK(BM_Smoke_KiCadMeshFrame_ChunkedMapper)
   ->Unit(benchmark::kMillisecond)
   ->UseRealTime()
   ->Iterations(2);
+BENCHMARK(BM_EngineMeshFrame_PlainMapper)
+  ->Unit(benchmark::kMillisecond)
+  ->UseRealTime()
+  ->Iterations(30);
+BENCHMARK(BM_EngineMeshFrame_ChunkedMapperCullingOff)
+  ->Unit(benchmark::kMillisecond)
+  ->UseRealTime()
+  ->Iterations(30);
+BENCHMARK(BM_EngineMeshFrame_ChunkedMapper)
+  ->Unit(benchmark::kMillisecond)
+  ->UseRealTime()
+  ->Iterations(30);
 
 int main(int argc, char** argv)
 {
@@ -782,6 +859,7 @@ int main(int argc, char** argv)
   cache.clear();
   meshCache.clear();
   kicadMeshCache.clear();
+  engineMesh.reset();
   actorCache.clear();
   return 0;
 }

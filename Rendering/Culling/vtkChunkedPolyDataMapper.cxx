@@ -66,12 +66,13 @@ struct vtkChunkedPolyDataMapper::Internals
   vtkPolyData* Input = nullptr; // compared only, never dereferenced
   vtkMTimeType InputMTime = 0;
   int BuiltChunkSize = 0;
-  vtkSmartPointer<vtkPolyData> Chunked;
-  vtkIdType PolyBase = 0;                    // cells before the polygons (verts + lines)
-  std::vector<vtkIdType> InputPolyOf;        // reordered polygon k -> input cell id
-  std::vector<std::uint32_t> ChunkPolyBegin; // chunk c: reordered polygons [b[c], b[c+1])
-  std::vector<std::uint64_t> ChunkTriBegin;  // chunk c: triangles [t[c], t[c+1])
-  std::vector<Node> Nodes;                   // depth first, root 0
+  vtkSmartPointer<vtkPolyData> Chunked;  // null: the input has no polygons or strips
+  vtkIdType PolyBase = 0;                // cells before the polygons (verts + lines)
+  std::vector<vtkIdType> InputCellOf;    // triangle k of the copy -> input cell id
+  std::vector<std::uint32_t> ChunkBegin; // chunk c: triangles [b[c], b[c+1]) of the copy
+  std::vector<Node> Nodes;               // depth first, root 0 (none without triangles)
+  bool HasSurface = false;               // polygons or strips in the input
+  bool DrawsCopy = false;                // the last render drew the copy, not the input
   bool WarnedMismatch = false;
 
   // This frame.
@@ -93,22 +94,25 @@ struct vtkChunkedPolyDataMapper::Internals
   glm::dvec3 EyeWorld{ 0.0 }, ViewDirWorld{ 0.0, 0.0, -1.0 };
 
   // Statistics.
-  vtkIdType NodesVisited = 0, ChunksTested = 0, ChunksDrawn = 0, CulledFrustum = 0,
-            CulledCone = 0, CulledSize = 0, TrianglesDrawn = 0, DrawCalls = 0;
+  vtkIdType NodesVisited = 0, ChunksTested = 0, ChunksDrawn = 0, CulledFrustum = 0, CulledCone = 0,
+            CulledSize = 0, TrianglesDrawn = 0, DrawCalls = 0;
   vtkIdType PartitionBuilds = 0, VertexBufferBuilds = 0;
   double PartitionTime = 0.0, CullTime = 0.0;
 
-  std::uint64_t TotalTriangles() const { return this->ChunkTriBegin.empty() ? 0 : this->ChunkTriBegin.back(); }
+  std::uint64_t TotalTriangles() const
+  {
+    return this->ChunkBegin.empty() ? 0 : this->ChunkBegin.back();
+  }
   std::uint32_t ChunkCount() const
   {
-    return this->ChunkPolyBegin.empty() ? 0 : static_cast<std::uint32_t>(this->ChunkPolyBegin.size() - 1);
+    return this->ChunkBegin.empty() ? 0 : static_cast<std::uint32_t>(this->ChunkBegin.size() - 1);
   }
 
   void Build(vtkPolyData* input, int chunkSize);
   void Emit(std::uint32_t firstChunk, std::uint32_t endChunk)
   {
-    const std::uint64_t first = this->ChunkTriBegin[firstChunk];
-    const std::uint64_t count = this->ChunkTriBegin[endChunk] - first;
+    const std::uint64_t first = this->ChunkBegin[firstChunk];
+    const std::uint64_t count = this->ChunkBegin[endChunk] - first;
     this->ChunksDrawn += endChunk - firstChunk;
     this->TrianglesDrawn += static_cast<vtkIdType>(count);
     for (std::uint32_t c = firstChunk; c < endChunk; ++c)
@@ -136,22 +140,23 @@ struct vtkChunkedPolyDataMapper::Internals
 void vtkChunkedPolyDataMapper::Internals::Build(vtkPolyData* input, int chunkSize)
 {
   this->Chunked = nullptr;
-  this->InputPolyOf.clear();
-  this->ChunkPolyBegin.clear();
-  this->ChunkTriBegin.clear();
+  this->InputCellOf.clear();
+  this->ChunkBegin.clear();
   this->Nodes.clear();
+  this->HasSurface = false;
   this->Input = input;
   this->InputMTime = input->GetMTime();
   this->BuiltChunkSize = chunkSize;
-  vtkCellArray* polys = input->GetPolys();
+  this->PolyBase = input->GetNumberOfVerts() + input->GetNumberOfLines();
+  vtkCellArray* polys = input->GetNumberOfPolys() > 0 ? input->GetPolys() : nullptr;
+  vtkCellArray* strips = input->GetNumberOfStrips() > 0 ? input->GetStrips() : nullptr;
   vtkPoints* points = input->GetPoints();
-  const vtkIdType numPolys = polys ? polys->GetNumberOfCells() : 0;
-  if (!points || numPolys == 0 || numPolys >= std::numeric_limits<std::uint32_t>::max())
+  this->HasSurface = polys || strips;
+  if (!points || !this->HasSurface)
   {
-    return;
+    return; // nothing to cull: the superclass draws the input itself
   }
   const auto start = std::chrono::steady_clock::now();
-  const auto np = static_cast<std::size_t>(numPolys);
   const vtkIdType numPoints = points->GetNumberOfPoints();
 
   // Point access without a virtual call per coordinate for the common array types.
@@ -181,91 +186,111 @@ void vtkChunkedPolyDataMapper::Internals::Build(vtkPolyData* input, int chunkSiz
     return glm::dvec3(p[0], p[1], p[2]);
   };
 
-  // Per polygon: centroid, triangle count (as vtkOpenGLIndexBufferObject makes them).
-  std::vector<std::array<float, 3>> centroid(np);
-  std::vector<std::uint32_t> tris(np);
-  std::vector<std::uint8_t> big(np); // 7+ points, or bad ids: no normal cone
+  // The triangle list we draw and cull. Polygons are fanned from their first point and strips
+  // split with alternating winding, exactly as vtkOpenGLIndexBufferObject does (so the pixels
+  // are those of vtkOpenGLPolyDataMapper). Triangles with two points at the same coordinates
+  // cover no pixel and are left out: VTK leaves them out of its index buffer too (polygons only,
+  // compared by coordinates in the point type; float to double keeps equality, and NaN compares
+  // unequal in both), and with none left every cell we hand VTK is a triangle it keeps, whatever
+  // the rule of the VTK version: our triangle k is exactly triangle k of the index buffer.
+  // Triangles with a point id out of range (invalid input; VTK would read out of bounds) are
+  // left out as well.
+  std::vector<std::array<vtkIdType, 3>> tris;
+  std::vector<vtkIdType> triCell; // triangle -> input cell id
+  const vtkIdType polyCount = polys ? polys->GetNumberOfCells() : 0;
+  const vtkIdType expected = (polys ? polys->GetNumberOfConnectivityIds() - 2 * polyCount : 0) +
+    (strips ? strips->GetNumberOfConnectivityIds() - 2 * strips->GetNumberOfCells() : 0);
+  tris.reserve(static_cast<std::size_t>(std::max<vtkIdType>(expected, 0)));
+  triCell.reserve(tris.capacity());
+  auto addTriangle = [&](vtkIdType a, vtkIdType b, vtkIdType c, vtkIdType cell)
   {
-    auto it = vtk::TakeSmartPointer(polys->NewIterator());
-    std::size_t k = 0;
-    for (it->GoToFirstCell(); !it->IsDoneWithTraversal(); it->GoToNextCell(), ++k)
+    if (a < 0 || b < 0 || c < 0 || a >= numPoints || b >= numPoints || c >= numPoints)
     {
-      vtkIdType npts = 0;
-      const vtkIdType* ids = nullptr;
-      it->GetCurrentCell(npts, ids);
-      tris[k] = npts < 3 ? 0u : static_cast<std::uint32_t>(npts - 2);
-      big[k] = npts >= 7 ? 1 : 0;
-      glm::dvec3 c(0.0);
-      vtkIdType used = 0;
-      for (vtkIdType j = 0; j < npts; ++j)
+      return;
+    }
+    const glm::dvec3 pa = point(a), pb = point(b), pc = point(c);
+    if (pa == pb || pb == pc || pa == pc)
+    {
+      return;
+    }
+    tris.push_back({ a, b, c });
+    triCell.push_back(cell);
+  };
+  for (int kind = 0; kind < 2; ++kind)
+  {
+    vtkCellArray* cells = kind == 0 ? polys : strips;
+    if (cells)
+    {
+      auto it = vtk::TakeSmartPointer(cells->NewIterator());
+      const vtkIdType base = this->PolyBase + (kind == 0 ? 0 : polyCount);
+      vtkIdType k = 0;
+      for (it->GoToFirstCell(); !it->IsDoneWithTraversal(); it->GoToNextCell(), ++k)
       {
-        if (ids[j] < 0 || ids[j] >= numPoints)
+        vtkIdType npts = 0;
+        const vtkIdType* ids = nullptr;
+        it->GetCurrentCell(npts, ids);
+        for (vtkIdType j = 0; j + 2 < npts; ++j)
         {
-          big[k] = 1;
-          continue;
-        }
-        const glm::dvec3 p = point(ids[j]);
-        if (std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z))
-        {
-          c += p;
-          ++used;
+          if (kind == 0)
+          {
+            addTriangle(ids[0], ids[j + 1], ids[j + 2], base + k);
+          }
+          else
+          {
+            addTriangle(ids[j], ids[j + 1 + j % 2], ids[j + 1 + (j + 1) % 2], base + k);
+          }
         }
       }
-      c = used ? c / static_cast<double>(used) : glm::dvec3(0.0);
-      centroid[k] = { static_cast<float>(c.x), static_cast<float>(c.y), static_cast<float>(c.z) };
     }
+  }
+  const std::size_t nt = tris.size();
+  if (nt >= std::numeric_limits<std::uint32_t>::max() ||
+    nt >= static_cast<std::size_t>(std::numeric_limits<int>::max() / 3))
+  {
+    return; // beyond glDrawRangeElements' GLsizei / gl_PrimitiveID
+  }
+
+  // Centroids for the splits.
+  std::vector<std::array<float, 3>> centroid(nt);
+  for (std::size_t t = 0; t < nt; ++t)
+  {
+    const glm::dvec3 c = (point(tris[t][0]) + point(tris[t][1]) + point(tris[t][2])) / 3.0;
+    centroid[t] = { static_cast<float>(c.x), static_cast<float>(c.y), static_cast<float>(c.z) };
   }
 
   // Median splits along the largest centroid extent.
-  std::vector<std::uint32_t> perm(np);
-  for (std::size_t k = 0; k < np; ++k)
+  std::vector<std::uint32_t> perm(nt);
+  for (std::size_t t = 0; t < nt; ++t)
   {
-    perm[k] = static_cast<std::uint32_t>(k);
+    perm[t] = static_cast<std::uint32_t>(t);
   }
-  const std::uint64_t limit = static_cast<std::uint64_t>(chunkSize);
+  const auto limit = static_cast<std::uint32_t>(chunkSize);
   std::vector<glm::dvec3> normals;
-  // Leaf: box of its points and normal cone of its fan triangles.
+  // Leaf: box of its finite points and normal cone of its triangles (as wound when drawn).
   auto makeLeaf = [&](std::uint32_t nodeIndex, std::uint32_t begin, std::uint32_t end)
   {
+    // The splits left the chunk's triangles in arbitrary order; the input's order keeps the
+    // vertex locality of the mesh and the plain mapper's order (coplanar z ties) inside a chunk.
+    std::sort(perm.begin() + begin, perm.begin() + end);
     Node& node = this->Nodes[nodeIndex];
-    const auto chunk = static_cast<std::uint32_t>(this->ChunkPolyBegin.size());
-    this->ChunkPolyBegin.push_back(begin);
+    const auto chunk = static_cast<std::uint32_t>(this->ChunkBegin.size());
+    this->ChunkBegin.push_back(begin);
     node.firstChunk = chunk;
     node.endChunk = chunk + 1;
     scenevis::Box box;
     normals.clear();
-    bool coneOk = true;
     for (std::uint32_t i = begin; i < end; ++i)
     {
-      vtkIdType npts = 0;
-      const vtkIdType* ids = nullptr;
-      polys->GetCellAtId(perm[i], npts, ids);
-      coneOk = coneOk && !big[perm[i]];
-      glm::dvec3 first(0.0), prev(0.0);
-      for (vtkIdType j = 0; j < npts; ++j)
+      const auto& t = tris[perm[i]];
+      const glm::dvec3 p0 = point(t[0]), p1 = point(t[1]), p2 = point(t[2]);
+      for (const glm::dvec3& p : { p0, p1, p2 })
       {
-        if (ids[j] < 0 || ids[j] >= numPoints)
-        {
-          continue;
-        }
-        const glm::dvec3 p = point(ids[j]);
         if (std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z))
         {
           box.extend(p);
         }
-        if (coneOk)
-        {
-          if (j == 0)
-          {
-            first = p;
-          }
-          else if (j >= 2)
-          {
-            normals.push_back(glm::cross(prev - first, p - first));
-          }
-          prev = p;
-        }
       }
+      normals.push_back(glm::cross(p1 - p0, p2 - p0)); // non-finite: the chunk gets no cone
     }
     if (box.empty())
     {
@@ -273,31 +298,30 @@ void vtkChunkedPolyDataMapper::Internals::Build(vtkPolyData* input, int chunkSiz
     }
     node.lo = box.lo;
     node.hi = box.hi;
-    node.cone = coneOk ? sc::normalConeOf(normals) : sc::NormalCone::none();
+    node.cone = sc::normalConeOf(normals);
   };
-  // Recursive build (depth first, left first; depth ~ 2 log2(chunks)): node ids and chunk order
+  // Recursive build (depth first, left first; depth ~ log2(chunks)): node ids and chunk order
   // follow the in-order leaf sequence, so every subtree covers a contiguous chunk range.
   std::function<std::uint32_t(std::uint32_t, std::uint32_t)> build =
     [&](std::uint32_t begin, std::uint32_t end) -> std::uint32_t
   {
     const auto nodeIndex = static_cast<std::uint32_t>(this->Nodes.size());
     this->Nodes.emplace_back();
-    std::uint64_t count = 0;
-    glm::dvec3 lo(std::numeric_limits<double>::max()), hi(-std::numeric_limits<double>::max());
-    for (std::uint32_t i = begin; i < end; ++i)
-    {
-      count += tris[perm[i]];
-      const auto& c = centroid[perm[i]];
-      lo = glm::min(lo, glm::dvec3(c[0], c[1], c[2]));
-      hi = glm::max(hi, glm::dvec3(c[0], c[1], c[2]));
-    }
-    if (count <= limit || end - begin <= 1)
+    if (end - begin <= limit)
     {
       makeLeaf(nodeIndex, begin, end);
       return nodeIndex;
     }
+    glm::dvec3 lo(std::numeric_limits<double>::max()), hi(-std::numeric_limits<double>::max());
+    for (std::uint32_t i = begin; i < end; ++i)
+    {
+      const auto& c = centroid[perm[i]];
+      lo = glm::min(lo, glm::dvec3(c[0], c[1], c[2]));
+      hi = glm::max(hi, glm::dvec3(c[0], c[1], c[2]));
+    }
     const glm::dvec3 extent = hi - lo;
-    const int axis = extent.x >= extent.y && extent.x >= extent.z ? 0 : (extent.y >= extent.z ? 1 : 2);
+    const int axis =
+      extent.x >= extent.y && extent.x >= extent.z ? 0 : (extent.y >= extent.z ? 1 : 2);
     const std::uint32_t mid = begin + (end - begin) / 2;
     std::nth_element(perm.begin() + begin, perm.begin() + mid, perm.begin() + end,
       [&](std::uint32_t a, std::uint32_t b) { return centroid[a][axis] < centroid[b][axis]; });
@@ -314,29 +338,22 @@ void vtkChunkedPolyDataMapper::Internals::Build(vtkPolyData* input, int chunkSiz
     node.cone = sc::merge(left.cone, r.cone);
     return nodeIndex;
   };
-  build(0, static_cast<std::uint32_t>(np));
-  this->ChunkPolyBegin.push_back(static_cast<std::uint32_t>(np));
-  const std::uint32_t chunks = this->ChunkCount();
-  this->ChunkTriBegin.assign(chunks + 1, 0);
-  for (std::uint32_t c = 0; c < chunks; ++c)
+  if (nt > 0)
   {
-    std::uint64_t t = 0;
-    for (std::uint32_t i = this->ChunkPolyBegin[c]; i < this->ChunkPolyBegin[c + 1]; ++i)
+    build(0, static_cast<std::uint32_t>(nt));
+    // Inflate against float rounding on the GPU (positions, shift-scale, matrices in float).
+    const glm::dvec3 rootSize = this->Nodes[0].hi - this->Nodes[0].lo;
+    const double margin = 1e-5 * glm::length(rootSize) + 1e-30;
+    for (Node& n : this->Nodes)
     {
-      t += tris[perm[i]];
+      n.lo -= margin;
+      n.hi += margin;
     }
-    this->ChunkTriBegin[c + 1] = this->ChunkTriBegin[c] + t;
   }
-  // Inflate against float rounding on the GPU (positions, shift-scale, matrices in float).
-  const glm::dvec3 rootSize = this->Nodes[0].hi - this->Nodes[0].lo;
-  const double margin = 1e-5 * glm::length(rootSize) + 1e-30;
-  for (Node& n : this->Nodes)
-  {
-    n.lo -= margin;
-    n.hi += margin;
-  }
+  this->ChunkBegin.push_back(static_cast<std::uint32_t>(nt));
 
-  // The reordered copy.
+  // The copy drawn: the input's points, point data, verts and lines, and our triangles in chunk
+  // order as its polygons (no strips: theirs are among our triangles).
   auto out = vtkSmartPointer<vtkPolyData>::New();
   out->SetPoints(points);
   out->GetPointData()->ShallowCopy(input->GetPointData());
@@ -349,40 +366,34 @@ void vtkChunkedPolyDataMapper::Internals::Build(vtkPolyData* input, int chunkSiz
   {
     out->SetLines(input->GetLines());
   }
-  if (input->GetNumberOfStrips() > 0)
-  {
-    out->SetStrips(input->GetStrips());
-  }
   vtkNew<vtkCellArray> newPolys;
   if (numPoints < std::numeric_limits<std::int32_t>::max())
   {
     newPolys->Use32BitStorage();
   }
-  newPolys->AllocateExact(numPolys, polys->GetNumberOfConnectivityIds());
-  this->PolyBase = input->GetNumberOfVerts() + input->GetNumberOfLines();
-  this->InputPolyOf.resize(np);
-  for (std::size_t k = 0; k < np; ++k)
+  newPolys->AllocateExact(static_cast<vtkIdType>(nt), static_cast<vtkIdType>(3 * nt));
+  this->InputCellOf.resize(nt);
+  for (std::size_t k = 0; k < nt; ++k)
   {
-    vtkIdType npts = 0;
-    const vtkIdType* ids = nullptr;
-    polys->GetCellAtId(perm[k], npts, ids);
-    newPolys->InsertNextCell(npts, ids);
-    this->InputPolyOf[k] = this->PolyBase + perm[k];
+    newPolys->InsertNextCell(3, tris[perm[k]].data());
+    this->InputCellOf[k] = triCell[perm[k]];
   }
   out->SetPolys(newPolys);
+  // Cell data: one tuple per cell of the copy, that of the input cell it comes from.
   vtkCellData* inCD = input->GetCellData();
   if (inCD->GetNumberOfArrays() > 0)
   {
     const vtkIdType numCells = input->GetNumberOfCells();
+    const vtkIdType outCells = this->PolyBase + static_cast<vtkIdType>(nt);
     vtkNew<vtkIdList> source;
-    source->SetNumberOfIds(numCells);
-    for (vtkIdType i = 0; i < numCells; ++i)
+    source->SetNumberOfIds(outCells);
+    for (vtkIdType i = 0; i < this->PolyBase; ++i)
     {
       source->SetId(i, i);
     }
-    for (std::size_t k = 0; k < np; ++k)
+    for (std::size_t k = 0; k < nt; ++k)
     {
-      source->SetId(this->PolyBase + static_cast<vtkIdType>(k), this->InputPolyOf[k]);
+      source->SetId(this->PolyBase + static_cast<vtkIdType>(k), this->InputCellOf[k]);
     }
     vtkCellData* outCD = out->GetCellData();
     for (int a = 0; a < inCD->GetNumberOfArrays(); ++a)
@@ -395,7 +406,7 @@ void vtkChunkedPolyDataMapper::Internals::Build(vtkPolyData* input, int chunkSiz
       auto copy = vtk::TakeSmartPointer(array->NewInstance());
       copy->SetName(array->GetName());
       copy->SetNumberOfComponents(array->GetNumberOfComponents());
-      copy->SetNumberOfTuples(numCells);
+      copy->SetNumberOfTuples(outCells);
       array->GetTuples(source, copy);
       if (auto* data = vtkDataArray::SafeDownCast(array))
       {
@@ -566,17 +577,33 @@ void vtkChunkedPolyDataMapper::GetDrawnCellIds(std::vector<vtkIdType>& cellIds) 
   {
     return;
   }
+  // Several triangles (maybe in different chunks) come from one polygon or strip: each once.
+  std::vector<bool> seen;
+  auto add = [&](std::uint32_t first, std::uint32_t end)
+  {
+    for (std::uint32_t k = first; k < end; ++k)
+    {
+      const vtkIdType id = in.InputCellOf[k];
+      const auto slot = static_cast<std::size_t>(id - in.PolyBase);
+      if (slot >= seen.size())
+      {
+        seen.resize(slot + 1, false);
+      }
+      if (!seen[slot])
+      {
+        seen[slot] = true;
+        cellIds.push_back(id);
+      }
+    }
+  };
   if (in.Skipped)
   {
-    cellIds.assign(in.InputPolyOf.begin(), in.InputPolyOf.end());
+    add(0, static_cast<std::uint32_t>(in.InputCellOf.size()));
     return;
   }
   for (const std::uint32_t c : in.DrawnChunks)
   {
-    for (std::uint32_t k = in.ChunkPolyBegin[c]; k < in.ChunkPolyBegin[c + 1]; ++k)
-    {
-      cellIds.push_back(in.InputPolyOf[k]);
-    }
+    add(in.ChunkBegin[c], in.ChunkBegin[c + 1]);
   }
 }
 
@@ -587,20 +614,20 @@ vtkIdType vtkChunkedPolyDataMapper::GetInputCellId(vtkIdType id) const
   {
     return -1;
   }
-  if (!in.Chunked || id < in.PolyBase)
+  if (!in.Chunked || !in.DrawsCopy || id < in.PolyBase)
   {
-    return id;
+    return id; // the input itself is drawn, or a vert / line (shared with the input)
   }
   const auto k = static_cast<std::size_t>(id - in.PolyBase);
-  return k < in.InputPolyOf.size() ? in.InputPolyOf[k] : id;
+  return k < in.InputCellOf.size() ? in.InputCellOf[k] : -1;
 }
 
 //------------------------------------------------------------------------------
 vtkUnsignedCharArray* vtkChunkedPolyDataMapper::MapScalars(double alpha)
 {
   int cellFlag = 0;
-  return this->MapScalars(this->CurrentInput ? this->CurrentInput : this->GetInput(), alpha,
-    cellFlag);
+  return this->MapScalars(
+    this->CurrentInput ? this->CurrentInput : this->GetInput(), alpha, cellFlag);
 }
 
 //------------------------------------------------------------------------------
@@ -623,11 +650,24 @@ void vtkChunkedPolyDataMapper::UpdateCameraShiftScale(vtkRenderer* ren, vtkActor
   // input; swap in the reordered copy before anything builds buffers from it.
   Internals& in = *this->Internal;
   vtkPolyData* input = this->CurrentInput;
-  if (input != in.Input || input->GetMTime() != in.InputMTime || in.BuiltChunkSize != this->ChunkSize)
+  if (input != in.Input || input->GetMTime() != in.InputMTime ||
+    in.BuiltChunkSize != this->ChunkSize)
   {
     in.Build(input, this->ChunkSize);
   }
-  if (in.Chunked)
+  // Wireframe, points and edges show the outlines of the cells: those of the input's polygons,
+  // not of our triangles (a quad would show its diagonal). Nothing is culled then anyway.
+  vtkProperty* property = actor->GetProperty();
+  const bool drawsCopy =
+    in.Chunked && property->GetRepresentation() == VTK_SURFACE && !property->GetEdgeVisibility();
+  if (drawsCopy != in.DrawsCopy)
+  {
+    // The mapped colours and the buffers are cached against the MTimes of the mapper and of the
+    // data drawn, which say nothing about which of the two is drawn.
+    in.DrawsCopy = drawsCopy;
+    this->Modified();
+  }
+  if (in.DrawsCopy)
   {
     this->CurrentInput = in.Chunked;
   }
@@ -647,9 +687,9 @@ void vtkChunkedPolyDataMapper::RenderPieceStart(vtkRenderer* ren, vtkActor* acto
   in.Cull = false;
   in.Skipped = true;
   vtkProperty* property = actor->GetProperty();
-  bool usable = in.Chunked && this->CurrentInput == in.Chunked.GetPointer() && !ren->GetSelector() &&
-    property->GetRepresentation() == VTK_SURFACE && !property->GetEdgeVisibility() &&
-    !property->GetVertexVisibility();
+  bool usable = in.Chunked && this->CurrentInput == in.Chunked.GetPointer() &&
+    !ren->GetSelector() && property->GetRepresentation() == VTK_SURFACE &&
+    !property->GetEdgeVisibility() && !property->GetVertexVisibility();
   if (usable &&
     static_cast<std::uint64_t>(this->Primitives[PrimitiveTris].IBO->IndexCount) !=
       3 * in.TotalTriangles())
@@ -658,9 +698,11 @@ void vtkChunkedPolyDataMapper::RenderPieceStart(vtkRenderer* ren, vtkActor* acto
     if (!in.WarnedMismatch)
     {
       in.WarnedMismatch = true;
-      vtkWarningMacro("The triangle index buffer does not match the chunk partition (VTK drops "
-                      "triangles with two points at the same place, and may triangulate polygons "
-                      "of 7+ points differently): drawing everything (warned once).");
+      // Cannot happen with VTK 9.1 (every cell of the copy is a triangle it keeps); guards
+      // against a VTK whose index buffer would not be one triangle per cell of the copy.
+      vtkWarningMacro("The triangle index buffer holds "
+        << this->Primitives[PrimitiveTris].IBO->IndexCount / 3 << " triangles, the chunk "
+        << "partition " << in.TotalTriangles() << ": drawing everything (warned once).");
     }
   }
   vtkCamera* cam = ren->GetActiveCamera();
@@ -685,11 +727,11 @@ void vtkChunkedPolyDataMapper::RenderPieceStart(vtkRenderer* ren, vtkActor* acto
     // Normal cones in model coordinates (back-facing is invariant under a transform of positive
     // determinant when the eye / direction of projection are taken into model coordinates).
     const double* m = in.Model;
-    const double det3 = vtkMath::Determinant3x3(
-      m[0], m[4], m[8], m[1], m[5], m[9], m[2], m[6], m[10]);
+    const double det3 =
+      vtkMath::Determinant3x3(m[0], m[4], m[8], m[1], m[5], m[9], m[2], m[6], m[10]);
     in.UseCones = this->NormalConeCulling && property->GetBackfaceCulling() &&
-      !property->GetFrontfaceCulling() && det3 > 0.0 && std::isfinite(det3) &&
-      m[12] == 0.0 && m[13] == 0.0 && m[14] == 0.0 && m[15] == 1.0;
+      !property->GetFrontfaceCulling() && det3 > 0.0 && std::isfinite(det3) && m[12] == 0.0 &&
+      m[13] == 0.0 && m[14] == 0.0 && m[15] == 1.0;
     if (in.UseCones)
     {
       vtkNew<vtkMatrix4x4> inverse;
@@ -729,14 +771,19 @@ void vtkChunkedPolyDataMapper::RenderPieceStart(vtkRenderer* ren, vtkActor* acto
   {
     usable = false;
   }
-  if (usable && !in.Nodes.empty())
+  if (usable)
   {
-    in.Traverse(0, sc::kAllPlanes);
+    if (!in.Nodes.empty())
+    {
+      in.Traverse(0, sc::kAllPlanes);
+    }
     in.Cull = true;
     in.Skipped = false;
   }
   else
   {
+    // Nothing to cull is not a fallback.
+    in.Skipped = in.HasSurface;
     in.TrianglesDrawn = static_cast<vtkIdType>(in.TotalTriangles());
     in.ChunksDrawn = in.ChunkCount();
   }

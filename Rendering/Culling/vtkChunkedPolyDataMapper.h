@@ -6,15 +6,23 @@
  * vtkOctreeCuller culls whole props; a CAD model is often one merged mesh (one prop), which a prop
  * culler can only draw entirely. This mapper
  *
- * 1. partitions the polygons of its input once (again only when the input or ChunkSize changes)
- *    into spatial chunks: a binary tree of median splits over polygon centroids along the
- *    largest extent, until a node holds at most ChunkSize triangles (default 2048). Each tree
- *    node covers a contiguous range of chunks; each chunk a contiguous range of polygons.
- * 2. draws a copy of the input whose polygons are reordered chunk by chunk (points, point data,
- *    verts, lines and strips are shared with the input, cell data are permuted with the cells),
- *    so every chunk and every tree node is ONE contiguous range of the triangle index buffer.
- *    The vertex and index buffers are built once by vtkOpenGLPolyDataMapper from that copy.
- * 3. per frame (in RenderPieceStart, with the camera that draws) traverses the tree in the
+ * 1. owns the triangle list it draws: once per input (again only when the input or ChunkSize
+ *    changes) it turns the polygons and triangle strips of its input into triangles exactly as
+ *    vtkOpenGLIndexBufferObject does (polygons of any size fanned from their first point, strips
+ *    with alternating winding), leaving out every triangle with two points at the same
+ *    coordinates (they cover no pixel; VTK drops them from its index buffer too) and every
+ *    triangle with a point id out of range. Each triangle remembers its input cell.
+ * 2. partitions those triangles into spatial chunks: a binary tree of median splits over
+ *    triangle centroids along the largest extent, until a node holds at most ChunkSize
+ *    triangles (default 2048). Each tree node covers a contiguous range of chunks; each chunk a
+ *    contiguous range of triangles.
+ * 3. draws a copy of the input whose polygons are those triangles, chunk by chunk, and which has
+ *    no strips (points, point data, verts and lines are shared with the input; cell data get one
+ *    tuple per triangle, that of its input cell). Every cell of the copy is a triangle that VTK
+ *    keeps, so triangle k of the index buffer that vtkOpenGLPolyDataMapper builds from the copy
+ *    is our triangle k whatever VTK's rule for degenerate cells, and every chunk and every tree
+ *    node is ONE contiguous range of that index buffer. The buffers are built once.
+ * 4. per frame (in RenderPieceStart, with the camera that draws) traverses the tree in the
  *    actor's model coordinates and draws only the index ranges of the chunks that pass, adjacent
  *    ranges merged into one glDrawRangeElements call. A node entirely inside the frustum is
  *    drawn as one range without visiting its children. Camera moves never rebuild or upload any
@@ -25,23 +33,24 @@
  *   bounds (inflated by 1e-5 of the mesh diagonal against GPU float rounding) with plane masking;
  * - normal cones (NormalConeCulling, default on, but only active when the actor's property has
  *   BackfaceCulling on, FrontfaceCulling off, surface representation, and the actor matrix has a
- *   positive determinant): a chunk whose triangles all face away from the eye is not drawn
- *   (conservative, see scenevis/NormalCone.h). Chunks with polygons of 7+ points never cull this
- *   way (VTK triangulates those itself);
+ *   positive determinant): a chunk whose triangles, as wound when drawn, all face away from the
+ *   eye is not drawn (conservative, see scenevis/NormalCone.h);
  * - small features (MinimumPixelSize, default 0 = off): APPROXIMATE, chunks whose bounding
  *   sphere projects below that many pixels are not drawn although they may cover a few pixels.
  *
- * Drawing is exactly that of vtkOpenGLPolyDataMapper for the triangles drawn: same shaders, same
- * buffers, same primitive order among the triangles drawn (the chunk order), cell scalars / cell
- * normals through the gl_PrimitiveID offset set per range. Everything else falls back to the
- * superclass's full draw (no culling): a hardware selector (picking), representations other
- * than surface, edge visibility, an unusable camera, or a triangle index buffer whose size does
- * not match the partition (warned once): VTK 9.1 leaves out of the index buffer every triangle
- * with two points at the same coordinates (real CAD data has them, e.g. KiCad parts; remove them
- * first) and may triangulate polygons of 7+ points differently.
+ * Drawing is exactly that of vtkOpenGLPolyDataMapper for the triangles drawn: same triangles,
+ * shaders and buffers, the chunk order among the triangles drawn, cell scalars / cell normals
+ * through the gl_PrimitiveID offset set per range. Degenerate triangles, polygons of any size,
+ * strips and verts / lines / polygons / strips in one input are all culled. Culling is skipped
+ * (the superclass draws everything; GetCullingSkipped() says so) only for what it cannot
+ * express as triangle ranges: a hardware selector (picking: the copy is drawn, see below),
+ * vertex visibility, an unusable camera, more than 2^31 / 3 triangles, and representations
+ * other than surface or edge visibility: those show cell outlines, so the superclass draws the
+ * input itself rather than the copy (switching rebuilds the buffers).
  *
- * Limits: picking reports cell ids of the reordered copy (GetInputCellId() maps them back);
- * memory: the reordered polygon connectivity and cell data are a second copy of the input's.
+ * Limits: picking a surface reports cell ids of the copy (GetInputCellId() maps them back);
+ * memory: the copy's triangle connectivity (32-bit ids below 2^31 points) and one cell-data
+ * tuple per triangle are a second copy of the input's.
  *
  * Statistics of the last render: nodes visited, chunks tested / drawn / culled by reason,
  * triangles drawn, draw calls; counters of partition builds and vertex buffer builds.
@@ -75,8 +84,8 @@ public:
   vtkUnsignedCharArray* MapScalars(double alpha) override;
 
   ///@{
-  /// Target number of triangles per chunk (a chunk holds at most this many unless one polygon
-  /// has more). Default 2048. Changing it re-partitions at the next render.
+  /// Largest number of triangles per chunk. Default 2048. Changing it re-partitions at the next
+  /// render.
   vtkSetClampMacro(ChunkSize, int, 1, VTK_INT_MAX);
   vtkGetMacro(ChunkSize, int);
   ///@}
@@ -112,6 +121,7 @@ public:
   ///@{
   /// Statistics of the last render of this mapper.
   vtkIdType GetNumberOfChunks() const;
+  /// Triangles in the list drawn (degenerate ones left out), culled or not.
   vtkIdType GetNumberOfTriangles() const;
   vtkIdType GetNumberOfNodesVisited() const;
   vtkIdType GetNumberOfChunksTested() const;
@@ -134,9 +144,11 @@ public:
   vtkIdType GetNumberOfVertexBufferBuilds() const;
   ///@}
 
-  /// Input cell ids of the polygons drawn by the last render (ascending chunk order).
+  /// Input cell ids of the polygons and strips with a triangle drawn by the last render, each
+  /// once (in chunk order of their first triangle drawn). Verts and lines are not listed.
   void GetDrawnCellIds(std::vector<vtkIdType>& cellIds) const;
-  /// Input cell id of cell @p id of the reordered copy (as reported by picking); -1 if invalid.
+  /// Input cell id of cell @p id of the copy drawn (as reported by picking: verts and lines keep
+  /// their ids, triangle k of the copy is cell number verts + lines + k); -1 if invalid.
   vtkIdType GetInputCellId(vtkIdType id) const;
 
 protected:

@@ -65,8 +65,8 @@ bool Degenerate(const T* a, const T* b, const T* c)
  * Triangles only, with "Colors" (RGBA) as the only cell array (the importer may deliver polygons
  * and strips), and without triangles that have two points at the same place. KiCad parts have
  * such triangles; they cover no pixel, and VTK 9.1's vtkOpenGLIndexBufferObject drops them from
- * the index buffer, so keeping them would make the mapper's triangle count differ from the
- * polydata's (vtkChunkedPolyDataMapper then cannot cull, see its documentation).
+ * the index buffer, so without them the board's triangle counts are those drawn (the
+ * vtkChunkedPolyDataMapper culls either way: it leaves them out of its own triangle list).
  */
 vtkSmartPointer<vtkPolyData> Triangulated(vtkPolyData* input)
 {
