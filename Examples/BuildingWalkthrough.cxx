@@ -8,6 +8,7 @@
 
 #include "scenevis/Scenes.h"
 #include "scenevis/testing/RenderWindow.h"
+#include "scenevis/testing/Scenes.h"
 
 #include <glm/geometric.hpp>
 
@@ -66,31 +67,6 @@ vtkSmartPointer<vtkPolyData> RoomPolyData(const scenes::BuildingScene& b, int ro
   id->SetName("RoomId");
   id->InsertNextValue(room);
   pd->GetFieldData()->AddArray(id);
-  return pd;
-}
-
-vtkSmartPointer<vtkPolyData> PortalPolyData(const scenes::BuildingScene& b)
-{
-  vtkNew<vtkPoints> points;
-  vtkNew<vtkCellArray> polys;
-  vtkNew<vtkIntArray> a, c;
-  a->SetName("RoomA");
-  c->SetName("RoomB");
-  for (const auto& p : b.portals)
-  {
-    polys->InsertNextCell(static_cast<vtkIdType>(p.polygon.size()));
-    for (const auto& q : p.polygon)
-    {
-      polys->InsertCellPoint(points->InsertNextPoint(q.x, q.y, q.z));
-    }
-    a->InsertNextValue(p.roomA);
-    c->InsertNextValue(p.roomB);
-  }
-  vtkNew<vtkPolyData> pd;
-  pd->SetPoints(points);
-  pd->SetPolys(polys);
-  pd->GetCellData()->AddArray(a);
-  pd->GetCellData()->AddArray(c);
   return pd;
 }
 
@@ -177,7 +153,7 @@ int main(int argc, char* argv[])
   renderer->AddLight(headlight);
 
   vtkNew<vtkPortalCuller> culler;
-  culler->SetPortals(PortalPolyData(b));
+  culler->SetPortals(scenevis::testing::MakePortalPolyData(b));
   culler->SetMode(vtkPortalCuller::MODE_EXACT_FRUSTUM);
   renderer->AddCuller(culler);
 

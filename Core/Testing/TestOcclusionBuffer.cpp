@@ -25,7 +25,6 @@ using namespace scenevis::occlusion;
 
 namespace
 {
-constexpr double kInf = std::numeric_limits<double>::infinity();
 
 struct Camera
 {
@@ -66,48 +65,6 @@ int visiblePixels(const Camera& cam, const std::vector<Triangle>& occluders, con
   const glm::dvec3& hi)
 {
   return occlusion::visiblePixels(cam.clipFromWorld, cam.width, cam.height, occluders, lo, hi);
-}
-
-/// The ray through the centre of pixel (i, j) from the near plane (t = 0) to the far plane.
-struct Ray
-{
-  glm::dvec3 origin, direction;
-};
-
-Ray pixelRay(const Camera& cam, const glm::dmat4& worldFromClip, int i, int j)
-{
-  const double x = (i + 0.5) / cam.width * 2.0 - 1.0;
-  const double y = (j + 0.5) / cam.height * 2.0 - 1.0;
-  glm::dvec4 n = worldFromClip * glm::dvec4(x, y, -1.0, 1.0);
-  glm::dvec4 f = worldFromClip * glm::dvec4(x, y, 1.0, 1.0);
-  const glm::dvec3 p0 = glm::dvec3(n) / n.w, p1 = glm::dvec3(f) / f.w;
-  return { p0, p1 - p0 };
-}
-
-/// Nearest t in [0, 1] of the ray inside the box, or +inf (for the BVH test's nearest object).
-double hitBox(const Ray& r, const glm::dvec3& lo, const glm::dvec3& hi)
-{
-  double t0 = 0.0, t1 = 1.0;
-  for (int k = 0; k < 3; ++k)
-  {
-    if (r.direction[k] == 0.0)
-    {
-      if (r.origin[k] < lo[k] || r.origin[k] > hi[k])
-      {
-        return kInf;
-      }
-      continue;
-    }
-    double a = (lo[k] - r.origin[k]) / r.direction[k];
-    double b = (hi[k] - r.origin[k]) / r.direction[k];
-    if (a > b)
-    {
-      std::swap(a, b);
-    }
-    t0 = std::max(t0, a);
-    t1 = std::min(t1, b);
-  }
-  return t0 <= t1 ? t0 : kInf;
 }
 
 /// Draws a soup (every triangle with its own three points, as many CAD files store them); with
@@ -416,8 +373,7 @@ TEST(OcclusionCull, EveryObjectSeenAtSomePixelIsKept)
     occlusion.drawOccluder = [&](std::uint32_t id) { draw(buffer, cam, faces[id]); };
     culling::CullParams params;
     params.frustum = culling::Frustum::fromViewProjection(cam.clipFromWorld);
-    const glm::dmat4 inv = glm::inverse(cam.clipFromWorld);
-    const glm::dvec4 e = inv * glm::dvec4(0, 0, -1, 1);
+    const glm::dvec4 e = glm::inverse(cam.clipFromWorld) * glm::dvec4(0, 0, -1, 1);
     params.eye = glm::dvec3(e) / e.w;
     params.parallel = view % 4 == 3;
     params.viewDirection = glm::normalize(glm::dvec3(0, 0, 0) - eye);
@@ -430,31 +386,24 @@ TEST(OcclusionCull, EveryObjectSeenAtSomePixelIsKept)
       kept[id] = 1;
     }
     // The oracle: the nearest box along each pixel's ray.
-    std::vector<char> seen(300, 0);
-    for (int j = 0; j < cam.height; ++j)
+    std::vector<std::pair<glm::dvec3, glm::dvec3>> solid;
+    for (std::size_t id = 0; id < 300; ++id)
     {
-      for (int i = 0; i < cam.width; ++i)
+      const Box b = boxes.get(id);
+      solid.emplace_back(b.lo, b.hi);
+    }
+    const std::vector<int> nearest =
+      nearestBoxPerPixel(cam.clipFromWorld, cam.width, cam.height, solid);
+    std::vector<char> seen(300, 0);
+    for (std::size_t pixel = 0; pixel < nearest.size(); ++pixel)
+    {
+      const int who = nearest[pixel];
+      if (who >= 0)
       {
-        const Ray r = pixelRay(cam, inv, i, j);
-        double nearest = kInf;
-        int who = -1;
-        for (int id = 0; id < 300; ++id)
-        {
-          const Box b = boxes.get(static_cast<std::size_t>(id));
-          const double t = hitBox(r, b.lo, b.hi);
-          if (t < nearest)
-          {
-            nearest = t;
-            who = id;
-          }
-        }
-        if (who >= 0)
-        {
-          seen[static_cast<std::size_t>(who)] = 1;
-          ASSERT_TRUE(kept[static_cast<std::size_t>(who)])
-            << "view " << view << ": object " << who << " is seen at pixel (" << i << ", " << j
-            << ") but was culled";
-        }
+        seen[static_cast<std::size_t>(who)] = 1;
+        ASSERT_TRUE(kept[static_cast<std::size_t>(who)])
+          << "view " << view << ": object " << who << " is seen at pixel " << pixel
+          << " but was culled";
       }
     }
     culledTotal += stats.culledOcclusion;

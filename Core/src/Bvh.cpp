@@ -391,11 +391,10 @@ inline bool tooSmall(const CullParams& p, const glm::dvec3& c, double r, double 
 }
 } // namespace
 
-void Bvh::cull(const CullParams& params, std::vector<std::uint32_t>& visible, CullStats* stats)
+Bvh::Frame Bvh::makeFrame(
+  const CullParams& params, std::vector<std::uint32_t>& visible, CullStats& stats) const
 {
-  visible.clear();
-  CullStats local;
-  Frame frame{ params, visible, local, false, false, false, 0.0, false };
+  Frame frame{ params, visible, stats, false, false, false, 0.0, false };
   frame.contribution = params.minPixels > 0.0 && params.pixelsPerUnit > 0.0 &&
     std::isfinite(params.pixelsPerUnit);
   // A node is culled for size only if every object below it would be: an object's radius is at
@@ -404,20 +403,33 @@ void Bvh::cull(const CullParams& params, std::vector<std::uint32_t>& visible, Cu
   frame.distance = params.maxDistance < std::numeric_limits<double>::infinity();
   frame.maxDistance2 = params.maxDistance * params.maxDistance;
   frame.cones = params.normalConeCulling;
-  if (!nodes_.empty())
-  {
-    cullNode(frame, 0, params.frustumCulling ? kAllPlanes : 0);
-  }
+  return frame;
+}
+
+void Bvh::appendAlwaysVisible(std::vector<std::uint32_t>& visible, CullStats& stats) const
+{
   // Objects without a valid box are always drawn.
   for (std::uint32_t p = 0; p < id_.size(); ++p)
   {
     if (always_[p])
     {
       visible.push_back(id_[p]);
-      ++local.objectsDrawn;
-      local.trianglesDrawn += triangles_[p];
+      ++stats.objectsDrawn;
+      stats.trianglesDrawn += triangles_[p];
     }
   }
+}
+
+void Bvh::cull(const CullParams& params, std::vector<std::uint32_t>& visible, CullStats* stats)
+{
+  visible.clear();
+  CullStats local;
+  Frame frame = makeFrame(params, visible, local);
+  if (!nodes_.empty())
+  {
+    cullNode(frame, 0, params.frustumCulling ? kAllPlanes : 0);
+  }
+  appendAlwaysVisible(visible, local);
   if (stats)
   {
     *stats = local;
@@ -571,15 +583,7 @@ void Bvh::cullOccluded(const CullParams& params,
   }
   visible.clear();
   CullStats local;
-  OcclusionFrame frame{ Frame{ params, visible, local, false, false, false, 0.0, false },
-    occlusion, {} };
-  Frame& base = frame.base;
-  base.contribution = params.minPixels > 0.0 && params.pixelsPerUnit > 0.0 &&
-    std::isfinite(params.pixelsPerUnit);
-  base.nodeContribution = base.contribution;
-  base.distance = params.maxDistance < std::numeric_limits<double>::infinity();
-  base.maxDistance2 = params.maxDistance * params.maxDistance;
-  base.cones = params.normalConeCulling;
+  OcclusionFrame frame{ makeFrame(params, visible, local), occlusion, {} };
   if (occluderStamp_.size() != id_.size() || ++occlusionFrame_ == 0)
   {
     occluderStamp_.assign(id_.size(), 0);
@@ -592,8 +596,7 @@ void Bvh::cullOccluded(const CullParams& params,
   {
     CullStats scratch;
     std::vector<std::uint32_t> none;
-    Frame probe{ params, none, scratch, base.contribution, base.nodeContribution, base.distance,
-      base.maxDistance2, base.cones };
+    Frame probe = makeFrame(params, none, scratch);
     for (const std::uint32_t id : *occlusion.seeds)
     {
       if (id >= position_.size())
@@ -615,15 +618,7 @@ void Bvh::cullOccluded(const CullParams& params,
   {
     cullNodeOccluded(frame, 0, allPlanes);
   }
-  for (std::uint32_t p = 0; p < id_.size(); ++p)
-  {
-    if (always_[p])
-    {
-      visible.push_back(id_[p]);
-      ++local.objectsDrawn;
-      local.trianglesDrawn += triangles_[p];
-    }
-  }
+  appendAlwaysVisible(visible, local);
   if (stats)
   {
     *stats = local;

@@ -72,6 +72,45 @@ double hitBox(const Ray& r, const glm::dvec3& lo, const glm::dvec3& hi)
 }
 } // namespace
 
+namespace
+{
+Ray pixelRay(const glm::dmat4& worldFromClip, int width, int height, int i, int j)
+{
+  const double x = (i + 0.5) / width * 2.0 - 1.0;
+  const double y = (j + 0.5) / height * 2.0 - 1.0;
+  const glm::dvec4 n = worldFromClip * glm::dvec4(x, y, -1.0, 1.0);
+  const glm::dvec4 f = worldFromClip * glm::dvec4(x, y, 1.0, 1.0);
+  const glm::dvec3 p0 = glm::dvec3(n) / n.w, p1 = glm::dvec3(f) / f.w;
+  return Ray{ p0, p1 - p0 };
+}
+} // namespace
+
+std::vector<int> nearestBoxPerPixel(const glm::dmat4& clipFromWorld, int width, int height,
+  const std::vector<std::pair<glm::dvec3, glm::dvec3>>& boxes)
+{
+  const glm::dmat4 worldFromClip = glm::inverse(clipFromWorld);
+  std::vector<int> nearest(static_cast<std::size_t>(width) * static_cast<std::size_t>(height), -1);
+  for (int j = 0; j < height; ++j)
+  {
+    for (int i = 0; i < width; ++i)
+    {
+      const Ray r = pixelRay(worldFromClip, width, height, i, j);
+      double best = kInf;
+      for (std::size_t b = 0; b < boxes.size(); ++b)
+      {
+        const double t = hitBox(r, boxes[b].first, boxes[b].second);
+        if (t < best)
+        {
+          best = t;
+          nearest[static_cast<std::size_t>(j) * static_cast<std::size_t>(width) + i] =
+            static_cast<int>(b);
+        }
+      }
+    }
+  }
+  return nearest;
+}
+
 int visiblePixels(const glm::dmat4& clipFromWorld, int width, int height,
   const std::vector<OracleTriangle>& occluders, const glm::dvec3& lo, const glm::dvec3& hi)
 {
@@ -81,12 +120,7 @@ int visiblePixels(const glm::dmat4& clipFromWorld, int width, int height,
   {
     for (int i = 0; i < width; ++i)
     {
-      const double x = (i + 0.5) / width * 2.0 - 1.0;
-      const double y = (j + 0.5) / height * 2.0 - 1.0;
-      const glm::dvec4 n = worldFromClip * glm::dvec4(x, y, -1.0, 1.0);
-      const glm::dvec4 f = worldFromClip * glm::dvec4(x, y, 1.0, 1.0);
-      const glm::dvec3 p0 = glm::dvec3(n) / n.w, p1 = glm::dvec3(f) / f.w;
-      const Ray r{ p0, p1 - p0 };
+      const Ray r = pixelRay(worldFromClip, width, height, i, j);
       const double box = hitBox(r, lo, hi);
       if (box == kInf)
       {

@@ -186,6 +186,9 @@ public:
 
 private:
   struct Frame;
+  Frame makeFrame(const CullParams& params, std::vector<std::uint32_t>& visible,
+    CullStats& stats) const;
+  void appendAlwaysVisible(std::vector<std::uint32_t>& visible, CullStats& stats) const;
   std::uint32_t buildRange(std::uint32_t begin, std::uint32_t end, std::uint32_t parent);
   void cullNode(Frame& frame, std::uint32_t node, std::uint8_t mask) const;
   struct OcclusionFrame;

@@ -13,6 +13,7 @@
 #include <glm/mat4x4.hpp>
 #include <glm/vec3.hpp>
 
+#include <utility>
 #include <vector>
 
 namespace scenevis
@@ -29,6 +30,11 @@ struct OracleTriangle
 /// which part of the box [lo, hi] is in front of all @p occluders (both faces occlude).
 int visiblePixels(const glm::dmat4& clipFromWorld, int width, int height,
   const std::vector<OracleTriangle>& occluders, const glm::dvec3& lo, const glm::dvec3& hi);
+
+/// Per pixel (row-major, bottom row first): the index of the box of @p boxes (xmin, ymin, zmin,
+/// xmax, ymax, zmax: lo then hi) nearest along its ray, as if the boxes were opaque, or -1.
+std::vector<int> nearestBoxPerPixel(const glm::dmat4& clipFromWorld, int width, int height,
+  const std::vector<std::pair<glm::dvec3, glm::dvec3>>& boxes);
 
 } // namespace occlusion
 } // namespace scenevis

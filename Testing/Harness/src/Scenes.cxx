@@ -2,10 +2,14 @@
 
 #include "scenevis/testing/RenderWindow.h"
 
+#include "scenevis/Scenes.h"
+
 #include <vtkActor.h>
 #include <vtkAppendPolyData.h>
 #include <vtkCamera.h>
 #include <vtkCellArray.h>
+#include <vtkCellData.h>
+#include <vtkIntArray.h>
 #include <vtkNew.h>
 #include <vtkPoints.h>
 #include <vtkPolyData.h>
@@ -96,6 +100,31 @@ vtkSmartPointer<vtkPolyData> AppendPolygons(vtkPolyData* a, vtkPolyData* b)
   auto result = vtkSmartPointer<vtkPolyData>::New();
   result->ShallowCopy(append->GetOutput());
   return result;
+}
+
+vtkSmartPointer<vtkPolyData> MakePortalPolyData(const scenevis::scenes::BuildingScene& building)
+{
+  vtkNew<vtkPoints> points;
+  vtkNew<vtkCellArray> polys;
+  vtkNew<vtkIntArray> a, c;
+  a->SetName("RoomA");
+  c->SetName("RoomB");
+  for (const auto& p : building.portals)
+  {
+    polys->InsertNextCell(static_cast<vtkIdType>(p.polygon.size()));
+    for (const auto& q : p.polygon)
+    {
+      polys->InsertCellPoint(points->InsertNextPoint(q.x, q.y, q.z));
+    }
+    a->InsertNextValue(p.roomA);
+    c->InsertNextValue(p.roomB);
+  }
+  auto pd = vtkSmartPointer<vtkPolyData>::New();
+  pd->SetPoints(points);
+  pd->SetPolys(polys);
+  pd->GetCellData()->AddArray(a);
+  pd->GetCellData()->AddArray(c);
+  return pd;
 }
 
 } // namespace testing

@@ -18,6 +18,7 @@
 #include "scenevis/Scenes.h"
 #include "scenevis/testing/IdBuffer.h"
 #include "scenevis/testing/RenderWindow.h"
+#include "scenevis/testing/Scenes.h"
 #include "scenevis/testing/StrictVtkOutput.h"
 
 #include <vtkActor.h>
@@ -363,31 +364,6 @@ bool TestCad(vtkRenderWindow* window, const glm::dvec3& origin, int cameras, con
   return Report(name, t);
 }
 
-vtkSmartPointer<vtkPolyData> PortalPolyData(const sn::BuildingScene& b)
-{
-  vtkNew<vtkPoints> points;
-  vtkNew<vtkCellArray> polys;
-  vtkNew<vtkIntArray> a, c;
-  a->SetName("RoomA");
-  c->SetName("RoomB");
-  for (const auto& p : b.portals)
-  {
-    polys->InsertNextCell(static_cast<vtkIdType>(p.polygon.size()));
-    for (const auto& q : p.polygon)
-    {
-      polys->InsertCellPoint(points->InsertNextPoint(q.x, q.y, q.z));
-    }
-    a->InsertNextValue(p.roomA);
-    c->InsertNextValue(p.roomB);
-  }
-  vtkNew<vtkPolyData> pd;
-  pd->SetPoints(points);
-  pd->SetPolys(polys);
-  pd->GetCellData()->AddArray(a);
-  pd->GetCellData()->AddArray(c);
-  return pd;
-}
-
 /// @p withPortals: vtkPortalCuller (exact frustum narrowing) runs before both cullers compared.
 bool TestBuilding(vtkRenderWindow* window, int cameras, bool withPortals)
 {
@@ -411,7 +387,7 @@ bool TestBuilding(vtkRenderWindow* window, int cameras, bool withPortals)
   }
   Build(s, b.mesh, glm::dvec3(0.0));
   vtkNew<vtkPortalCuller> portals;
-  portals->SetPortals(PortalPolyData(b));
+  portals->SetPortals(st::MakePortalPolyData(b));
   for (const auto& entry : groupOf)
   {
     portals->SetPropRoom(s.actors[entry.second], entry.first.first);

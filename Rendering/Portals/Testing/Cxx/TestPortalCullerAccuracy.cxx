@@ -13,6 +13,7 @@
 #include "scenevis/Scenes.h"
 #include "scenevis/testing/IdBuffer.h"
 #include "scenevis/testing/RenderWindow.h"
+#include "scenevis/testing/Scenes.h"
 #include "scenevis/testing/StrictVtkOutput.h"
 
 #include <glm/geometric.hpp>
@@ -80,31 +81,6 @@ vtkSmartPointer<vtkPolyData> RoomPolyData(const scenes::BuildingScene& b, int ro
   return pd;
 }
 
-vtkSmartPointer<vtkPolyData> PortalPolyData(const scenes::BuildingScene& b)
-{
-  vtkNew<vtkPoints> points;
-  vtkNew<vtkCellArray> polys;
-  vtkNew<vtkIntArray> a, c;
-  a->SetName("RoomA");
-  c->SetName("RoomB");
-  for (const auto& p : b.portals)
-  {
-    polys->InsertNextCell(static_cast<vtkIdType>(p.polygon.size()));
-    for (const auto& q : p.polygon)
-    {
-      polys->InsertCellPoint(points->InsertNextPoint(q.x, q.y, q.z));
-    }
-    a->InsertNextValue(p.roomA);
-    c->InsertNextValue(p.roomB);
-  }
-  vtkNew<vtkPolyData> pd;
-  pd->SetPoints(points);
-  pd->SetPolys(polys);
-  pd->GetCellData()->AddArray(a);
-  pd->GetCellData()->AddArray(c);
-  return pd;
-}
-
 struct ModeResult
 {
   const char* name;
@@ -148,7 +124,7 @@ int TestPortalCullerAccuracy(int, char*[])
   const std::string pvsFile = (tempDir / "scenevis-test-building.pvs").string();
   {
     vtkNew<vtkXMLPolyDataWriter> writer;
-    writer->SetInputData(PortalPolyData(b));
+    writer->SetInputData(st::MakePortalPolyData(b));
     writer->SetFileName(portalFile.c_str());
     if (!writer->Write())
     {

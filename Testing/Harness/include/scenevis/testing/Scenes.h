@@ -12,6 +12,14 @@ class vtkRenderer;
 
 namespace scenevis
 {
+namespace scenes
+{
+struct BuildingScene;
+}
+}
+
+namespace scenevis
+{
 namespace testing
 {
 
@@ -48,6 +56,10 @@ vtkSmartPointer<vtkPolyData> MakeQuad(double x0, double y0, double x1, double y1
 
 /// The polygons of @p a followed by those of @p b (cell order preserved), in one polydata.
 vtkSmartPointer<vtkPolyData> AppendPolygons(vtkPolyData* a, vtkPolyData* b);
+
+/// The portals of @p building in vtkPortalCuller's format: one polygon per portal, integer cell
+/// arrays RoomA and RoomB.
+vtkSmartPointer<vtkPolyData> MakePortalPolyData(const scenevis::scenes::BuildingScene& building);
 
 } // namespace testing
 } // namespace scenevis
