@@ -27,6 +27,7 @@
 
 #include "scenevis/Frustum.h"
 #include "scenevis/NormalCone.h"
+#include "scenevis/OcclusionBuffer.h"
 
 #include <glm/geometric.hpp>
 
@@ -44,6 +45,7 @@ vtkStandardNewMacro(vtkChunkedPolyDataMapper);
 namespace
 {
 namespace sc = scenevis::culling;
+namespace so = scenevis::occlusion;
 
 struct Node
 {
@@ -93,6 +95,22 @@ struct vtkChunkedPolyDataMapper::Internals
   double MaxScale = 1.0;
   glm::dvec3 EyeWorld{ 0.0 }, ViewDirWorld{ 0.0, 0.0, -1.0 };
 
+  // Occlusion (OcclusionCulling): the copy's triangles (3 point ids each, chunk order) and their
+  // edge neighbours, built on first use per partition; the depth buffer; chunk scratch.
+  std::vector<std::uint32_t> OccluderTriangles, OccluderNeighbors;
+  bool OccluderDataBuilt = false;
+  bool UseOcclusion = false;
+  so::FaceCulling OccluderFaces = so::FaceCulling::None;
+  so::MaskedDepthBuffer Depth;
+  glm::dmat4 ClipFromModel{ 1.0 };
+  std::vector<glm::dvec4> ChunkClip;
+  std::vector<std::uint32_t> ChunkIndices, ChunkNeighbors;
+  vtkIdType CulledOcclusion = 0;
+
+  void BuildOccluderData();
+  void DrawChunkOccluder(std::uint32_t chunk);
+  double Nearness(const Node& n) const;
+
   // Statistics.
   vtkIdType NodesVisited = 0, ChunksTested = 0, ChunksDrawn = 0, CulledFrustum = 0, CulledCone = 0,
             CulledSize = 0, TrianglesDrawn = 0, DrawCalls = 0;
@@ -140,6 +158,9 @@ struct vtkChunkedPolyDataMapper::Internals
 void vtkChunkedPolyDataMapper::Internals::Build(vtkPolyData* input, int chunkSize)
 {
   this->Chunked = nullptr;
+  this->OccluderDataBuilt = false;
+  this->OccluderTriangles.clear();
+  this->OccluderNeighbors.clear();
   this->InputCellOf.clear();
   this->ChunkBegin.clear();
   this->Nodes.clear();
@@ -477,6 +498,11 @@ void vtkChunkedPolyDataMapper::Internals::Traverse(std::uint32_t index, std::uin
       return;
     }
   }
+  if (this->UseOcclusion && this->Depth.boxOccluded(n.lo, n.hi))
+  {
+    this->CulledOcclusion += chunks;
+    return;
+  }
   const bool leaf = n.right == 0;
   if (leaf)
   {
@@ -487,16 +513,101 @@ void vtkChunkedPolyDataMapper::Internals::Traverse(std::uint32_t index, std::uin
       return;
     }
     this->Emit(n.firstChunk, n.endChunk);
+    if (this->UseOcclusion)
+    {
+      this->DrawChunkOccluder(n.firstChunk); // before anything farther is tested
+    }
     return;
   }
   // Entirely inside and nothing else to test below: one range for the whole subtree.
-  if ((!this->UseFrustum || mask == 0) && !this->UseCones && this->MinPixels <= 0.0)
+  if ((!this->UseFrustum || mask == 0) && !this->UseCones && this->MinPixels <= 0.0 &&
+    !this->UseOcclusion)
   {
     this->Emit(n.firstChunk, n.endChunk);
     return;
   }
+  if (this->UseOcclusion &&
+    this->Nearness(this->Nodes[n.right]) < this->Nearness(this->Nodes[index + 1]))
+  {
+    this->Traverse(n.right, mask); // front to back: what is drawn first occludes the rest
+    this->Traverse(index + 1, mask);
+    return;
+  }
   this->Traverse(index + 1, mask);
   this->Traverse(n.right, mask);
+}
+
+//------------------------------------------------------------------------------
+double vtkChunkedPolyDataMapper::Internals::Nearness(const Node& n) const
+{
+  if (this->Parallel)
+  {
+    const glm::dvec3& d = this->DopModel;
+    return std::min(n.lo.x * d.x, n.hi.x * d.x) + std::min(n.lo.y * d.y, n.hi.y * d.y) +
+      std::min(n.lo.z * d.z, n.hi.z * d.z);
+  }
+  const glm::dvec3 gap =
+    glm::max(glm::max(n.lo - this->EyeModel, this->EyeModel - n.hi), glm::dvec3(0.0));
+  return glm::dot(gap, gap);
+}
+
+//------------------------------------------------------------------------------
+void vtkChunkedPolyDataMapper::Internals::BuildOccluderData()
+{
+  this->OccluderDataBuilt = true;
+  this->OccluderTriangles.clear();
+  vtkPoints* points = this->Chunked ? this->Chunked->GetPoints() : nullptr;
+  if (!points)
+  {
+    return;
+  }
+  vtkIdType npts = 0;
+  const vtkIdType* pts = nullptr;
+  vtkCellArray* polys = this->Chunked->GetPolys();
+  this->OccluderTriangles.reserve(static_cast<std::size_t>(3 * polys->GetNumberOfCells()));
+  for (vtkIdType c = 0; c < polys->GetNumberOfCells(); ++c)
+  {
+    polys->GetCellAtId(c, npts, pts);
+    for (vtkIdType k = 0; k < 3; ++k)
+    {
+      this->OccluderTriangles.push_back(static_cast<std::uint32_t>(pts[k]));
+    }
+  }
+  const vtkIdType n = points->GetNumberOfPoints();
+  std::vector<double> xyz(static_cast<std::size_t>(3 * n));
+  for (vtkIdType i = 0; i < n; ++i)
+  {
+    points->GetPoint(i, &xyz[static_cast<std::size_t>(3 * i)]);
+  }
+  this->OccluderNeighbors = so::buildTriangleNeighbors(xyz.data(), static_cast<std::size_t>(n),
+    this->OccluderTriangles.data(), this->OccluderTriangles.size() / 3);
+}
+
+//------------------------------------------------------------------------------
+void vtkChunkedPolyDataMapper::Internals::DrawChunkOccluder(std::uint32_t chunk)
+{
+  const std::uint32_t begin = this->ChunkBegin[chunk], end = this->ChunkBegin[chunk + 1];
+  vtkPoints* points = this->Chunked->GetPoints();
+  this->ChunkClip.clear();
+  this->ChunkIndices.clear();
+  this->ChunkNeighbors.clear();
+  // Each triangle with its own three vertices (a shared vertex is transformed from the same
+  // coordinates by the same matrix: bit-identical); neighbours in other chunks become outline
+  // edges (conservative).
+  for (std::uint32_t t = begin; t < end; ++t)
+  {
+    for (int k = 0; k < 3; ++k)
+    {
+      double p[3];
+      points->GetPoint(this->OccluderTriangles[3 * std::size_t(t) + k], p);
+      this->ChunkIndices.push_back(static_cast<std::uint32_t>(this->ChunkClip.size()));
+      this->ChunkClip.push_back(this->ClipFromModel * glm::dvec4(p[0], p[1], p[2], 1.0));
+      const std::uint32_t nb = this->OccluderNeighbors[3 * std::size_t(t) + k];
+      this->ChunkNeighbors.push_back(nb >= begin && nb < end ? nb - begin : so::kNoNeighbor);
+    }
+  }
+  this->Depth.drawTriangles(this->ChunkClip.data(), this->ChunkClip.size(),
+    this->ChunkIndices.data(), end - begin, this->OccluderFaces, this->ChunkNeighbors.data());
 }
 
 //------------------------------------------------------------------------------
@@ -536,6 +647,11 @@ vtkIdType vtkChunkedPolyDataMapper::GetNumberOfChunksCulledByNormalCone() const
 {
   return this->Internal->CulledCone;
 }
+vtkIdType vtkChunkedPolyDataMapper::GetNumberOfChunksCulledByOcclusion() const
+{
+  return this->Internal->CulledOcclusion;
+}
+
 vtkIdType vtkChunkedPolyDataMapper::GetNumberOfChunksCulledBySize() const
 {
   return this->Internal->CulledSize;
@@ -683,7 +799,8 @@ void vtkChunkedPolyDataMapper::RenderPieceStart(vtkRenderer* ren, vtkActor* acto
   in.Ranges.clear();
   in.DrawnChunks.clear();
   in.NodesVisited = in.ChunksTested = in.ChunksDrawn = in.CulledFrustum = in.CulledCone =
-    in.CulledSize = in.TrianglesDrawn = in.DrawCalls = 0;
+    in.CulledSize = in.TrianglesDrawn = in.DrawCalls = in.CulledOcclusion = 0;
+  in.UseOcclusion = false;
   in.Cull = false;
   in.Skipped = true;
   vtkProperty* property = actor->GetProperty();
@@ -748,6 +865,49 @@ void vtkChunkedPolyDataMapper::RenderPieceStart(vtkRenderer* ren, vtkActor* acto
         std::isfinite(in.EyeModel.z) && std::isfinite(in.DopModel.x) &&
         std::isfinite(in.DopModel.y) && std::isfinite(in.DopModel.z);
     }
+    // Occlusion between the mesh's own chunks: only for an opaque surface (translucent chunks
+    // hide nothing), with the faces OpenGL draws.
+    in.UseOcclusion = this->OcclusionCulling && property->GetOpacity() >= 1.0 &&
+      !actor->HasTranslucentPolygonalGeometry() && !property->GetFrontfaceCulling() &&
+      (!property->GetBackfaceCulling() || det3 > 0.0);
+    if (in.UseOcclusion)
+    {
+      if (!in.OccluderDataBuilt)
+      {
+        in.BuildOccluderData();
+      }
+      in.OccluderFaces =
+        property->GetBackfaceCulling() ? so::FaceCulling::Back : so::FaceCulling::None;
+      for (int r = 0; r < 4; ++r)
+      {
+        for (int c = 0; c < 4; ++c)
+        {
+          in.ClipFromModel[c][r] = clipFromModel->GetElement(r, c);
+        }
+      }
+      if (in.Depth.width() != size[0] || in.Depth.height() != size[1])
+      {
+        in.Depth.resize(size[0], size[1]);
+      }
+      else
+      {
+        in.Depth.clear();
+      }
+      in.Depth.setClipFromWorld(in.ClipFromModel); // boxes and triangles in model coordinates
+      if (!in.UseCones)
+      {
+        // The eye (or direction of projection) in model coordinates, for front-to-back order.
+        vtkNew<vtkMatrix4x4> inverse;
+        vtkMatrix4x4::Invert(model, inverse);
+        double e[4];
+        inverse->MultiplyPoint(eye, e);
+        const double* im = inverse->GetData();
+        in.EyeModel = glm::dvec3(e[0], e[1], e[2]) / e[3];
+        in.DopModel = glm::dvec3(im[0] * dop[0] + im[1] * dop[1] + im[2] * dop[2],
+          im[4] * dop[0] + im[5] * dop[1] + im[6] * dop[2],
+          im[8] * dop[0] + im[9] * dop[1] + im[10] * dop[2]);
+      }
+    }
     in.MinPixels = this->MinimumPixelSize;
     if (in.MinPixels > 0.0)
     {
@@ -776,6 +936,27 @@ void vtkChunkedPolyDataMapper::RenderPieceStart(vtkRenderer* ren, vtkActor* acto
     if (!in.Nodes.empty())
     {
       in.Traverse(0, sc::kAllPlanes);
+    }
+    if (in.UseOcclusion)
+    {
+      // Front to back visits chunks out of order: draw them in chunk order again (the plain
+      // mapper's primitive order) and merge adjacent ranges.
+      std::sort(in.Ranges.begin(), in.Ranges.end());
+      std::sort(in.DrawnChunks.begin(), in.DrawnChunks.end());
+      std::size_t merged = 0;
+      for (std::size_t r = 0; r < in.Ranges.size(); ++r)
+      {
+        if (merged > 0 &&
+          in.Ranges[merged - 1].first + in.Ranges[merged - 1].second == in.Ranges[r].first)
+        {
+          in.Ranges[merged - 1].second += in.Ranges[r].second;
+        }
+        else
+        {
+          in.Ranges[merged++] = in.Ranges[r];
+        }
+      }
+      in.Ranges.resize(merged);
     }
     in.Cull = true;
     in.Skipped = false;

@@ -109,6 +109,18 @@ public:
   ///@}
 
   ///@{
+  /// Occlusion culling between the mesh's own chunks (default off): the chunk tree is traversed
+  /// front to back, chunks drawn are rasterized into a software depth buffer
+  /// (scenevis/OcclusionBuffer.h) and chunks hidden behind them are not drawn. Conservative
+  /// (a chunk is culled only if its box is hidden at every pixel centre); active only for an
+  /// opaque surface. Costs the rasterization of the visible chunks' triangles on the CPU: it
+  /// pays when much of the mesh in view is hidden (one big CAD mesh seen from close by).
+  void SetOcclusionCulling(bool on) { this->OcclusionCulling = on; }
+  vtkGetMacro(OcclusionCulling, bool);
+  vtkBooleanMacro(OcclusionCulling, bool);
+  ///@}
+
+  ///@{
   /// APPROXIMATE small-feature culling in pixels (projected bounding-sphere diameter). 0 = off
   /// (default).
   void SetMinimumPixelSize(double pixels)
@@ -129,6 +141,7 @@ public:
   vtkIdType GetNumberOfChunksCulledByFrustum() const;
   vtkIdType GetNumberOfChunksCulledByNormalCone() const;
   vtkIdType GetNumberOfChunksCulledBySize() const;
+  vtkIdType GetNumberOfChunksCulledByOcclusion() const;
   vtkIdType GetNumberOfTrianglesDrawn() const;
   vtkIdType GetNumberOfDrawCalls() const;
   /// Whether the last render drew everything (see the class documentation for when).
@@ -162,6 +175,7 @@ protected:
   bool FrustumCulling = true;
   bool NormalConeCulling = true;
   double MinimumPixelSize = 0.0;
+  bool OcclusionCulling = false;
 
 private:
   vtkChunkedPolyDataMapper(const vtkChunkedPolyDataMapper&) = delete;
