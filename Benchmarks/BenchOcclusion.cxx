@@ -20,7 +20,9 @@
 //    props whose query passed; "cull ms" = issuing and reading the queries, "frame ms" = the
 //    occluders' frame + the queries + drawing what passed.
 // Usage: scenevis_occlusion_bench [--grid N] [--size WxH] [--frames K]
-//        [--pixels-per-triangle P] [--smoke]
+//        [--pixels-per-triangle P] [--smoke] [--write-flat FILE.vtp]
+// --write-flat writes the grid as ONE polydata (a PartId cell array naming the 46,000 placed
+// parts, as flattening exporters write it) and exits: the input of `scenevis render --scene`.
 // (--smoke: 2 x 2 engines at 160x120, one frame: a seconds-long check that it runs, for CI).
 // Needs the data cache (scripts/fetch-data.sh); prints "SKIPPED" and exits 0 without it.
 #include "OcclusionQueries.h"
@@ -38,6 +40,7 @@
 #include <vtkCullerCollection.h>
 #include <vtkDataArray.h>
 #include <vtkIdList.h>
+#include <vtkIdTypeArray.h>
 #include <vtkImageData.h>
 #include <vtkNew.h>
 #include <vtkPoints.h>
@@ -48,6 +51,7 @@
 #include <vtkRenderWindow.h>
 #include <vtkRenderer.h>
 #include <vtkUnsignedCharArray.h>
+#include <vtkXMLPolyDataWriter.h>
 
 #include <algorithm>
 #include <chrono>
@@ -391,12 +395,87 @@ Row MeasureQueries(Grid& g, vtkRenderWindow* window, const std::set<std::size_t>
   row.queries = candidates.size();
   return row;
 }
+/// The grid as one polydata: every placed part's triangles, PartId = the actor's index.
+bool WriteFlat(const std::vector<Part>& parts, int n, const char* path)
+{
+  double pitch[3];
+  double b[6] = { 1e300, -1e300, 1e300, -1e300, 1e300, -1e300 };
+  vtkIdType points = 0, cells = 0;
+  for (const Part& p : parts)
+  {
+    const double* pb = p.data->GetBounds();
+    for (int k = 0; k < 3; ++k)
+    {
+      b[2 * k] = std::min(b[2 * k], pb[2 * k]);
+      b[2 * k + 1] = std::max(b[2 * k + 1], pb[2 * k + 1]);
+    }
+    points += p.data->GetNumberOfPoints();
+    cells += p.data->GetNumberOfCells();
+  }
+  for (int k = 0; k < 3; ++k)
+  {
+    pitch[k] = 1.15 * (b[2 * k + 1] - b[2 * k]);
+  }
+  vtkNew<vtkPoints> allPoints;
+  allPoints->SetDataTypeToFloat();
+  allPoints->Allocate(points * n * n);
+  vtkNew<vtkCellArray> polys;
+  polys->AllocateEstimate(cells * n * n, 3);
+  vtkNew<vtkIdTypeArray> partId;
+  partId->SetName("PartId");
+  partId->Allocate(cells * n * n);
+  vtkIdType actor = 0;
+  for (int i = 0; i < n; ++i)
+  {
+    for (int j = 0; j < n; ++j)
+    {
+      for (const Part& p : parts)
+      {
+        const vtkIdType base = allPoints->GetNumberOfPoints();
+        for (vtkIdType q = 0; q < p.data->GetNumberOfPoints(); ++q)
+        {
+          double x[3];
+          p.data->GetPoint(q, x);
+          allPoints->InsertNextPoint(x[0] + i * pitch[0], x[1], x[2] + j * pitch[2]);
+        }
+        vtkIdType npts = 0;
+        const vtkIdType* ids = nullptr;
+        vtkCellArray* cellArray = p.data->GetPolys();
+        std::vector<vtkIdType> shifted;
+        for (cellArray->InitTraversal(); cellArray->GetNextCell(npts, ids);)
+        {
+          shifted.assign(ids, ids + npts);
+          for (vtkIdType& id : shifted)
+          {
+            id += base;
+          }
+          polys->InsertNextCell(npts, shifted.data());
+          partId->InsertNextValue(actor);
+        }
+        ++actor;
+      }
+    }
+  }
+  vtkNew<vtkPolyData> flat;
+  flat->SetPoints(allPoints);
+  flat->SetPolys(polys);
+  flat->GetCellData()->AddArray(partId);
+  vtkNew<vtkXMLPolyDataWriter> writer;
+  writer->SetInputData(flat);
+  writer->SetFileName(path);
+  writer->SetDataModeToAppended();
+  writer->SetCompressorTypeToNone();
+  std::printf("writing %lld triangles of %lld parts to %s\n",
+    static_cast<long long>(flat->GetNumberOfCells()), static_cast<long long>(actor), path);
+  return writer->Write() == 1;
+}
 } // namespace
 
 int main(int argc, char* argv[])
 {
   int n = 20, width = 800, height = 600, frames = 3;
   double pixelsPerTriangle = -1.0; // the culler's default
+  const char* flatFile = nullptr;
   for (int i = 1; i < argc; ++i)
   {
     const std::string a = argv[i];
@@ -404,6 +483,8 @@ int main(int argc, char* argv[])
       n = std::max(1, std::atoi(argv[++i]));
     else if (a == "--size" && i + 1 < argc && std::sscanf(argv[++i], "%dx%d", &width, &height) == 2)
       ;
+    else if (a == "--write-flat" && i + 1 < argc)
+      flatFile = argv[++i];
     else if (a == "--pixels-per-triangle" && i + 1 < argc)
       pixelsPerTriangle = std::atof(argv[++i]);
     else if (a == "--frames" && i + 1 < argc)
@@ -440,6 +521,10 @@ int main(int argc, char* argv[])
   t0 = Clock::now();
   const std::vector<Part> parts = SplitParts(model);
   const double splitS = Seconds(t0);
+  if (flatFile)
+  {
+    return WriteFlat(parts, n, flatFile) ? 0 : 1;
+  }
   t0 = Clock::now();
   Grid g;
   BuildGrid(g, parts, n);

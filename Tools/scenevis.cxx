@@ -2142,6 +2142,8 @@ struct ScenePlan
   std::vector<vtkSmartPointer<vtkPolyData>> groups;
   std::string sort;
   std::string sortReason;
+  double inspectMs = 0.0; ///< reading the scene's facts (parts, rooms, translucency, view)
+  double splitMs = 0.0;   ///< splitting it into one polydata per part / room
 };
 
 /// @p renderer: its camera already set up, for what the first frame sees.
@@ -2149,6 +2151,7 @@ ScenePlan PlanScene(
   const Options& options, const LoadedScene& scene, const std::string& sort, vtkRenderer* renderer)
 {
   ScenePlan plan;
+  const auto inspectStart = std::chrono::steady_clock::now();
   plan.facts = InspectScene(scene.polydata, scene.portals, options);
   if (plan.facts.parts >= kManyProps)
   {
@@ -2157,16 +2160,23 @@ ScenePlan PlanScene(
         static_cast<double>(options.width) / static_cast<double>(options.height),
         &plan.facts.depthComplexity);
   }
+  plan.inspectMs = Milliseconds(inspectStart);
   plan.cull = PlanCulling(options.cull, plan.facts, options.roomArray);
   if (plan.cull.needsActors)
   {
     // Rooms first: an actor must lie in one room for the portal culler to cull it.
+    const auto splitStart = std::chrono::steady_clock::now();
     plan.groups = SplitByKeys(scene.polydata, { options.roomArray, options.partArray });
+    plan.splitMs = Milliseconds(splitStart);
   }
   plan.sort = ChooseSort(sort, plan.facts.translucentFraction > 0.0, plan.cull,
     plan.groups.size() > 1, plan.groups.size(), plan.sortReason);
   if (plan.sort == "multi-actor" && plan.groups.empty())
+  {
+    const auto splitStart = std::chrono::steady_clock::now();
     plan.groups = SplitByPart(scene.polydata, options.partArray);
+    plan.splitMs = Milliseconds(splitStart);
+  }
   return plan;
 }
 
@@ -2310,6 +2320,7 @@ int Render(const Options& options)
   json << "},\n  \"backend\": " << JsonString(scenevis::testing::BackendName(backend))
        << ",\n  \"size\": [" << options.width << ", " << options.height
        << "],\n  \"load_ms\": " << scene.loadMs << ",\n  \"window_ms\": " << windowMs
+       << ",\n  \"inspect_ms\": " << plan.inspectMs << ",\n  \"split_ms\": " << plan.splitMs
        << ",\n  \"build_ms\": " << buildMs << ",\n  \"cull_setup_ms\": " << culling.SetupMs()
        << ",\n  \"sort_in_render\": " << (pipeline.SortsInRender() ? "true" : "false");
   if (perCamera)
