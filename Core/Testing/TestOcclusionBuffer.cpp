@@ -150,6 +150,20 @@ TEST(OcclusionBuffer, AWallOfManySmallTrianglesOccludesAsOne)
   EXPECT_TRUE(buffer.boxOccluded({ -3, 0.5, -3 }, { 3, 9, 3 }));
 }
 
+TEST(OcclusionBuffer, AnOccluderSmallerThanATileHidesWhatIsBehindIt)
+{
+  // A wall of about 5 x 5 pixels covers no whole 8 x 4 tile: only the working layer (its mask
+  // and depth) knows it; a box behind it covering fewer pixels is hidden by it.
+  const std::vector<Triangle> w = wall(0.0, 0.5, 2);
+  MaskedDepthBuffer buffer = bufferFor(kFront);
+  draw(buffer, kFront, w);
+  const glm::dvec3 lo(-0.06, 1.0, -0.06), hi(0.06, 1.1, 0.06);
+  ASSERT_EQ(visiblePixels(kFront, w, lo, hi), 0);
+  EXPECT_TRUE(buffer.boxOccluded(lo, hi));
+  // Wider than the wall: seen beside it.
+  EXPECT_FALSE(buffer.boxOccluded({ -0.8, 1.0, -0.06 }, { 0.8, 1.1, 0.06 }));
+}
+
 TEST(OcclusionBuffer, ABoxPeekingOutByOnePixelIsVisible)
 {
   const std::vector<Triangle> w = wall(0.0, 2.0, 1);

@@ -592,14 +592,38 @@ bool MaskedDepthBuffer::rectOccluded(
     return false; // off screen: for the frustum test to decide, not for occlusion
   }
   const double z = nearestDepth - depthMargin;
-  const int tx0 = static_cast<int>(px0) / kTileWidth, tx1 = static_cast<int>(px1) / kTileWidth;
-  const int ty0 = static_cast<int>(py0) / kTileHeight, ty1 = static_cast<int>(py1) / kTileHeight;
+  const int ix0 = static_cast<int>(px0), ix1 = static_cast<int>(px1);
+  const int iy0 = static_cast<int>(py0), iy1 = static_cast<int>(py1);
+  const int tx0 = ix0 / kTileWidth, tx1 = ix1 / kTileWidth;
+  const int ty0 = iy0 / kTileHeight, ty1 = iy1 / kTileHeight;
   for (int ty = ty0; ty <= ty1; ++ty)
   {
     const Tile* row = tiles_.data() + static_cast<std::size_t>(ty) * tilesX_;
     for (int tx = tx0; tx <= tx1; ++tx)
     {
-      if (!(z > static_cast<double>(row[tx].z0)))
+      const Tile& tile = row[tx];
+      if (z > static_cast<double>(tile.z0))
+      {
+        continue;
+      }
+      // Not hidden by the whole-tile depth; the working layer may still cover exactly the
+      // rectangle's pixels of this tile (a box at the edge of a tile behind a nearer occluder
+      // that does not fill the tile): hidden there if all of them are in its mask and behind z1.
+      if (tile.mask == 0 || !(z > static_cast<double>(tile.z1)))
+      {
+        return false;
+      }
+      const int i0 = std::max(ix0 - tx * kTileWidth, 0);
+      const int i1 = std::min(ix1 - tx * kTileWidth, kTileWidth - 1);
+      const int j0 = std::max(iy0 - ty * kTileHeight, 0);
+      const int j1 = std::min(iy1 - ty * kTileHeight, kTileHeight - 1);
+      const std::uint32_t rowBits = ((2u << i1) - 1u) & ~((1u << i0) - 1u);
+      std::uint32_t covered = 0;
+      for (int j = j0; j <= j1; ++j)
+      {
+        covered |= rowBits << (j * kTileWidth);
+      }
+      if ((covered & ~tile.mask) != 0)
       {
         return false;
       }

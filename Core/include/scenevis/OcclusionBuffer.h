@@ -39,8 +39,10 @@
  * Triangles of different occluders merge in the working layer; when its mask becomes full, z0
  * becomes min(z0, z1). This is what lets a mesh of many small triangles occlude: no single
  * triangle needs to cover a tile. Occludee tests read one depth per tile (z0): a box is occluded
- * when its nearest depth is behind z0 of every tile its screen rectangle touches. The tiles are
- * the hierarchy's first level (Greene's hierarchical z-buffer: one max depth per block).
+ * when its nearest depth is behind z0 of every tile its screen rectangle touches, or, in a tile
+ * where it is not, behind z1 with all of the rectangle's pixels of that tile in the working
+ * layer's mask (occluders smaller than a tile, box edges). The tiles are the hierarchy's first
+ * level (Greene's hierarchical z-buffer: one max depth per block).
  *
  * Cost: per occluder triangle, 3 vertex projections (shared vertices are projected once by the
  * caller), then per tile it touches a coverage mask of 32 pixels. Per occludee box, 8 corner
