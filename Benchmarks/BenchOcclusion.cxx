@@ -257,7 +257,7 @@ struct Row
   double cullMs = 0, rasterMs = 0, frameMs = 0;
   vtkIdType culledByOcclusion = 0, occluders = 0, occluderTriangles = 0, trianglesDrawn = 0;
   vtkIdType bufferBytes = 0, cacheBytes = 0;
-  bool missed_ok = true;     ///< gl-queries: the queries ran without a GL error
+  bool queriesOk = true;     ///< gl-queries: the queries ran without a GL error
   std::size_t queries = 0;   ///< gl-queries: boxes queried
 };
 
@@ -388,7 +388,7 @@ Row MeasureQueries(Grid& g, vtkRenderWindow* window, const std::set<std::size_t>
     actor->SetVisibility(1);
   }
   row.drawn = visible.size() + passed;
-  row.missed_ok = queries.ok;
+  row.queriesOk = queries.ok;
   row.cullMs = queries.issueMs + queries.waitMs;
   row.frameMs = occludersMs + row.cullMs + (passed > 0 ? drawMs - occludersMs : 0.0);
   row.occluders = static_cast<vtkIdType>(visible.size());
@@ -578,7 +578,7 @@ int main(int argc, char* argv[])
       v.name, glRow.culler.c_str(), visible.size(), glRow.drawn,
       double(glRow.drawn) / std::max<std::size_t>(1, visible.size()), "0", glRow.cullMs, "-",
       glRow.frameMs, static_cast<long long>(glRow.occluders), "-", "-", glRow.queries,
-      glRow.missed_ok ? "" : ", GL ERROR");
+      glRow.queriesOk ? "" : ", GL ERROR");
     for (const Row& r : rows)
     {
       std::printf("%-12s %-10s %8zu %8zu %9.2f %6zu %9.3f %9.3f %10.1f %9lld %10lld %12lld\n",

@@ -381,11 +381,6 @@ struct EdgeTest
     const int end = includeTie ? below + 1 : above;
     return end <= 0 ? 0u : (end >= 8 ? 0xFFu : (1u << end) - 1u);
   }
-  bool inside(double x, double y) const
-  {
-    const double v = value(x, y);
-    return v > threshold || (v == threshold && includeTie);
-  }
 };
 } // namespace
 

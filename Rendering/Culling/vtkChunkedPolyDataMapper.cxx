@@ -849,22 +849,6 @@ void vtkChunkedPolyDataMapper::RenderPieceStart(vtkRenderer* ren, vtkActor* acto
     in.UseCones = this->NormalConeCulling && property->GetBackfaceCulling() &&
       !property->GetFrontfaceCulling() && det3 > 0.0 && std::isfinite(det3) && m[12] == 0.0 &&
       m[13] == 0.0 && m[14] == 0.0 && m[15] == 1.0;
-    if (in.UseCones)
-    {
-      vtkNew<vtkMatrix4x4> inverse;
-      vtkMatrix4x4::Invert(model, inverse);
-      double e[4];
-      inverse->MultiplyPoint(eye, e);
-      const double* im = inverse->GetData();
-      in.EyeModel = glm::dvec3(e[0], e[1], e[2]) / e[3];
-      const glm::dvec3 d(im[0] * dop[0] + im[1] * dop[1] + im[2] * dop[2],
-        im[4] * dop[0] + im[5] * dop[1] + im[6] * dop[2],
-        im[8] * dop[0] + im[9] * dop[1] + im[10] * dop[2]);
-      in.DopModel = glm::normalize(d);
-      in.UseCones = std::isfinite(in.EyeModel.x) && std::isfinite(in.EyeModel.y) &&
-        std::isfinite(in.EyeModel.z) && std::isfinite(in.DopModel.x) &&
-        std::isfinite(in.DopModel.y) && std::isfinite(in.DopModel.z);
-    }
     // Occlusion between the mesh's own chunks: only for an opaque surface (translucent chunks
     // hide nothing), with the faces OpenGL draws.
     in.UseOcclusion = this->OcclusionCulling && property->GetOpacity() >= 1.0 &&
@@ -894,19 +878,24 @@ void vtkChunkedPolyDataMapper::RenderPieceStart(vtkRenderer* ren, vtkActor* acto
         in.Depth.clear();
       }
       in.Depth.setClipFromWorld(in.ClipFromModel); // boxes and triangles in model coordinates
-      if (!in.UseCones)
-      {
-        // The eye (or direction of projection) in model coordinates, for front-to-back order.
-        vtkNew<vtkMatrix4x4> inverse;
-        vtkMatrix4x4::Invert(model, inverse);
-        double e[4];
-        inverse->MultiplyPoint(eye, e);
-        const double* im = inverse->GetData();
-        in.EyeModel = glm::dvec3(e[0], e[1], e[2]) / e[3];
-        in.DopModel = glm::dvec3(im[0] * dop[0] + im[1] * dop[1] + im[2] * dop[2],
-          im[4] * dop[0] + im[5] * dop[1] + im[6] * dop[2],
-          im[8] * dop[0] + im[9] * dop[1] + im[10] * dop[2]);
-      }
+    }
+    if (in.UseCones || in.UseOcclusion)
+    {
+      // The eye and direction of projection in model coordinates: for the cone test, and for
+      // the front-to-back order of occlusion (which needs no finite values to stay correct).
+      vtkNew<vtkMatrix4x4> inverse;
+      vtkMatrix4x4::Invert(model, inverse);
+      double e[4];
+      inverse->MultiplyPoint(eye, e);
+      const double* im = inverse->GetData();
+      in.EyeModel = glm::dvec3(e[0], e[1], e[2]) / e[3];
+      in.DopModel = glm::normalize(glm::dvec3(im[0] * dop[0] + im[1] * dop[1] + im[2] * dop[2],
+        im[4] * dop[0] + im[5] * dop[1] + im[6] * dop[2],
+        im[8] * dop[0] + im[9] * dop[1] + im[10] * dop[2]));
+      in.UseCones = in.UseCones && std::isfinite(in.EyeModel.x) &&
+        std::isfinite(in.EyeModel.y) && std::isfinite(in.EyeModel.z) &&
+        std::isfinite(in.DopModel.x) && std::isfinite(in.DopModel.y) &&
+        std::isfinite(in.DopModel.z);
     }
     in.MinPixels = this->MinimumPixelSize;
     if (in.MinPixels > 0.0)

@@ -214,10 +214,11 @@ void vtkOccluderRasterizer::Draw(vtkProp* prop, const double bounds[6])
   }
   const auto start = std::chrono::steady_clock::now();
   vtkMatrix4x4* model = actor->GetMatrix();
+  const double determinant = model->Determinant();
   so::FaceCulling culling = so::FaceCulling::None;
   if (property->GetBackfaceCulling() || property->GetFrontfaceCulling())
   {
-    if (model->Determinant() <= 0.0)
+    if (determinant <= 0.0)
     {
       return;
     }
@@ -283,7 +284,7 @@ void vtkOccluderRasterizer::Draw(vtkProp* prop, const double bounds[6])
   if (culling == so::FaceCulling::None && mesh->Closed)
   {
     // The actor's matrix may mirror (negative determinant): then outward faces wind clockwise.
-    const bool outwardIsFront = mesh->Outward == (model->Determinant() > 0.0);
+    const bool outwardIsFront = mesh->Outward == (determinant > 0.0);
     culling = outwardIsFront ? so::FaceCulling::Back : so::FaceCulling::Front;
   }
   if (!mesh->Triangles.empty())
