@@ -43,7 +43,7 @@ export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
 
 # gtest_discover_tests runs the test binary at build time, so the options above already apply.
 cmake --build "$build" -j"$jobs" --target scenevis_core_tests scenevis_fuzz_bsp_replay \
-  scenevis_fuzz_occlusion_replay \
+  scenevis_fuzz_occlusion_replay scenevis_split_parts_tests scenevis_instances_tests \
   SceneVisFiltersSortingCxxTests SceneVisFiltersSortingRenderingCxxTests \
   SceneVisFiltersSourcesCxxTests SceneVisRenderingCullingCxxTests \
   SceneVisRenderingPortalsCxxTests SceneVisRenderingTranslucencyCxxTests
@@ -53,8 +53,9 @@ echo "sanitize: asan build done in $(( $(date +%s) - start )) s ($build)"
 # ones included; those live in executables not built here (left to the main run) and are skipped:
 # ctest shows an empty command for them. Fuzz.BspCorpus replays Core/Fuzz/corpus and crashes.
 # Every VTK-level test of the modules too (they render with OSMesa, no X needed): LeakSanitizer
-# is the leak check of the filters, mappers, passes and cullers.
-tests='^(Core\.|Fuzz\.|SceneVis::)'
+# is the leak check of the filters, mappers, passes and cullers; and the tool's own code paths
+# that take files and split them (Tool.SplitParts, Tool.Instances).
+tests='^(Core\.|Fuzz\.|SceneVis::|Tool\.(SplitParts|Instances)\.)'
 unbuilt=$(cd "$build" && ctest -N -V -R "$tests" | awk '
   /Test command:/ { cmd = $0; sub(/^[0-9]+: Test command: */, "", cmd); empty = (cmd == "" || cmd ~ /^"/) }
   /^ *Test +#[0-9]+:/ { if (empty) { sub(/^ *Test +#[0-9]+: /, ""); print } }' | paste -sd'|' -)

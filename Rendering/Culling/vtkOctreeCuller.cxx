@@ -12,6 +12,7 @@
 #include "vtkMapper.h"
 #include "vtkMath.h"
 #include "vtkMatrix4x4.h"
+#include "vtkMatrixToLinearTransform.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
 #include "vtkPoints.h"
@@ -278,9 +279,17 @@ public:
       return false;
     }
     auto* actor = static_cast<vtkActor*>(prop);
-    if (actor->GetUserTransform())
+    if (vtkLinearTransform* transform = actor->GetUserTransform())
     {
-      return false; // a transform's inputs / concatenations change it without an event on it
+      // SetUserMatrix() wraps the matrix in a vtkMatrixToLinearTransform of it: the matrix's
+      // events (and the wrapper's, for SetInput) cover that one. Any other transform's inputs /
+      // concatenations change it without an event on it.
+      auto* wrapper = vtkMatrixToLinearTransform::SafeDownCast(transform);
+      if (!wrapper || !actor->GetUserMatrix() || wrapper->GetInput() != actor->GetUserMatrix())
+      {
+        return false;
+      }
+      deps.push_back(wrapper);
     }
     if (vtkMatrix4x4* m = actor->GetUserMatrix())
     {

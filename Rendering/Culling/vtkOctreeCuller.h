@@ -53,12 +53,13 @@
  *   points, their array or the polydata, parameter changes of any upstream algorithm (also of
  *   culled props, whose pipeline has not executed). Polled every frame instead (GetBounds() as in
  *   UPDATE_BOUNDS_EVERY_FRAME, O(such props)): props that are not plain vtkActors (vtkFollower,
- *   vtkLODActor, vtkAssembly, volumes, ...), actors with a user transform (its inputs and
- *   concatenations change it silently), mappers that are not vtkPolyDataMappers or whose input is
- *   not a vtkPolyData, and pipelines of more than 64 algorithms. NOT detected: writing memory
- *   directly (e.g. through GetPointer() or vtkMatrix4x4::Element) without calling Modified(),
- *   changes to cell connectivity alone (no Modified() on the polydata), and time-dependent
- *   pipeline output without a Modified() (call InvalidateProp() for those). Props that leave the
+ *   vtkLODActor, vtkAssembly, volumes, ...), actors with a user transform other than the one
+ *   SetUserMatrix() makes (its inputs and concatenations change it silently), mappers that are
+ *   not vtkPolyDataMappers or whose input is not a vtkPolyData, and pipelines of more than 64
+ *   algorithms. NOT detected: writing memory directly (e.g. through GetPointer() or
+ *   vtkMatrix4x4::Element) without calling Modified(), changes to cell connectivity alone (no
+ *   Modified() on the polydata), and time-dependent pipeline output without a Modified() (call
+ *   InvalidateProp() for those). Props that leave the
  *   renderer stop being observed at the next Cull(); all observers go with the culler or when
  *   the mode is changed.
  * - UPDATE_BOUNDS_EVERY_FRAME: GetBounds() of every prop every frame, like
