@@ -21,8 +21,9 @@
 //    occluders' frame + the queries + drawing what passed.
 // Usage: scenevis_occlusion_bench [--grid N] [--size WxH] [--frames K]
 //        [--pixels-per-triangle P] [--smoke] [--write-flat FILE.vtp]
-// --write-flat writes the grid as ONE polydata (a PartId cell array naming the 46,000 placed
-// parts, as flattening exporters write it) and exits: the input of `scenevis render --scene`.
+// --write-flat writes the grid as ONE polydata (raw appended data, the model's point normals, a
+// PartId cell array naming the 46,000 placed parts, as flattening exporters write it) and exits:
+// the input of `scenevis render --scene`.
 // (--smoke: 2 x 2 engines at 160x120, one frame: a seconds-long check that it runs, for CI).
 // Needs the data cache (scripts/fetch-data.sh); prints "SKIPPED" and exits 0 without it.
 #include "OcclusionQueries.h"
@@ -39,10 +40,12 @@
 #include <vtkCellData.h>
 #include <vtkCullerCollection.h>
 #include <vtkDataArray.h>
+#include <vtkFloatArray.h>
 #include <vtkIdList.h>
 #include <vtkIdTypeArray.h>
 #include <vtkImageData.h>
 #include <vtkNew.h>
+#include <vtkPointData.h>
 #include <vtkPoints.h>
 #include <vtkPolyData.h>
 #include <vtkPolyDataMapper.h>
@@ -95,6 +98,10 @@ std::vector<Part> SplitParts(vtkPolyData* model)
   }
   std::vector<Part> out(static_cast<std::size_t>(parts));
   std::vector<vtkSmartPointer<vtkPoints>> points(out.size());
+  // The model's own normals travel with its points (the flattened file keeps them, as exporters
+  // write them: a reader need not compute them).
+  vtkDataArray* modelNormals = model->GetPointData()->GetNormals();
+  std::vector<vtkSmartPointer<vtkFloatArray>> normals(out.size());
   std::vector<vtkSmartPointer<vtkCellArray>> polys(out.size());
   std::vector<std::vector<vtkIdType>> pointMap(out.size());
   std::vector<char> coloured(out.size(), 0);
@@ -103,6 +110,9 @@ std::vector<Part> SplitParts(vtkPolyData* model)
     points[p] = vtkSmartPointer<vtkPoints>::New();
     points[p]->SetDataTypeToDouble();
     polys[p] = vtkSmartPointer<vtkCellArray>::New();
+    normals[p] = vtkSmartPointer<vtkFloatArray>::New();
+    normals[p]->SetName("Normals");
+    normals[p]->SetNumberOfComponents(3);
   }
   vtkNew<vtkIdList> ids;
   std::vector<vtkIdType> cell;
@@ -127,6 +137,8 @@ std::vector<Part> SplitParts(vtkPolyData* model)
       if (map[static_cast<std::size_t>(id)] < 0)
       {
         map[static_cast<std::size_t>(id)] = points[p]->InsertNextPoint(model->GetPoint(id));
+        if (modelNormals)
+          normals[p]->InsertNextTuple(modelNormals->GetTuple(id));
       }
       cell.push_back(map[static_cast<std::size_t>(id)]);
     }
@@ -148,6 +160,8 @@ std::vector<Part> SplitParts(vtkPolyData* model)
       out[p].data = vtkSmartPointer<vtkPolyData>::New();
       out[p].data->SetPoints(points[p]);
       out[p].data->SetPolys(polys[p]);
+      if (modelNormals)
+        out[p].data->GetPointData()->SetNormals(normals[p]);
       kept.push_back(out[p]);
     }
   }
@@ -424,6 +438,11 @@ bool WriteFlat(const std::vector<Part>& parts, int n, const char* path)
   vtkNew<vtkIdTypeArray> partId;
   partId->SetName("PartId");
   partId->Allocate(cells * n * n);
+  const bool withNormals = !parts.empty() && parts.front().data->GetPointData()->GetNormals();
+  vtkNew<vtkFloatArray> allNormals;
+  allNormals->SetName("Normals");
+  allNormals->SetNumberOfComponents(3);
+  allNormals->Allocate(3 * points * n * n);
   vtkIdType actor = 0;
   for (int i = 0; i < n; ++i)
   {
@@ -437,6 +456,8 @@ bool WriteFlat(const std::vector<Part>& parts, int n, const char* path)
           double x[3];
           p.data->GetPoint(q, x);
           allPoints->InsertNextPoint(x[0] + i * pitch[0], x[1], x[2] + j * pitch[2]);
+          if (withNormals)
+            allNormals->InsertNextTuple(p.data->GetPointData()->GetNormals()->GetTuple(q));
         }
         vtkIdType npts = 0;
         const vtkIdType* ids = nullptr;
@@ -460,11 +481,14 @@ bool WriteFlat(const std::vector<Part>& parts, int n, const char* path)
   flat->SetPoints(allPoints);
   flat->SetPolys(polys);
   flat->GetCellData()->AddArray(partId);
+  if (withNormals)
+    flat->GetPointData()->SetNormals(allNormals);
   vtkNew<vtkXMLPolyDataWriter> writer;
   writer->SetInputData(flat);
   writer->SetFileName(path);
   writer->SetDataModeToAppended();
   writer->SetCompressorTypeToNone();
+  writer->EncodeAppendedDataOff(); // raw bytes, as big-model exporters write them (not base64)
   std::printf("writing %lld triangles of %lld parts to %s\n",
     static_cast<long long>(flat->GetNumberOfCells()), static_cast<long long>(actor), path);
   return writer->Write() == 1;

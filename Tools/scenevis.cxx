@@ -1721,8 +1721,20 @@ std::set<long long> DistinctValues(
       values.insert(static_cast<long long>(array->GetTuple1(c)));
     return values;
   }
+  // Hashed, and a run of cells with one value looked up once: exporters write parts' cells
+  // together (48.6M cells in 2 s instead of 6).
+  std::unordered_set<long long> seen;
+  bool first = true;
+  long long previous = 0;
   for (vtkIdType c = 0; c < array->GetNumberOfTuples(); ++c)
-    values.insert(static_cast<long long>(array->GetTuple1(c)));
+  {
+    const auto value = static_cast<long long>(array->GetTuple1(c));
+    if (first || value != previous)
+      seen.insert(value);
+    first = false;
+    previous = value;
+  }
+  values.insert(seen.begin(), seen.end());
   return values;
 }
 
@@ -1797,18 +1809,24 @@ std::vector<PartBox> PartBoxes(vtkPolyData* pd, const std::string& partArray)
   vtkIdType npts = 0;
   const vtkIdType* pts = nullptr;
   vtkIdType c = 0;
+  PartBox* part = nullptr;
+  long long partId = 0;
+  vtkPoints* points = pd->GetPoints();
   for (polys->InitTraversal(); polys->GetNextCell(npts, pts); ++c)
   {
-    PartBox& part = parts[partIds ? static_cast<long long>(partIds->GetTuple1(c)) : 0];
-    part.triangles += std::max<vtkIdType>(npts - 2, 0);
+    const long long id = partIds ? static_cast<long long>(partIds->GetTuple1(c)) : 0;
+    if (!part || id != partId) // runs of one part's cells: one lookup
+      part = &parts[id];
+    partId = id;
+    part->triangles += std::max<vtkIdType>(npts - 2, 0);
     for (vtkIdType k = 0; k < npts; ++k)
     {
       double p[3];
-      pd->GetPoint(pts[k], p);
+      points->GetPoint(pts[k], p);
       for (int a = 0; a < 3; ++a)
       {
-        part.box[2 * a] = std::min(part.box[2 * a], p[a]);
-        part.box[2 * a + 1] = std::max(part.box[2 * a + 1], p[a]);
+        part->box[2 * a] = std::min(part->box[2 * a], p[a]);
+        part->box[2 * a + 1] = std::max(part->box[2 * a + 1], p[a]);
       }
     }
   }
@@ -2356,6 +2374,25 @@ ScenePlan PlanScene(
   return plan;
 }
 
+/// Above this many actors, a command that has written everything leaves without tearing down.
+constexpr int kFastExitActors = 1000;
+
+/**
+ * Ends the process at once (everything written and flushed) when the scene has more than
+ * kFastExitActors actors: VTK 9.1 releases each vertex buffer with a scan of the window's whole
+ * buffer cache (vtkOpenGLVertexBufferObjectCache::RemoveVBO), so destroying n mappers costs
+ * O(n^2): 14 s after the last frame for the 11,500 parts of the 12M-triangle engine grid.
+ */
+void ExitNowIfManyActors(int actors)
+{
+  if (actors <= kFastExitActors)
+    return;
+  std::cout.flush();
+  std::cerr.flush();
+  std::fflush(nullptr);
+  std::_Exit(EXIT_SUCCESS);
+}
+
 int Render(const Options& options)
 {
   if (!options.backend.empty())
@@ -2588,6 +2625,7 @@ int Render(const Options& options)
   {
     std::cout << "  report: " << options.report << "\n";
   }
+  ExitNowIfManyActors(pipeline.Parts());
   return EXIT_SUCCESS;
 }
 
@@ -2870,6 +2908,7 @@ int Cull(const Options& options)
     if (!report)
       throw std::runtime_error("cannot write '" + options.report + "'");
   }
+  ExitNowIfManyActors(pipeline.Parts());
   return EXIT_SUCCESS;
 }
 
