@@ -2423,8 +2423,10 @@ int Render(const Options& options)
   const std::string& method = plan.sort;
   std::string reason = plan.sortReason;
   const bool onTerminal = ProgressBar::OnTerminal();
+  const auto actorsStart = std::chrono::steady_clock::now();
   MethodPipeline pipeline(
     method, pd, renderer, onTerminal, &plan.groups, plan.cull.chunked, plan.instanced);
+  const double actorsMs = Milliseconds(actorsStart);
   if (method == "multi-actor" && !plan.instanced)
   {
     const std::string& part = options.partArray;
@@ -2435,7 +2437,9 @@ int Render(const Options& options)
           : " actors, one per part (" + part + ")");
   }
   SetUpCamera(cameras[0], renderer, bounds, scene.zUp); // again: the clipping range from the actors
+  const auto cullersStart = std::chrono::steady_clock::now();
   const CullSetup culling(plan.cull, pipeline, renderer, pd, scene.portals, onTerminal);
+  const double cullersMs = Milliseconds(cullersStart);
 
   struct Frame
   {
@@ -2528,7 +2532,7 @@ int Render(const Options& options)
   const scenevis::tool::ResidentMemory memory = scenevis::tool::ReadResidentMemory();
   const double polydataBytes = 1024.0 * static_cast<double>(pd->GetActualMemorySize());
   const double accountedMs = scene.loadMs + scene.checkMs + scene.normalsMs + windowMs +
-    plan.inspectMs + plan.splitMs + culling.SetupMs() + firstFrameTotalMs;
+    plan.inspectMs + plan.splitMs + actorsMs + cullersMs + firstFrameTotalMs;
   std::ostringstream json;
   std::ostringstream details;
   json << std::fixed << std::setprecision(3);
@@ -2550,6 +2554,7 @@ int Render(const Options& options)
        << "],\n  \"load_ms\": " << scene.loadMs << ",\n  \"check_ms\": " << scene.checkMs
        << ",\n  \"normals_ms\": " << scene.normalsMs << ",\n  \"window_ms\": " << windowMs
        << ",\n  \"inspect_ms\": " << plan.inspectMs << ",\n  \"split_ms\": " << plan.splitMs
+       << ",\n  \"actors_ms\": " << actorsMs << ",\n  \"cullers_ms\": " << cullersMs
        << ",\n  \"build_ms\": " << buildMs << ",\n  \"cull_setup_ms\": " << culling.SetupMs()
        << ",\n  \"first_frame_ms\": " << firstFrameMs
        << ",\n  \"unaccounted_ms\": " << std::max(0.0, firstFrameMs - accountedMs)
@@ -2603,7 +2608,8 @@ int Render(const Options& options)
   std::cout << "\n  first frame after " << firstFrameMs / 1000.0 << " s (load "
             << scene.loadMs / 1000.0 << ", checks " << scene.checkMs / 1000.0 << ", normals "
             << scene.normalsMs / 1000.0 << ", facts " << plan.inspectMs / 1000.0 << ", split "
-            << plan.splitMs / 1000.0 << ", frame " << firstFrameTotalMs / 1000.0 << " s)\n";
+            << plan.splitMs / 1000.0 << ", actors " << actorsMs / 1000.0 << ", cullers "
+            << cullersMs / 1000.0 << ", frame " << firstFrameTotalMs / 1000.0 << " s)\n";
   std::cout << "  memory: peak " << scenevis::tool::FormatBytes(memory.peak) << " = "
             << std::setprecision(2) << static_cast<double>(memory.peak) / polydataBytes
             << "x the scene's polydata ("
