@@ -2146,12 +2146,22 @@ public:
     // Triangles per actor, of the scene's polygons before any sorting splits them (one actor:
     // the whole scene, whose mapper may read a sorter that has not run yet).
     const auto& actors = pipeline.GetActors();
+    std::unordered_map<vtkPolyData*, vtkIdType> trianglesOfInput; // instances share their mesh
     for (const auto& actor : actors)
     {
       auto* input = vtkPolyData::SafeDownCast(actor->GetMapper()->GetInputDataObject(0, 0));
-      this->TrianglesOf[actor] =
-        actors.size() == 1 ? CountTriangles(scene) : (input ? CountTriangles(input) : 0);
-      this->TotalTriangles += this->TrianglesOf[actor];
+      vtkIdType triangles = 0;
+      if (actors.size() == 1)
+        triangles = CountTriangles(scene);
+      else if (input)
+      {
+        auto found = trianglesOfInput.find(input);
+        if (found == trianglesOfInput.end())
+          found = trianglesOfInput.emplace(input, CountTriangles(input)).first;
+        triangles = found->second;
+      }
+      this->TrianglesOf[actor] = triangles;
+      this->TotalTriangles += triangles;
     }
     vtkSmartPointer<vtkCuller> inner;
     const std::string& m = plan.method;
@@ -2416,7 +2426,9 @@ int Render(const Options& options)
     perCamera ? options.cameras : std::vector<scenevis::tool::CameraSpec>{ options.camera };
   const int frameCount = perCamera ? static_cast<int>(cameras.size()) : options.frames;
   double bounds[6];
+  const auto boundsStart = std::chrono::steady_clock::now();
   SceneBounds(scene, bounds);
+  const double boundsMs = Milliseconds(boundsStart);
   SetUpCamera(cameras[0], renderer, bounds, scene.zUp); // auto looks at what the first frame sees
   const ScenePlan plan = PlanScene(options, scene, options.sort, renderer);
   const bool translucent = plan.facts.translucentFraction > 0.0;
@@ -2531,7 +2543,7 @@ int Render(const Options& options)
   const vtkIdType cells = plan.facts.polygons;
   const scenevis::tool::ResidentMemory memory = scenevis::tool::ReadResidentMemory();
   const double polydataBytes = 1024.0 * static_cast<double>(pd->GetActualMemorySize());
-  const double accountedMs = scene.loadMs + scene.checkMs + scene.normalsMs + windowMs +
+  const double accountedMs = scene.loadMs + scene.checkMs + scene.normalsMs + windowMs + boundsMs +
     plan.inspectMs + plan.splitMs + actorsMs + cullersMs + firstFrameTotalMs;
   std::ostringstream json;
   std::ostringstream details;
@@ -2553,6 +2565,7 @@ int Render(const Options& options)
        << ",\n  \"size\": [" << options.width << ", " << options.height
        << "],\n  \"load_ms\": " << scene.loadMs << ",\n  \"check_ms\": " << scene.checkMs
        << ",\n  \"normals_ms\": " << scene.normalsMs << ",\n  \"window_ms\": " << windowMs
+       << ",\n  \"bounds_ms\": " << boundsMs
        << ",\n  \"inspect_ms\": " << plan.inspectMs << ",\n  \"split_ms\": " << plan.splitMs
        << ",\n  \"actors_ms\": " << actorsMs << ",\n  \"cullers_ms\": " << cullersMs
        << ",\n  \"build_ms\": " << buildMs << ",\n  \"cull_setup_ms\": " << culling.SetupMs()
