@@ -95,16 +95,19 @@ struct vtkChunkedPolyDataMapper::Internals
   double MaxScale = 1.0;
   glm::dvec3 EyeWorld{ 0.0 }, ViewDirWorld{ 0.0, 0.0, -1.0 };
 
-  // Occlusion (OcclusionCulling): the copy's triangles (3 point ids each, chunk order) and their
-  // edge neighbours, built on first use per partition; the depth buffer; chunk scratch.
-  std::vector<std::uint32_t> OccluderTriangles, OccluderNeighbors;
+  // Occlusion (OcclusionCulling): the copy's triangles (3 point ids each, chunk order), built on
+  // first use per partition; each chunk's edge neighbours inside the chunk (chunk-local triangle
+  // ids), built the first time the chunk occludes; the depth buffer; chunk scratch.
+  std::vector<std::uint32_t> OccluderTriangles;
+  std::vector<std::vector<std::uint32_t>> ChunkNeighborTables;
   bool OccluderDataBuilt = false;
   bool UseOcclusion = false;
   so::FaceCulling OccluderFaces = so::FaceCulling::None;
   so::MaskedDepthBuffer Depth;
   glm::dmat4 ClipFromModel{ 1.0 };
   std::vector<glm::dvec4> ChunkClip;
-  std::vector<std::uint32_t> ChunkIndices, ChunkNeighbors;
+  std::vector<std::uint32_t> ChunkIndices;
+  std::vector<double> ChunkXyz;
   vtkIdType CulledOcclusion = 0;
 
   void BuildOccluderData();
@@ -160,7 +163,7 @@ void vtkChunkedPolyDataMapper::Internals::Build(vtkPolyData* input, int chunkSiz
   this->Chunked = nullptr;
   this->OccluderDataBuilt = false;
   this->OccluderTriangles.clear();
-  this->OccluderNeighbors.clear();
+  this->ChunkNeighborTables.clear();
   this->InputCellOf.clear();
   this->ChunkBegin.clear();
   this->Nodes.clear();
@@ -573,14 +576,11 @@ void vtkChunkedPolyDataMapper::Internals::BuildOccluderData()
       this->OccluderTriangles.push_back(static_cast<std::uint32_t>(pts[k]));
     }
   }
-  const vtkIdType n = points->GetNumberOfPoints();
-  std::vector<double> xyz(static_cast<std::size_t>(3 * n));
-  for (vtkIdType i = 0; i < n; ++i)
-  {
-    points->GetPoint(i, &xyz[static_cast<std::size_t>(3 * i)]);
-  }
-  this->OccluderNeighbors = so::buildTriangleNeighbors(xyz.data(), static_cast<std::size_t>(n),
-    this->OccluderTriangles.data(), this->OccluderTriangles.size() / 3);
+  // Neighbours per chunk, on first use: a chunk is drawn as an occluder on its own, so only edges
+  // between two of its triangles can be inner edges (the others are outline edges either way).
+  // A whole-mesh table cost a sort of every edge before the first frame (15 s at 48.6M).
+  this->ChunkNeighborTables.assign(this->ChunkBegin.empty() ? 0 : this->ChunkBegin.size() - 1,
+    std::vector<std::uint32_t>());
 }
 
 //------------------------------------------------------------------------------
@@ -590,10 +590,12 @@ void vtkChunkedPolyDataMapper::Internals::DrawChunkOccluder(std::uint32_t chunk)
   vtkPoints* points = this->Chunked->GetPoints();
   this->ChunkClip.clear();
   this->ChunkIndices.clear();
-  this->ChunkNeighbors.clear();
   // Each triangle with its own three vertices (a shared vertex is transformed from the same
-  // coordinates by the same matrix: bit-identical); neighbours in other chunks become outline
-  // edges (conservative).
+  // coordinates by the same matrix: bit-identical).
+  std::vector<std::uint32_t>& neighbors = this->ChunkNeighborTables[chunk];
+  const bool build = neighbors.empty();
+  std::vector<double>& xyz = this->ChunkXyz;
+  xyz.clear();
   for (std::uint32_t t = begin; t < end; ++t)
   {
     for (int k = 0; k < 3; ++k)
@@ -602,12 +604,19 @@ void vtkChunkedPolyDataMapper::Internals::DrawChunkOccluder(std::uint32_t chunk)
       points->GetPoint(this->OccluderTriangles[3 * std::size_t(t) + k], p);
       this->ChunkIndices.push_back(static_cast<std::uint32_t>(this->ChunkClip.size()));
       this->ChunkClip.push_back(this->ClipFromModel * glm::dvec4(p[0], p[1], p[2], 1.0));
-      const std::uint32_t nb = this->OccluderNeighbors[3 * std::size_t(t) + k];
-      this->ChunkNeighbors.push_back(nb >= begin && nb < end ? nb - begin : so::kNoNeighbor);
+      if (build)
+        xyz.insert(xyz.end(), p, p + 3);
     }
   }
+  if (build)
+  {
+    // Corners welded by coordinates, as over the whole mesh; neighbours in other chunks are
+    // outline edges (conservative).
+    neighbors = so::buildTriangleNeighbors(
+      xyz.data(), xyz.size() / 3, this->ChunkIndices.data(), end - begin);
+  }
   this->Depth.drawTriangles(this->ChunkClip.data(), this->ChunkClip.size(),
-    this->ChunkIndices.data(), end - begin, this->OccluderFaces, this->ChunkNeighbors.data());
+    this->ChunkIndices.data(), end - begin, this->OccluderFaces, neighbors.data());
 }
 
 //------------------------------------------------------------------------------
