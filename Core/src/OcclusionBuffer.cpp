@@ -22,6 +22,22 @@ bool finite(const glm::dvec4& v)
   return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z) && std::isfinite(v.w);
 }
 
+/// Twice the signed area of window-space triangle abc (positive: counter-clockwise).
+double doubleArea(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c)
+{
+  return (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x);
+}
+
+/// Whether OpenGL draws nothing of window-space triangle abc: zero or non-finite area, or a
+/// culled face.
+bool culled(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c, FaceCulling culling)
+{
+  const double area2 = doubleArea(a, b, c);
+  return !(std::abs(area2) > 0.0) || !std::isfinite(area2) ||
+    (culling == FaceCulling::Back && area2 < 0.0) ||
+    (culling == FaceCulling::Front && area2 > 0.0);
+}
+
 /// The smallest float not below @p value (float(value) may round down).
 float roundUp(double value)
 {
@@ -194,7 +210,9 @@ void MaskedDepthBuffer::drawTriangles(const glm::dvec4* clip,
     const std::uint32_t* tri = indices + 3 * t;
     const bool front =
       vertexState_[tri[0]] == 1 && vertexState_[tri[1]] == 1 && vertexState_[tri[2]] == 1;
-    if (front && coversNoCentre(window_[tri[0]], window_[tri[1]], window_[tri[2]]))
+    if (front &&
+      (culled(window_[tri[0]], window_[tri[1]], window_[tri[2]], culling) ||
+        coversNoCentre(window_[tri[0]], window_[tri[1]], window_[tri[2]])))
     {
       ++stats_.trianglesRejected;
       continue;
@@ -387,14 +405,12 @@ struct EdgeTest
 void MaskedDepthBuffer::drawWindowTriangle(const glm::dvec3& a, const glm::dvec3& b,
   const glm::dvec3& c, FaceCulling culling, unsigned outline)
 {
-  const double area2 = (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x);
-  if (!(std::abs(area2) > 0.0) || !std::isfinite(area2) ||
-    (culling == FaceCulling::Back && area2 < 0.0) ||
-    (culling == FaceCulling::Front && area2 > 0.0))
+  if (culled(a, b, c, culling))
   {
     ++stats_.trianglesRejected;
     return;
   }
+  const double area2 = doubleArea(a, b, c);
   const double orientation = area2 > 0.0 ? 1.0 : -1.0;
   const double det = std::abs(area2);
 
@@ -407,6 +423,16 @@ void MaskedDepthBuffer::drawWindowTriangle(const glm::dvec3& a, const glm::dvec3
   const double py1 = std::min(static_cast<double>(height_ - 1), std::floor(ymax - 0.5));
   if (!(px0 <= px1 && py0 <= py1))
   {
+    ++stats_.trianglesRejected;
+    return;
+  }
+  const int tx0 = static_cast<int>(px0) / kTileWidth, tx1 = static_cast<int>(px1) / kTileWidth;
+  const int ty0 = static_cast<int>(py0) / kTileHeight, ty1 = static_cast<int>(py1) / kTileHeight;
+  const double zNearVertex = std::min({ a.z, b.z, c.z }) + depthMargin;
+  if (behindTiles(tx0, ty0, tx1, ty1, zNearVertex))
+  {
+    // Hidden wherever it could draw (most triangles of the parts behind the nearest ones):
+    // rejected before the set-up.
     ++stats_.trianglesRejected;
     return;
   }
@@ -430,7 +456,6 @@ void MaskedDepthBuffer::drawWindowTriangle(const glm::dvec3& a, const glm::dvec3
   const double offset = std::max(0.0, polygonOffsetFactor) * std::max(std::abs(zx), std::abs(zy)) +
     std::max(0.0, polygonOffsetDepth);
   const double zFarVertex = std::max({ a.z, b.z, c.z }) + offset;
-  const double zNearVertex = std::min({ a.z, b.z, c.z }) + depthMargin;
   // Rounding of the plane's evaluation, bounded generously; the depth margin comes on top.
   const double planeError =
     1e-12 * ((std::abs(zx) + 1.0) * width_ + (std::abs(zy) + 1.0) * height_ + std::abs(z00));
@@ -448,8 +473,6 @@ void MaskedDepthBuffer::drawWindowTriangle(const glm::dvec3& a, const glm::dvec3
   const double zOffset =
     std::max(0.0, (kTileWidth - 1) * zx) + std::max(0.0, (kTileHeight - 1) * zy);
   bool touched = false;
-  const int tx0 = static_cast<int>(px0) / kTileWidth, tx1 = static_cast<int>(px1) / kTileWidth;
-  const int ty0 = static_cast<int>(py0) / kTileHeight, ty1 = static_cast<int>(py1) / kTileHeight;
   for (int ty = ty0; ty <= ty1; ++ty)
   {
     const double y0 = ty * kTileHeight + 0.5;
@@ -529,6 +552,22 @@ void MaskedDepthBuffer::drawWindowTriangle(const glm::dvec3& a, const glm::dvec3
   {
     ++stats_.trianglesRejected;
   }
+}
+
+bool MaskedDepthBuffer::behindTiles(int tx0, int ty0, int tx1, int ty1, double depth) const
+{
+  for (int ty = ty0; ty <= ty1; ++ty)
+  {
+    const Tile* row = tiles_.data() + static_cast<std::size_t>(ty) * tilesX_;
+    for (int tx = tx0; tx <= tx1; ++tx)
+    {
+      if (depth < static_cast<double>(row[tx].z0))
+      {
+        return false;
+      }
+    }
+  }
+  return true;
 }
 
 void MaskedDepthBuffer::updateTile(Tile& tile, std::uint32_t mask, float depth, std::uint32_t outside)

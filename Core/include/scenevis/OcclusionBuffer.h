@@ -181,6 +181,8 @@ private:
   void drawWindowTriangle(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c,
     FaceCulling culling, unsigned outlineEdges);
   void updateTile(Tile& tile, std::uint32_t mask, float depth, std::uint32_t outside);
+  /// Whether every tile of [tx0, tx1] x [ty0, ty1] has z0 <= @p depth (nothing nearer to add).
+  bool behindTiles(int tx0, int ty0, int tx1, int ty1, double depth) const;
 
   int width_ = 0, height_ = 0, tilesX_ = 0, tilesY_ = 0;
   std::vector<Tile> tiles_;
