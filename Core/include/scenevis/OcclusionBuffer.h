@@ -177,21 +177,46 @@ public:
   std::size_t memoryBytes() const { return tiles_.capacity() * sizeof(Tile); }
 
 private:
+  /// Pixel centres [x0, x1] x [y0, y1] (integers) that a triangle may cover.
+  struct CentreSpan
+  {
+    int x0, x1, y0, y1;
+  };
+  static CentreSpan centreSpan(double x, double y, int width, int height);
   void drawClippedTriangle(const glm::dvec4* v, FaceCulling culling, unsigned outlineEdges);
   void drawWindowTriangle(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c,
     FaceCulling culling, unsigned outlineEdges);
+  /// A triangle OpenGL draws (doubled signed area @p area2) whose centres lie in @p span.
+  void drawFrontTriangle(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c,
+    double area2, const CentreSpan& span, unsigned outlineEdges);
   void updateTile(Tile& tile, std::uint32_t mask, float depth, std::uint32_t outside);
+  /// Whether a triangle whose centres lie in @p span is behind the whole-tile depth of every
+  /// tile it touches (it would add nothing: most triangles of the parts behind the nearest
+  /// ones), found before its set-up.
+  bool hidden(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c,
+    const CentreSpan& span) const;
   /// Whether every tile of [tx0, tx1] x [ty0, ty1] has z0 <= @p depth (nothing nearer to add).
   bool behindTiles(int tx0, int ty0, int tx1, int ty1, double depth) const;
+  /// After tile (tx, ty)'s z0 went down from @p oldZ0: its block's bound follows.
+  void lowerBlock(int tx, int ty, float oldZ0);
+
+  /// Blocks of kBlockTiles x kBlockTiles tiles, each with a bound on its tiles' z0: the second
+  /// level of the hierarchy, so that a triangle hidden behind the buffer is found so in a
+  /// read or two.
+  static constexpr int kBlockTiles = 4;
 
   int width_ = 0, height_ = 0, tilesX_ = 0, tilesY_ = 0;
   std::vector<Tile> tiles_;
+  int blocksX_ = 0;
+  std::vector<float> blockZ0_; ///< per block: the largest z0 of its tiles
   /// Per tile column / row: bits of pixels beyond the viewport (they count as covered).
   std::vector<std::uint32_t> outsideX_, outsideY_;
-  // drawTriangles scratch: facing per triangle (+1 / -1 / 0), window coordinates and state per
-  // vertex.
+  // drawTriangles scratch: facing and doubled area per triangle, window coordinates, centre
+  // spans and state per vertex.
   std::vector<signed char> facing_;
+  std::vector<double> area_;
   std::vector<glm::dvec3> window_;
+  std::vector<CentreSpan> centres_;
   std::vector<unsigned char> vertexState_;
   glm::dmat4 clipFromWorld_{ 1.0 };
   /// World-space corners of the near plane's rectangle (a box holding one reaches the eye's
