@@ -60,12 +60,13 @@ float roundUp(double value)
 inline MaskedDepthBuffer::CentreSpan MaskedDepthBuffer::centreSpan(
   double x, double y, int width, int height)
 {
+  // Clamped, the values fit an int: floor and ceil from the truncation (cheaper than std::floor
+  // and std::ceil without SSE4.1).
   const double sx = std::min(std::max(x - 0.5, -2.0), width + 1.0);
   const double sy = std::min(std::max(y - 0.5, -2.0), height + 1.0);
-  return { std::max(-1, static_cast<int>(std::ceil(sx))),
-    std::min(width, static_cast<int>(std::floor(sx))),
-    std::max(-1, static_cast<int>(std::ceil(sy))),
-    std::min(height, static_cast<int>(std::floor(sy))) };
+  const int ix = static_cast<int>(sx), iy = static_cast<int>(sy);
+  return { std::max(-1, ix + (sx > ix ? 1 : 0)), std::min(width, ix - (sx < ix ? 1 : 0)),
+    std::max(-1, iy + (sy > iy ? 1 : 0)), std::min(height, iy - (sy < iy ? 1 : 0)) };
 }
 
 void MaskedDepthBuffer::resize(int width, int height)
@@ -181,39 +182,32 @@ void MaskedDepthBuffer::drawTriangles(const glm::dvec4* clip,
     return tri[0] < vertexCount && tri[1] < vertexCount && tri[2] < vertexCount &&
       vertexState_[tri[0]] != 0 && vertexState_[tri[1]] != 0 && vertexState_[tri[2]] != 0;
   };
-  if (neighbors)
-  {
-    // Facing of every triangle first: an edge is inside the occluder only if the neighbour
-    // across it faces the same way. In front of the near plane it is the sign of the window-
-    // space area; otherwise the sign of det[x y w] (the same orientation, homogeneous). Where
-    // the two disagree (near-degenerate triangles) an edge merely becomes an outline edge.
-    facing_.resize(triangleCount);
-    area_.resize(triangleCount);
-    for (std::size_t t = 0; t < triangleCount; ++t)
+  // Facing: an edge is inside the occluder only if the neighbour across it faces the same way.
+  // In front of the near plane it is the sign of the window-space area; otherwise the sign of
+  // det[x y w] (the same orientation, homogeneous). Where the two disagree (near-degenerate
+  // triangles) an edge merely becomes an outline edge. Asked only of the neighbours of
+  // triangles that are drawn (most are rejected first).
+  auto facing = [&](std::size_t t) -> int {
+    if (!valid(t))
     {
-      signed char f = 0;
-      if (valid(t))
-      {
-        const std::uint32_t* tri = indices + 3 * t;
-        double det;
-        if (vertexState_[tri[0]] == 1 && vertexState_[tri[1]] == 1 && vertexState_[tri[2]] == 1)
-        {
-          det = doubleArea(window_[tri[0]], window_[tri[1]], window_[tri[2]]);
-          area_[t] = det;
-        }
-        else
-        {
-          const glm::dvec4& a = clip[tri[0]];
-          const glm::dvec4& b = clip[tri[1]];
-          const glm::dvec4& c = clip[tri[2]];
-          det = a.x * (b.y * c.w - b.w * c.y) - a.y * (b.x * c.w - b.w * c.x) +
-            a.w * (b.x * c.y - b.y * c.x);
-        }
-        f = det > 0.0 ? 1 : (det < 0.0 ? -1 : 0);
-      }
-      facing_[t] = f;
+      return 0;
     }
-  }
+    const std::uint32_t* tri = indices + 3 * t;
+    double det;
+    if (vertexState_[tri[0]] == 1 && vertexState_[tri[1]] == 1 && vertexState_[tri[2]] == 1)
+    {
+      det = doubleArea(window_[tri[0]], window_[tri[1]], window_[tri[2]]);
+    }
+    else
+    {
+      const glm::dvec4& a = clip[tri[0]];
+      const glm::dvec4& b = clip[tri[1]];
+      const glm::dvec4& c = clip[tri[2]];
+      det = a.x * (b.y * c.w - b.w * c.y) - a.y * (b.x * c.w - b.w * c.x) +
+        a.w * (b.x * c.y - b.y * c.x);
+    }
+    return (det > 0.0) - (det < 0.0);
+  };
   for (std::size_t t = 0; t < triangleCount; ++t)
   {
     if (!valid(t))
@@ -237,7 +231,7 @@ void MaskedDepthBuffer::drawTriangles(const glm::dvec4* clip,
         std::min(width_ - 1, std::max({ s0.x1, s1.x1, s2.x1 })),
         std::max(0, std::min({ s0.y0, s1.y0, s2.y0 })),
         std::min(height_ - 1, std::max({ s0.y1, s1.y1, s2.y1 })) };
-      area2 = neighbors ? area_[t] : doubleArea(window_[tri[0]], window_[tri[1]], window_[tri[2]]);
+      area2 = doubleArea(window_[tri[0]], window_[tri[1]], window_[tri[2]]);
       if (span.x0 > span.x1 || span.y0 > span.y1 || culled(area2, culling) ||
         hidden(window_[tri[0]], window_[tri[1]], window_[tri[2]], span))
       {
@@ -246,13 +240,14 @@ void MaskedDepthBuffer::drawTriangles(const glm::dvec4* clip,
       }
     }
     unsigned outline = 7u;
-    if (neighbors && facing_[t] != 0)
+    const int faces = neighbors ? (front ? (area2 > 0.0) - (area2 < 0.0) : facing(t)) : 0;
+    if (faces != 0)
     {
       outline = 0u;
       for (int k = 0; k < 3; ++k)
       {
         const std::uint32_t n = neighbors[3 * t + k];
-        if (n >= triangleCount || facing_[n] != facing_[t])
+        if (n >= triangleCount || facing(n) != faces)
         {
           outline |= 1u << k;
         }

@@ -211,10 +211,7 @@ private:
   std::vector<float> blockZ0_; ///< per block: the largest z0 of its tiles
   /// Per tile column / row: bits of pixels beyond the viewport (they count as covered).
   std::vector<std::uint32_t> outsideX_, outsideY_;
-  // drawTriangles scratch: facing and doubled area per triangle, window coordinates, centre
-  // spans and state per vertex.
-  std::vector<signed char> facing_;
-  std::vector<double> area_;
+  // drawTriangles scratch: window coordinates, centre spans and state per vertex.
   std::vector<glm::dvec3> window_;
   std::vector<CentreSpan> centres_;
   std::vector<unsigned char> vertexState_;
