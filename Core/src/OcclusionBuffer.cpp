@@ -69,6 +69,15 @@ inline MaskedDepthBuffer::CentreSpan MaskedDepthBuffer::centreSpan(
     std::max(-1, iy + (sy > iy ? 1 : 0)), std::min(height, iy - (sy < iy ? 1 : 0)) };
 }
 
+MaskedDepthBuffer::CentreSpan MaskedDepthBuffer::triangleSpan(
+  const CentreSpan& a, const CentreSpan& b, const CentreSpan& c) const
+{
+  return { std::max(0, std::min({ a.x0, b.x0, c.x0 })),
+    std::min(width_ - 1, std::max({ a.x1, b.x1, c.x1 })),
+    std::max(0, std::min({ a.y0, b.y0, c.y0 })),
+    std::min(height_ - 1, std::max({ a.y1, b.y1, c.y1 })) };
+}
+
 void MaskedDepthBuffer::resize(int width, int height)
 {
   width_ = std::max(0, width);
@@ -224,13 +233,7 @@ void MaskedDepthBuffer::drawTriangles(const glm::dvec4* clip,
     double area2 = 0.0;
     if (front)
     {
-      const CentreSpan& s0 = centres_[tri[0]];
-      const CentreSpan& s1 = centres_[tri[1]];
-      const CentreSpan& s2 = centres_[tri[2]];
-      span = { std::max(0, std::min({ s0.x0, s1.x0, s2.x0 })),
-        std::min(width_ - 1, std::max({ s0.x1, s1.x1, s2.x1 })),
-        std::max(0, std::min({ s0.y0, s1.y0, s2.y0 })),
-        std::min(height_ - 1, std::max({ s0.y1, s1.y1, s2.y1 })) };
+      span = triangleSpan(centres_[tri[0]], centres_[tri[1]], centres_[tri[2]]);
       area2 = doubleArea(window_[tri[0]], window_[tri[1]], window_[tri[2]]);
       if (span.x0 > span.x1 || span.y0 > span.y1 || culled(area2, culling) ||
         hidden(window_[tri[0]], window_[tri[1]], window_[tri[2]], span))
@@ -357,12 +360,8 @@ void MaskedDepthBuffer::drawWindowTriangle(const glm::dvec3& a, const glm::dvec3
   const glm::dvec3& c, FaceCulling culling, unsigned outline)
 {
   const double area2 = doubleArea(a, b, c);
-  const CentreSpan s[3] = { centreSpan(a.x, a.y, width_, height_),
-    centreSpan(b.x, b.y, width_, height_), centreSpan(c.x, c.y, width_, height_) };
-  const CentreSpan span = { std::max(0, std::min({ s[0].x0, s[1].x0, s[2].x0 })),
-    std::min(width_ - 1, std::max({ s[0].x1, s[1].x1, s[2].x1 })),
-    std::max(0, std::min({ s[0].y0, s[1].y0, s[2].y0 })),
-    std::min(height_ - 1, std::max({ s[0].y1, s[1].y1, s[2].y1 })) };
+  const CentreSpan span = triangleSpan(centreSpan(a.x, a.y, width_, height_),
+    centreSpan(b.x, b.y, width_, height_), centreSpan(c.x, c.y, width_, height_));
   if (culled(area2, culling) || span.x0 > span.x1 || span.y0 > span.y1 || hidden(a, b, c, span))
   {
     ++stats_.trianglesRejected;
