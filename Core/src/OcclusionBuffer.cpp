@@ -498,19 +498,24 @@ void MaskedDepthBuffer::drawFrontTriangle(const glm::dvec3& a, const glm::dvec3&
 }
 
 bool MaskedDepthBuffer::hidden(
-  const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c, const CentreSpan& span) const
+  const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c, const CentreSpan& span)
 {
   return behindTiles(span.x0 / kTileWidth, span.y0 / kTileHeight, span.x1 / kTileWidth,
     span.y1 / kTileHeight, std::min({ a.z, b.z, c.z }) + depthMargin);
 }
 
-bool MaskedDepthBuffer::behindTiles(int tx0, int ty0, int tx1, int ty1, double depth) const
+bool MaskedDepthBuffer::behindTiles(int tx0, int ty0, int tx1, int ty1, double depth)
 {
   for (int by = ty0 / kBlockTiles; by <= ty1 / kBlockTiles; ++by)
   {
     for (int bx = tx0 / kBlockTiles; bx <= tx1 / kBlockTiles; ++bx)
     {
-      if (depth >= static_cast<double>(blockZ0_[static_cast<std::size_t>(by) * blocksX_ + bx]))
+      float& bound = blockZ0_[static_cast<std::size_t>(by) * blocksX_ + bx];
+      if (std::isnan(bound))
+      {
+        bound = largestZ0(bx, by);
+      }
+      if (depth >= static_cast<double>(bound))
       {
         continue;
       }
@@ -534,12 +539,17 @@ bool MaskedDepthBuffer::behindTiles(int tx0, int ty0, int tx1, int ty1, double d
 
 void MaskedDepthBuffer::lowerBlock(int tx, int ty, float oldZ0)
 {
-  const int bx = tx / kBlockTiles, by = ty / kBlockTiles;
-  float& bound = blockZ0_[static_cast<std::size_t>(by) * blocksX_ + bx];
-  if (oldZ0 < bound)
+  float& bound = blockZ0_[static_cast<std::size_t>(ty / kBlockTiles) * blocksX_ + tx / kBlockTiles];
+  if (oldZ0 >= bound)
   {
-    return; // another tile holds the block's largest z0
+    // The block's largest z0 may have gone down: found again when the block is next read (a
+    // wall filling a block tile by tile costs one pass over it, not one per tile).
+    bound = std::numeric_limits<float>::quiet_NaN();
   }
+}
+
+float MaskedDepthBuffer::largestZ0(int bx, int by) const
+{
   float largest = -kNoOccluder;
   const int yEnd = std::min(tilesY_, (by + 1) * kBlockTiles);
   const int xEnd = std::min(tilesX_, (bx + 1) * kBlockTiles);
@@ -550,7 +560,7 @@ void MaskedDepthBuffer::lowerBlock(int tx, int ty, float oldZ0)
       largest = std::max(largest, tiles_[static_cast<std::size_t>(y) * tilesX_ + x].z0);
     }
   }
-  bound = largest;
+  return largest;
 }
 
 void MaskedDepthBuffer::updateTile(Tile& tile, std::uint32_t mask, float depth, std::uint32_t outside)

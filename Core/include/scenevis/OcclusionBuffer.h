@@ -203,11 +203,13 @@ private:
   /// tile it touches (it would add nothing: most triangles of the parts behind the nearest
   /// ones), found before its set-up.
   bool hidden(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c,
-    const CentreSpan& span) const;
+    const CentreSpan& span);
   /// Whether every tile of [tx0, tx1] x [ty0, ty1] has z0 <= @p depth (nothing nearer to add).
-  bool behindTiles(int tx0, int ty0, int tx1, int ty1, double depth) const;
+  bool behindTiles(int tx0, int ty0, int tx1, int ty1, double depth);
   /// After tile (tx, ty)'s z0 went down from @p oldZ0: its block's bound follows.
   void lowerBlock(int tx, int ty, float oldZ0);
+  /// The largest z0 of block (bx, by)'s tiles.
+  float largestZ0(int bx, int by) const;
 
   /// Blocks of kBlockTiles x kBlockTiles tiles, each with a bound on its tiles' z0: the second
   /// level of the hierarchy, so that a triangle hidden behind the buffer is found so in a
@@ -217,7 +219,9 @@ private:
   int width_ = 0, height_ = 0, tilesX_ = 0, tilesY_ = 0;
   std::vector<Tile> tiles_;
   int blocksX_ = 0;
-  std::vector<float> blockZ0_; ///< per block: the largest z0 of its tiles
+  /// Per block: a bound on its tiles' z0 (none is farther), or NaN: not known, found again when
+  /// the block is next read.
+  std::vector<float> blockZ0_;
   /// Per tile column / row: bits of pixels beyond the viewport (they count as covered).
   std::vector<std::uint32_t> outsideX_, outsideY_;
   // drawTriangles scratch: window coordinates, centre spans and state per vertex.
