@@ -118,9 +118,9 @@ struct EdgeTest
       const __m128d rows = _mm_set_pd(y + (2 * h + 1), y + 2 * h);
       const __m128d rowValue = _mm_mul_pd(_mm_set1_pd(sign),
         _mm_sub_pd(_mm_mul_pd(_mm_set1_pd(dx), _mm_sub_pd(rows, _mm_set1_pd(py))), across));
-      const __m128d t = _mm_max_pd(_mm_min_pd(_mm_mul_pd(_mm_sub_pd(_mm_set1_pd(threshold), rowValue),
-                                                _mm_set1_pd(inverseGx)),
-                                     hi),
+      const __m128d t = _mm_max_pd(
+        _mm_min_pd(
+          _mm_mul_pd(_mm_sub_pd(_mm_set1_pd(threshold), rowValue), _mm_set1_pd(inverseGx)), hi),
         lo);
       below[h] = _mm_sub_epi32(_mm_cvttpd_epi32(_mm_add_pd(t, shift)), _mm_set1_epi32(32));
       above[h] = _mm_sub_epi32(_mm_set1_epi32(32), _mm_cvttpd_epi32(_mm_sub_pd(shift, t)));
