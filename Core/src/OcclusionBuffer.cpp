@@ -1,5 +1,7 @@
 #include "scenevis/OcclusionBuffer.h"
 
+#include "OcclusionEdge.h"
+
 #include <glm/common.hpp>
 #include <glm/matrix.hpp>
 
@@ -22,6 +24,21 @@ bool finite(const glm::dvec4& v)
   return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z) && std::isfinite(v.w);
 }
 
+/// Twice the signed area of window-space triangle abc (positive: counter-clockwise).
+double doubleArea(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c)
+{
+  return (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x);
+}
+
+/// Whether OpenGL draws nothing of a window-space triangle of doubled signed area @p area2:
+/// zero or non-finite area, or a culled face.
+bool culled(double area2, FaceCulling culling)
+{
+  return !(std::abs(area2) > 0.0) || !std::isfinite(area2) ||
+    (culling == FaceCulling::Back && area2 < 0.0) ||
+    (culling == FaceCulling::Front && area2 > 0.0);
+}
+
 /// The smallest float not below @p value (float(value) may round down).
 float roundUp(double value)
 {
@@ -34,6 +51,33 @@ float roundUp(double value)
 }
 } // namespace
 
+/**
+ * The pixel centres (i + 1/2, j + 1/2) on either side of window point (x, y): x0 = ceil(x - 1/2)
+ * and x1 = floor(x - 1/2) (likewise y), clamped to [-1, size] (enough to clip a triangle's
+ * span to the viewport). The span of a triangle's centres is then min x0 ... max x1 of its
+ * vertices, in integers, with no rounding per triangle.
+ */
+inline MaskedDepthBuffer::CentreSpan MaskedDepthBuffer::centreSpan(
+  double x, double y, int width, int height)
+{
+  // Clamped, the values fit an int: floor and ceil from the truncation (cheaper than std::floor
+  // and std::ceil without SSE4.1).
+  const double sx = std::min(std::max(x - 0.5, -2.0), width + 1.0);
+  const double sy = std::min(std::max(y - 0.5, -2.0), height + 1.0);
+  const int ix = static_cast<int>(sx), iy = static_cast<int>(sy);
+  return { std::max(-1, ix + (sx > ix ? 1 : 0)), std::min(width, ix - (sx < ix ? 1 : 0)),
+    std::max(-1, iy + (sy > iy ? 1 : 0)), std::min(height, iy - (sy < iy ? 1 : 0)) };
+}
+
+MaskedDepthBuffer::CentreSpan MaskedDepthBuffer::triangleSpan(
+  const CentreSpan& a, const CentreSpan& b, const CentreSpan& c) const
+{
+  return { std::max(0, std::min({ a.x0, b.x0, c.x0 })),
+    std::min(width_ - 1, std::max({ a.x1, b.x1, c.x1 })),
+    std::max(0, std::min({ a.y0, b.y0, c.y0 })),
+    std::min(height_ - 1, std::max({ a.y1, b.y1, c.y1 })) };
+}
+
 void MaskedDepthBuffer::resize(int width, int height)
 {
   width_ = std::max(0, width);
@@ -42,6 +86,9 @@ void MaskedDepthBuffer::resize(int width, int height)
   tilesY_ = (height_ + kTileHeight - 1) / kTileHeight;
   tiles_.assign(static_cast<std::size_t>(tilesX_) * static_cast<std::size_t>(tilesY_),
     Tile{ kNoOccluder, 0.0f, 0u });
+  blocksX_ = (tilesX_ + kBlockTiles - 1) / kBlockTiles;
+  blockZ0_.assign(
+    static_cast<std::size_t>(blocksX_) * ((tilesY_ + kBlockTiles - 1) / kBlockTiles), kNoOccluder);
   outsideX_.assign(static_cast<std::size_t>(tilesX_), 0u);
   outsideY_.assign(static_cast<std::size_t>(tilesY_), 0u);
   for (int tx = 0; tx < tilesX_; ++tx)
@@ -87,6 +134,7 @@ void MaskedDepthBuffer::setClipFromWorld(const glm::dmat4& clipFromWorld)
 void MaskedDepthBuffer::clear()
 {
   std::fill(tiles_.begin(), tiles_.end(), Tile{ kNoOccluder, 0.0f, 0u });
+  std::fill(blockZ0_.begin(), blockZ0_.end(), kNoOccluder);
   stats_ = BufferStats();
 }
 
@@ -116,6 +164,7 @@ void MaskedDepthBuffer::drawTriangles(const glm::dvec4* clip,
   // triangle, which the watertight edge rule relies on). State: 0 not finite, 1 in front of the
   // near plane (window coordinates valid), 2 finite but behind it (its triangles are clipped).
   window_.resize(vertexCount);
+  centres_.resize(vertexCount);
   vertexState_.resize(vertexCount);
   for (std::size_t i = 0; i < vertexCount; ++i)
   {
@@ -130,6 +179,7 @@ void MaskedDepthBuffer::drawTriangles(const glm::dvec4* clip,
       const double inverseW = 1.0 / v.w;
       window_[i] = glm::dvec3((v.x * inverseW * 0.5 + 0.5) * width_,
         (v.y * inverseW * 0.5 + 0.5) * height_, v.z * inverseW * 0.5 + 0.5);
+      centres_[i] = centreSpan(window_[i].x, window_[i].y, width_, height_);
     }
     else
     {
@@ -141,49 +191,32 @@ void MaskedDepthBuffer::drawTriangles(const glm::dvec4* clip,
     return tri[0] < vertexCount && tri[1] < vertexCount && tri[2] < vertexCount &&
       vertexState_[tri[0]] != 0 && vertexState_[tri[1]] != 0 && vertexState_[tri[2]] != 0;
   };
-  // Triangles with no pixel centre in their bounding box (most triangles of a detailed mesh)
-  // are dropped before anything else.
-  auto coversNoCentre = [&](const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c) {
-    const double xmin = std::min({ a.x, b.x, c.x }), xmax = std::max({ a.x, b.x, c.x });
-    const double ymin = std::min({ a.y, b.y, c.y }), ymax = std::max({ a.y, b.y, c.y });
-    return !(std::ceil(xmin - 0.5) <= std::floor(xmax - 0.5) &&
-      std::ceil(ymin - 0.5) <= std::floor(ymax - 0.5) && xmax > 0.0 && ymax > 0.0 &&
-      xmin < width_ && ymin < height_);
-  };
-  if (neighbors)
-  {
-    // Facing of every triangle first: an edge is inside the occluder only if the neighbour
-    // across it faces the same way. In front of the near plane it is the sign of the window-
-    // space area; otherwise the sign of det[x y w] (the same orientation, homogeneous). Where
-    // the two disagree (near-degenerate triangles) an edge merely becomes an outline edge.
-    facing_.resize(triangleCount);
-    for (std::size_t t = 0; t < triangleCount; ++t)
+  // Facing: an edge is inside the occluder only if the neighbour across it faces the same way.
+  // In front of the near plane it is the sign of the window-space area; otherwise the sign of
+  // det[x y w] (the same orientation, homogeneous). Where the two disagree (near-degenerate
+  // triangles) an edge merely becomes an outline edge. Asked only of the neighbours of
+  // triangles that are drawn (most are rejected first).
+  auto facing = [&](std::size_t t) -> int {
+    if (!valid(t))
     {
-      signed char f = 0;
-      if (valid(t))
-      {
-        const std::uint32_t* tri = indices + 3 * t;
-        double det;
-        if (vertexState_[tri[0]] == 1 && vertexState_[tri[1]] == 1 && vertexState_[tri[2]] == 1)
-        {
-          const glm::dvec3& a = window_[tri[0]];
-          const glm::dvec3& b = window_[tri[1]];
-          const glm::dvec3& c = window_[tri[2]];
-          det = (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x);
-        }
-        else
-        {
-          const glm::dvec4& a = clip[tri[0]];
-          const glm::dvec4& b = clip[tri[1]];
-          const glm::dvec4& c = clip[tri[2]];
-          det = a.x * (b.y * c.w - b.w * c.y) - a.y * (b.x * c.w - b.w * c.x) +
-            a.w * (b.x * c.y - b.y * c.x);
-        }
-        f = det > 0.0 ? 1 : (det < 0.0 ? -1 : 0);
-      }
-      facing_[t] = f;
+      return 0;
     }
-  }
+    const std::uint32_t* tri = indices + 3 * t;
+    double det;
+    if (vertexState_[tri[0]] == 1 && vertexState_[tri[1]] == 1 && vertexState_[tri[2]] == 1)
+    {
+      det = doubleArea(window_[tri[0]], window_[tri[1]], window_[tri[2]]);
+    }
+    else
+    {
+      const glm::dvec4& a = clip[tri[0]];
+      const glm::dvec4& b = clip[tri[1]];
+      const glm::dvec4& c = clip[tri[2]];
+      det = a.x * (b.y * c.w - b.w * c.y) - a.y * (b.x * c.w - b.w * c.x) +
+        a.w * (b.x * c.y - b.y * c.x);
+    }
+    return (det > 0.0) - (det < 0.0);
+  };
   for (std::size_t t = 0; t < triangleCount; ++t)
   {
     if (!valid(t))
@@ -194,19 +227,30 @@ void MaskedDepthBuffer::drawTriangles(const glm::dvec4* clip,
     const std::uint32_t* tri = indices + 3 * t;
     const bool front =
       vertexState_[tri[0]] == 1 && vertexState_[tri[1]] == 1 && vertexState_[tri[2]] == 1;
-    if (front && coversNoCentre(window_[tri[0]], window_[tri[1]], window_[tri[2]]))
+    // Pixels whose centres can be inside (most triangles of a detailed mesh have none), then the
+    // face: both from what was computed per vertex (and per triangle for the facing).
+    CentreSpan span;
+    double area2 = 0.0;
+    if (front)
     {
-      ++stats_.trianglesRejected;
-      continue;
+      span = triangleSpan(centres_[tri[0]], centres_[tri[1]], centres_[tri[2]]);
+      area2 = doubleArea(window_[tri[0]], window_[tri[1]], window_[tri[2]]);
+      if (span.x0 > span.x1 || span.y0 > span.y1 || culled(area2, culling) ||
+        hidden(window_[tri[0]], window_[tri[1]], window_[tri[2]], span))
+      {
+        ++stats_.trianglesRejected;
+        continue;
+      }
     }
     unsigned outline = 7u;
-    if (neighbors && facing_[t] != 0)
+    const int faces = neighbors ? (front ? (area2 > 0.0) - (area2 < 0.0) : facing(t)) : 0;
+    if (faces != 0)
     {
       outline = 0u;
       for (int k = 0; k < 3; ++k)
       {
         const std::uint32_t n = neighbors[3 * t + k];
-        if (n >= triangleCount || facing_[n] != facing_[t])
+        if (n >= triangleCount || facing(n) != faces)
         {
           outline |= 1u << k;
         }
@@ -214,7 +258,7 @@ void MaskedDepthBuffer::drawTriangles(const glm::dvec4* clip,
     }
     if (front)
     {
-      drawWindowTriangle(window_[tri[0]], window_[tri[1]], window_[tri[2]], culling, outline);
+      drawFrontTriangle(window_[tri[0]], window_[tri[1]], window_[tri[2]], area2, span, outline);
     }
     else
     {
@@ -312,104 +356,30 @@ void MaskedDepthBuffer::drawClippedTriangle(const glm::dvec4* in, FaceCulling cu
   }
 }
 
-namespace
-{
-/**
- * Inside test of one triangle edge at pixel centres. The edge function is evaluated with the
- * edge's end points in a canonical order (lexicographic), so the two triangles sharing an edge
- * compute the same value bit for bit and differ only in `sign`; a centre exactly on the edge
- * goes to the triangle whose sign is positive (the tie rule), so shared edges leave no holes.
- */
-struct EdgeTest
-{
-  double px, py, dx, dy; ///< canonical start point and direction
-  double sign;           ///< +1 / -1: makes the triangle's inside positive
-  double threshold;      ///< 0 inside an occluder, margin * length on its outline
-  bool includeTie;
-  double slack; ///< bound on the rounding of value() between corners and pixel centres
-
-  EdgeTest(const glm::dvec3& from, const glm::dvec3& to, double orientation, bool outline,
-    double margin, double extent)
-  {
-    const bool forward = from.x < to.x || (from.x == to.x && from.y < to.y);
-    const glm::dvec3& p = forward ? from : to;
-    const glm::dvec3& q = forward ? to : from;
-    px = p.x;
-    py = p.y;
-    dx = q.x - p.x;
-    dy = q.y - p.y;
-    sign = (forward ? 1.0 : -1.0) * orientation;
-    threshold = outline ? margin * std::sqrt(dx * dx + dy * dy) : 0.0;
-    includeTie = outline || sign > 0.0;
-    slack = 1e-9 * (std::abs(dx) + std::abs(dy)) * extent;
-    gx = -sign * dy;
-    gy = sign * dx;
-    inverseGx = gx != 0.0 ? 1.0 / gx : 0.0; // 1 / -g == -(1 / g): symmetric between twins
-  }
-  double inverseGx;
-  double gx, gy; ///< d value / dx, d value / dy
-  double value(double x, double y) const { return sign * (dx * (y - py) - dy * (x - px)); }
-
-  /**
-   * Bits i = 0..7 of the centres (x + i, y) inside this edge. Along the row the value is affine
-   * in i and crosses the threshold at t = (threshold - value(x, y)) / gx, computed from the
-   * canonical value: the two triangles of a shared edge (threshold 0, opposite signs) get the
-   * same t bit for bit, and the tie rule gives a centre exactly at t to one of them, so the rule
-   * "inside when i is on the inner side of t" leaves no hole and covers nothing twice.
-   */
-  std::uint32_t rowMask(double x, double y) const
-  {
-    const double rowValue = value(x, y);
-    if (gx == 0.0)
-    {
-      return (rowValue > threshold || (rowValue == threshold && includeTie)) ? 0xFFu : 0u;
-    }
-    const double t = std::max(-16.0, std::min(24.0, (threshold - rowValue) * inverseGx));
-    // floor and ceil by truncating positive numbers (t is clamped): both twins of a shared edge
-    // evaluate the same expressions of the same t, which is all that watertightness needs, and
-    // an off-by-one only where t is within rounding of an integer moves a centre that lies on
-    // the edge itself (inside an occluder) or within rounding of a 1/64-pixel margin.
-    const int below = static_cast<int>(t + 32.0) - 32; // floor(t)
-    const int above = 32 - static_cast<int>(32.0 - t); // ceil(t)
-    if (gx > 0.0)
-    {
-      // Inside for i > t (i >= t with the tie).
-      const int first = includeTie ? above : below + 1;
-      return first <= 0 ? 0xFFu : (first >= 8 ? 0u : (0xFFu << first) & 0xFFu);
-    }
-    // Inside for i < t (i <= t with the tie).
-    const int end = includeTie ? below + 1 : above;
-    return end <= 0 ? 0u : (end >= 8 ? 0xFFu : (1u << end) - 1u);
-  }
-};
-} // namespace
-
 void MaskedDepthBuffer::drawWindowTriangle(const glm::dvec3& a, const glm::dvec3& b,
   const glm::dvec3& c, FaceCulling culling, unsigned outline)
 {
-  const double area2 = (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x);
-  if (!(std::abs(area2) > 0.0) || !std::isfinite(area2) ||
-    (culling == FaceCulling::Back && area2 < 0.0) ||
-    (culling == FaceCulling::Front && area2 > 0.0))
+  const double area2 = doubleArea(a, b, c);
+  const CentreSpan span = triangleSpan(centreSpan(a.x, a.y, width_, height_),
+    centreSpan(b.x, b.y, width_, height_), centreSpan(c.x, c.y, width_, height_));
+  if (culled(area2, culling) || span.x0 > span.x1 || span.y0 > span.y1 || hidden(a, b, c, span))
   {
     ++stats_.trianglesRejected;
     return;
   }
+  drawFrontTriangle(a, b, c, area2, span, outline);
+}
+
+void MaskedDepthBuffer::drawFrontTriangle(const glm::dvec3& a, const glm::dvec3& b,
+  const glm::dvec3& c, double area2, const CentreSpan& span, unsigned outline)
+{
   const double orientation = area2 > 0.0 ? 1.0 : -1.0;
   const double det = std::abs(area2);
-
-  // Pixels whose centres can be inside.
   const double xmin = std::min({ a.x, b.x, c.x }), xmax = std::max({ a.x, b.x, c.x });
   const double ymin = std::min({ a.y, b.y, c.y }), ymax = std::max({ a.y, b.y, c.y });
-  const double px0 = std::max(0.0, std::ceil(xmin - 0.5));
-  const double px1 = std::min(static_cast<double>(width_ - 1), std::floor(xmax - 0.5));
-  const double py0 = std::max(0.0, std::ceil(ymin - 0.5));
-  const double py1 = std::min(static_cast<double>(height_ - 1), std::floor(ymax - 0.5));
-  if (!(px0 <= px1 && py0 <= py1))
-  {
-    ++stats_.trianglesRejected;
-    return;
-  }
+  const int tx0 = span.x0 / kTileWidth, tx1 = span.x1 / kTileWidth;
+  const int ty0 = span.y0 / kTileHeight, ty1 = span.y1 / kTileHeight;
+  const double zNearVertex = std::min({ a.z, b.z, c.z }) + depthMargin;
   const double extent = std::max({ std::abs(xmin), std::abs(xmax), std::abs(ymin),
     std::abs(ymax), static_cast<double>(width_ + height_) });
   const EdgeTest edges[3] = {
@@ -430,7 +400,6 @@ void MaskedDepthBuffer::drawWindowTriangle(const glm::dvec3& a, const glm::dvec3
   const double offset = std::max(0.0, polygonOffsetFactor) * std::max(std::abs(zx), std::abs(zy)) +
     std::max(0.0, polygonOffsetDepth);
   const double zFarVertex = std::max({ a.z, b.z, c.z }) + offset;
-  const double zNearVertex = std::min({ a.z, b.z, c.z }) + depthMargin;
   // Rounding of the plane's evaluation, bounded generously; the depth margin comes on top.
   const double planeError =
     1e-12 * ((std::abs(zx) + 1.0) * width_ + (std::abs(zy) + 1.0) * height_ + std::abs(z00));
@@ -448,8 +417,6 @@ void MaskedDepthBuffer::drawWindowTriangle(const glm::dvec3& a, const glm::dvec3
   const double zOffset =
     std::max(0.0, (kTileWidth - 1) * zx) + std::max(0.0, (kTileHeight - 1) * zy);
   bool touched = false;
-  const int tx0 = static_cast<int>(px0) / kTileWidth, tx1 = static_cast<int>(px1) / kTileWidth;
-  const int ty0 = static_cast<int>(py0) / kTileHeight, ty1 = static_cast<int>(py1) / kTileHeight;
   for (int ty = ty0; ty <= ty1; ++ty)
   {
     const double y0 = ty * kTileHeight + 0.5;
@@ -501,13 +468,7 @@ void MaskedDepthBuffer::drawWindowTriangle(const glm::dvec3& a, const glm::dvec3
           {
             continue;
           }
-          const EdgeTest& e = edges[k];
-          std::uint32_t edgeMask = 0;
-          for (int j = 0; j < kTileHeight; ++j)
-          {
-            edgeMask |= e.rowMask(x0, y0 + j) << (j * kTileWidth);
-          }
-          mask &= edgeMask;
+          mask &= edges[k].tileMask(x0, y0);
         }
         if (mask == 0)
         {
@@ -516,7 +477,12 @@ void MaskedDepthBuffer::drawWindowTriangle(const glm::dvec3& a, const glm::dvec3
       }
       const double zCorners = zx * x0 + zy * y0 + z00 + zOffset;
       const double depth = std::min(zCorners + offset + planeError, zFarVertex) + depthMargin;
+      const float oldZ0 = tile.z0;
       updateTile(tile, mask, roundUp(depth), outsideX_[tx] | outsideY_[ty]);
+      if (tile.z0 != oldZ0)
+      {
+        lowerBlock(tx, ty, oldZ0);
+      }
       ++stats_.tilesUpdated;
       touched = true;
     }
@@ -529,6 +495,72 @@ void MaskedDepthBuffer::drawWindowTriangle(const glm::dvec3& a, const glm::dvec3
   {
     ++stats_.trianglesRejected;
   }
+}
+
+bool MaskedDepthBuffer::hidden(
+  const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c, const CentreSpan& span)
+{
+  return behindTiles(span.x0 / kTileWidth, span.y0 / kTileHeight, span.x1 / kTileWidth,
+    span.y1 / kTileHeight, std::min({ a.z, b.z, c.z }) + depthMargin);
+}
+
+bool MaskedDepthBuffer::behindTiles(int tx0, int ty0, int tx1, int ty1, double depth)
+{
+  for (int by = ty0 / kBlockTiles; by <= ty1 / kBlockTiles; ++by)
+  {
+    for (int bx = tx0 / kBlockTiles; bx <= tx1 / kBlockTiles; ++bx)
+    {
+      float& bound = blockZ0_[static_cast<std::size_t>(by) * blocksX_ + bx];
+      if (std::isnan(bound))
+      {
+        bound = largestZ0(bx, by);
+      }
+      if (depth >= static_cast<double>(bound))
+      {
+        continue;
+      }
+      const int yEnd = std::min(ty1, by * kBlockTiles + kBlockTiles - 1);
+      const int xEnd = std::min(tx1, bx * kBlockTiles + kBlockTiles - 1);
+      for (int ty = std::max(ty0, by * kBlockTiles); ty <= yEnd; ++ty)
+      {
+        const Tile* row = tiles_.data() + static_cast<std::size_t>(ty) * tilesX_;
+        for (int tx = std::max(tx0, bx * kBlockTiles); tx <= xEnd; ++tx)
+        {
+          if (depth < static_cast<double>(row[tx].z0))
+          {
+            return false;
+          }
+        }
+      }
+    }
+  }
+  return true;
+}
+
+void MaskedDepthBuffer::lowerBlock(int tx, int ty, float oldZ0)
+{
+  float& bound = blockZ0_[static_cast<std::size_t>(ty / kBlockTiles) * blocksX_ + tx / kBlockTiles];
+  if (oldZ0 >= bound)
+  {
+    // The block's largest z0 may have gone down: found again when the block is next read (a
+    // wall filling a block tile by tile costs one pass over it, not one per tile).
+    bound = std::numeric_limits<float>::quiet_NaN();
+  }
+}
+
+float MaskedDepthBuffer::largestZ0(int bx, int by) const
+{
+  float largest = -kNoOccluder;
+  const int yEnd = std::min(tilesY_, (by + 1) * kBlockTiles);
+  const int xEnd = std::min(tilesX_, (bx + 1) * kBlockTiles);
+  for (int y = by * kBlockTiles; y < yEnd; ++y)
+  {
+    for (int x = bx * kBlockTiles; x < xEnd; ++x)
+    {
+      largest = std::max(largest, tiles_[static_cast<std::size_t>(y) * tilesX_ + x].z0);
+    }
+  }
+  return largest;
 }
 
 void MaskedDepthBuffer::updateTile(Tile& tile, std::uint32_t mask, float depth, std::uint32_t outside)

@@ -2,6 +2,8 @@
 
 #include "vtkActor.h"
 #include "vtkCellArray.h"
+#include "vtkDoubleArray.h"
+#include "vtkFloatArray.h"
 #include "vtkMath.h"
 #include "vtkMatrix4x4.h"
 #include "vtkPoints.h"
@@ -213,29 +215,8 @@ void vtkOccluderRasterizer::Draw(vtkProp* prop, const double bounds[6])
     return;
   }
   const auto start = std::chrono::steady_clock::now();
-  vtkMatrix4x4* model = actor->GetMatrix();
-  const double determinant = model->Determinant();
-  so::FaceCulling culling = so::FaceCulling::None;
-  if (property->GetBackfaceCulling() || property->GetFrontfaceCulling())
-  {
-    if (determinant <= 0.0)
-    {
-      return;
-    }
-    culling = property->GetBackfaceCulling()
-      ? (property->GetFrontfaceCulling() ? so::FaceCulling::Both : so::FaceCulling::Back)
-      : so::FaceCulling::Front;
-  }
-  so::MaskedDepthBuffer& buffer = this->DepthBuffer;
-  buffer.polygonOffsetFactor = 0.0;
-  buffer.polygonOffsetDepth = 0.0;
-  if (vtkMapper::GetResolveCoincidentTopology() == VTK_RESOLVE_POLYGON_OFFSET)
-  {
-    double factor = 0.0, units = 0.0;
-    mapper->GetCoincidentTopologyPolygonOffsetParameters(factor, units);
-    buffer.polygonOffsetFactor = factor;
-    buffer.polygonOffsetDepth = units * std::ldexp(1.0, -23); // r of a 24-bit depth buffer, x2
-  }
+  // Occluder selection first: most visible props of a wide view are skipped by it, before the
+  // actor's matrix (which may recompute it) is asked for.
   Mesh* mesh = this->MeshOf(data);
   if (this->MinimumPixelsPerTriangle > 0.0 && !mesh->Triangles.empty())
   {
@@ -274,6 +255,29 @@ void vtkOccluderRasterizer::Draw(vtkProp* prop, const double bounds[6])
       return;
     }
   }
+  vtkMatrix4x4* model = actor->GetMatrix();
+  const double determinant = model->Determinant();
+  so::FaceCulling culling = so::FaceCulling::None;
+  if (property->GetBackfaceCulling() || property->GetFrontfaceCulling())
+  {
+    if (determinant <= 0.0)
+    {
+      return;
+    }
+    culling = property->GetBackfaceCulling()
+      ? (property->GetFrontfaceCulling() ? so::FaceCulling::Both : so::FaceCulling::Back)
+      : so::FaceCulling::Front;
+  }
+  so::MaskedDepthBuffer& buffer = this->DepthBuffer;
+  buffer.polygonOffsetFactor = 0.0;
+  buffer.polygonOffsetDepth = 0.0;
+  if (vtkMapper::GetResolveCoincidentTopology() == VTK_RESOLVE_POLYGON_OFFSET)
+  {
+    double factor = 0.0, units = 0.0;
+    mapper->GetCoincidentTopologyPolygonOffsetParameters(factor, units);
+    buffer.polygonOffsetFactor = factor;
+    buffer.polygonOffsetDepth = units * std::ldexp(1.0, -23); // r of a 24-bit depth buffer, x2
+  }
   // Textures or scalars with alpha (checked after the cheap tests: it may map scalars).
   if (actor->HasTranslucentPolygonalGeometry() || !actor->HasOpaqueGeometry())
   {
@@ -294,15 +298,39 @@ void vtkOccluderRasterizer::Draw(vtkProp* prop, const double bounds[6])
     vtkPoints* points = data->GetPoints();
     const vtkIdType n = points->GetNumberOfPoints();
     this->Clip.resize(static_cast<std::size_t>(n));
-    for (vtkIdType i = 0; i < n; ++i)
-    {
-      double p[3];
-      points->GetPoint(i, p);
+    auto transform = [this, &m](vtkIdType i, double x, double y, double z) {
       glm::dvec4& c = this->Clip[static_cast<std::size_t>(i)];
-      c.x = m[0] * p[0] + m[1] * p[1] + m[2] * p[2] + m[3];
-      c.y = m[4] * p[0] + m[5] * p[1] + m[6] * p[2] + m[7];
-      c.z = m[8] * p[0] + m[9] * p[1] + m[10] * p[2] + m[11];
-      c.w = m[12] * p[0] + m[13] * p[1] + m[14] * p[2] + m[15];
+      c.x = m[0] * x + m[1] * y + m[2] * z + m[3];
+      c.y = m[4] * x + m[5] * y + m[6] * z + m[7];
+      c.z = m[8] * x + m[9] * y + m[10] * z + m[11];
+      c.w = m[12] * x + m[13] * y + m[14] * z + m[15];
+    };
+    // The points' own array read directly when it is a plain float or double one (no virtual
+    // call per point).
+    if (vtkFloatArray* f = vtkFloatArray::FastDownCast(points->GetData()))
+    {
+      const float* p = f->GetPointer(0);
+      for (vtkIdType i = 0; i < n; ++i, p += 3)
+      {
+        transform(i, p[0], p[1], p[2]);
+      }
+    }
+    else if (vtkDoubleArray* d = vtkDoubleArray::FastDownCast(points->GetData()))
+    {
+      const double* p = d->GetPointer(0);
+      for (vtkIdType i = 0; i < n; ++i, p += 3)
+      {
+        transform(i, p[0], p[1], p[2]);
+      }
+    }
+    else
+    {
+      for (vtkIdType i = 0; i < n; ++i)
+      {
+        double p[3];
+        points->GetPoint(i, p);
+        transform(i, p[0], p[1], p[2]);
+      }
     }
     buffer.drawTriangles(this->Clip.data(), this->Clip.size(), mesh->Triangles.data(),
       mesh->Triangles.size() / 3, culling, mesh->Neighbors.data());

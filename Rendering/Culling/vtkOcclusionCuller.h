@@ -33,7 +33,7 @@
  * Statistics of the last Cull(): those of vtkOctreeCuller, plus props culled by occlusion,
  * occlusion tests (node and prop boxes), occluders drawn and their triangles, the time spent
  * rasterizing occluders and in the whole Cull(), and the memory of the depth buffer (12 bytes
- * per 8x4 pixels) and of the occluder cache (triangle lists with edge neighbours, 24 bytes per
+ * per 8x4 pixels, 4 more per 32x16) and of the occluder cache (triangle lists with edge neighbours, 24 bytes per
  * triangle of each distinct mesh rasterized, bounded by OccluderCacheBudget).
  *
  * @sa vtkOctreeCuller vtkCuller
