@@ -127,6 +127,7 @@ struct Pose
 {
   double eye[3], focal[3], viewAngle;
   ViewKind kind;
+  int segment; ///< index of the jump that started this segment of the path
 };
 
 /// The seeded camera path (see the file comment); the same numbers on every platform (the
@@ -165,6 +166,7 @@ public:
         p.eye[2] = this->Focal[2] + distance * std::cos(azimuth);
         p.viewAngle = this->ViewAngle;
         p.kind = this->Kind;
+        p.segment = this->Segments;
         path.push_back(p);
       }
     }
@@ -187,6 +189,7 @@ private:
     this->Orbit = this->Radians(this->Between(0.3, 1.0)) * (this->U() < 0.5 ? -1.0 : 1.0);
     this->Zoom = this->Between(0.2, 0.5);
     this->Azimuth = this->Radians(this->Between(0.0, 360.0));
+    ++this->Segments;
     this->Kind = static_cast<ViewKind>(static_cast<int>(this->U() * NumberOfViewKinds));
     if (this->Kind == Outside) // from outside the grid, a little above it, as around a plant
     {
@@ -245,6 +248,7 @@ private:
   double Focal[3] = { 0, 0, 0 };
   double Azimuth = 0, EyeY = 0, Distance = 1, Orbit = 0, Zoom = 0, ViewAngle = 30;
   ViewKind Kind = Outside;
+  int Segments = -1;
 };
 
 struct Options
@@ -480,6 +484,17 @@ int main(int argc, char* argv[])
   sb::EnginePitch(engine.parts, pitch);
   sb::EngineGridBounds(engine.parts, o.grid, bounds);
   const std::vector<Pose> path = CameraPath(bounds, pitch, o.grid, o.seed).Make(o.frames);
+  std::printf("camera path (seed %llu), first frame and kind of each segment:",
+    static_cast<unsigned long long>(o.seed));
+  for (std::size_t f = 0; f < path.size(); ++f)
+  {
+    if (f == 0 || path[f].segment != path[f - 1].segment)
+    {
+      std::printf(
+        "%s %zu %s", path[f].segment % 10 == 0 ? "\n " : "", f, kViewKindNames[path[f].kind]);
+    }
+  }
+  std::printf("\n");
   std::unique_ptr<sb::EngineGrid> grid;
   std::size_t actorModesLeft = static_cast<std::size_t>(std::count_if(
     o.modes.begin(), o.modes.end(), [](const std::string& m) { return m != "chunked"; }));
