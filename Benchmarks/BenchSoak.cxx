@@ -27,8 +27,9 @@
 // and the process's peak (VmHWM of /proc/self/status, so far in the run). Verdicts per mode:
 //  - "RSS growth < 1% after warm-up": PASS / FAIL;
 //  - frame times stable: frames 100-149 are rendered again at the end with the same cameras; their
-//    median must be within 1.25x of the first time; and every window's median within 2x of the
-//    first window's (loose: each window sees other cameras).
+//    median must be within 1.25x of the first time. The windows' medians are printed but are no
+//    verdict: each window holds another mix of views (a 10 x 10 grid seen from outside costs
+//    10-30x a view from inside it), so they differ by 5x and more on a steady renderer.
 //
 // Usage: scenevis_soak_bench [--grid N] [--size WxH] [--frames K] [--modes LIST] [--seed S]
 //        [--warm-up F] [--window W] [--smoke]
@@ -395,10 +396,10 @@ void Report(SoakResult& r, const std::vector<Pose>& path, const Options& o)
   const Spread again = SpreadOf(r.replayMs);
   const double replayRatio = again.median / std::max(1e-9, first.median);
   const double windowRatio = highest / std::max(1e-9, medians.front());
-  r.framesStable = replayRatio <= 1.25 && windowRatio <= 2.0;
+  r.framesStable = replayRatio <= 1.25;
   std::printf("  frame times: window medians %.2fx..%.2fx of the first; frames %d-%zu again at "
               "the end: median %.1f ms vs %.1f ms the first time (%.2fx) -> %s (replay within "
-              "1.25x, windows within 2x)\n",
+              "1.25x)\n",
     lowest / std::max(1e-9, medians.front()), windowRatio, o.warmUp, o.warmUp + replayed - 1,
     again.median, first.median, replayRatio, r.framesStable ? "stable" : "NOT STABLE");
   r.rssPass = growth < 1.0;
