@@ -1,11 +1,11 @@
 // scenevis_occlusion_bench: occlusion culling on a real CAD assembly at scale, side by side with
 // frustum culling alone, in one run.
 //
-// Scene: the 2CylinderEngine glTF (Debian's assimp-testmodels: 115 parts, 121,496 triangles, real
-// degenerate triangles) split into its parts in one pass over the cells, then instanced on an
-// N x N grid (default 20 x 20 = 400 engines, 46,000 actors, 48.6M triangles): the actors of a
-// part share its mapper, each engine is placed by the actors' positions. Opaque (each part gets
-// its glTF colour at opacity 1).
+// Scene (EngineGrid.h): the 2CylinderEngine glTF (Debian's assimp-testmodels: 115 parts, 121,496
+// triangles, real degenerate triangles) split into its parts, then instanced on an N x N grid
+// (default 20 x 20 = 400 engines, 46,000 actors, 48.6M triangles): the actors of a part share its
+// mapper, each engine is placed by the actors' positions. Opaque (each part gets its glTF colour
+// at opacity 1).
 //
 // Per camera (an engine-row view looking down a row, as a CAD user inspecting one line of a
 // plant; a view from inside the grid; an overview from above):
@@ -30,31 +30,22 @@
 // draw most of the grid): minutes less per run when tuning the culler, or profiling it with
 // many --frames; --view measures only the view whose name starts with NAME ("engine", "inside",
 // "overview").
-// Needs the data cache (scripts/fetch-data.sh); prints "SKIPPED" and exits 0 without it.
+// Needs the data cache (scripts/fetch-data.sh); prints "SKIPPED" and exits 77 (CTest's
+// SKIP_RETURN_CODE) without it.
+#include "EngineGrid.h"
 #include "OcclusionQueries.h"
 #include "vtkOcclusionCuller.h"
 #include "vtkOctreeCuller.h"
 
-#include "scenevis/testing/Models.h"
 #include "scenevis/testing/RenderWindow.h"
 
 #include <vtkActor.h>
 #include <vtkCallbackCommand.h>
 #include <vtkCamera.h>
-#include <vtkCellArray.h>
-#include <vtkCellData.h>
 #include <vtkCullerCollection.h>
-#include <vtkDataArray.h>
-#include <vtkFloatArray.h>
-#include <vtkIdList.h>
-#include <vtkIdTypeArray.h>
 #include <vtkImageData.h>
 #include <vtkNew.h>
-#include <vtkPointData.h>
-#include <vtkPoints.h>
 #include <vtkPolyData.h>
-#include <vtkPolyDataMapper.h>
-#include <vtkPropCollection.h>
 #include <vtkProperty.h>
 #include <vtkRenderWindow.h>
 #include <vtkRenderer.h>
@@ -83,165 +74,11 @@ double Seconds(Clock::time_point since)
   return std::chrono::duration<double>(Clock::now() - since).count();
 }
 
-/// The cells of @p model grouped by PartId into one polydata per part, in one pass over the cells
-/// (each part gets its own compact points), with the colour of its first cell.
-struct Part
-{
-  vtkSmartPointer<vtkPolyData> data;
-  double colour[3] = { 0.8, 0.8, 0.8 };
-};
-
-std::vector<Part> SplitParts(vtkPolyData* model)
-{
-  vtkDataArray* partIds = model->GetCellData()->GetArray("PartId");
-  vtkDataArray* colours = model->GetCellData()->GetArray("Colors");
-  const vtkIdType cells = model->GetNumberOfCells();
-  vtkIdType parts = 1;
-  for (vtkIdType c = 0; partIds && c < cells; ++c)
-  {
-    parts = std::max<vtkIdType>(parts, static_cast<vtkIdType>(partIds->GetComponent(c, 0)) + 1);
-  }
-  std::vector<Part> out(static_cast<std::size_t>(parts));
-  std::vector<vtkSmartPointer<vtkPoints>> points(out.size());
-  // The model's own normals travel with its points (the flattened file keeps them, as exporters
-  // write them: a reader need not compute them).
-  vtkDataArray* modelNormals = model->GetPointData()->GetNormals();
-  std::vector<vtkSmartPointer<vtkFloatArray>> normals(out.size());
-  std::vector<vtkSmartPointer<vtkCellArray>> polys(out.size());
-  std::vector<std::vector<vtkIdType>> pointMap(out.size());
-  std::vector<char> coloured(out.size(), 0);
-  for (std::size_t p = 0; p < out.size(); ++p)
-  {
-    points[p] = vtkSmartPointer<vtkPoints>::New();
-    points[p]->SetDataTypeToDouble();
-    polys[p] = vtkSmartPointer<vtkCellArray>::New();
-    normals[p] = vtkSmartPointer<vtkFloatArray>::New();
-    normals[p]->SetName("Normals");
-    normals[p]->SetNumberOfComponents(3);
-  }
-  vtkNew<vtkIdList> ids;
-  std::vector<vtkIdType> cell;
-  for (vtkIdType c = 0; c < cells; ++c)
-  {
-    if (model->GetCellType(c) != VTK_TRIANGLE && model->GetCellType(c) != VTK_POLYGON &&
-      model->GetCellType(c) != VTK_QUAD)
-    {
-      continue;
-    }
-    const auto p = static_cast<std::size_t>(partIds ? partIds->GetComponent(c, 0) : 0);
-    model->GetCellPoints(c, ids);
-    cell.clear();
-    std::vector<vtkIdType>& map = pointMap[p];
-    for (vtkIdType k = 0; k < ids->GetNumberOfIds(); ++k)
-    {
-      const vtkIdType id = ids->GetId(k);
-      if (static_cast<std::size_t>(id) >= map.size())
-      {
-        map.resize(static_cast<std::size_t>(id) + 1, -1);
-      }
-      if (map[static_cast<std::size_t>(id)] < 0)
-      {
-        map[static_cast<std::size_t>(id)] = points[p]->InsertNextPoint(model->GetPoint(id));
-        if (modelNormals)
-          normals[p]->InsertNextTuple(modelNormals->GetTuple(id));
-      }
-      cell.push_back(map[static_cast<std::size_t>(id)]);
-    }
-    polys[p]->InsertNextCell(static_cast<vtkIdType>(cell.size()), cell.data());
-    if (colours && !coloured[p])
-    {
-      for (int k = 0; k < 3; ++k)
-      {
-        out[p].colour[k] = colours->GetComponent(c, k) / 255.0;
-      }
-      coloured[p] = 1;
-    }
-  }
-  std::vector<Part> kept;
-  for (std::size_t p = 0; p < out.size(); ++p)
-  {
-    if (polys[p]->GetNumberOfCells() > 0)
-    {
-      out[p].data = vtkSmartPointer<vtkPolyData>::New();
-      out[p].data->SetPoints(points[p]);
-      out[p].data->SetPolys(polys[p]);
-      if (modelNormals)
-        out[p].data->GetPointData()->SetNormals(normals[p]);
-      kept.push_back(out[p]);
-    }
-  }
-  return kept;
-}
-
-struct Grid
-{
-  vtkNew<vtkRenderer> renderer;
-  std::vector<vtkSmartPointer<vtkActor>> actors;
-  std::vector<vtkSmartPointer<vtkProperty>> looks, idLooks;
-  double bounds[6];
-  double pitch[3];
-  vtkIdType triangles = 0;
-};
-
-void BuildGrid(Grid& g, const std::vector<Part>& parts, int n)
-{
-  double b[6] = { 1e300, -1e300, 1e300, -1e300, 1e300, -1e300 };
-  std::vector<vtkSmartPointer<vtkPolyDataMapper>> mappers;
-  vtkIdType engineTriangles = 0;
-  for (const Part& p : parts)
-  {
-    const double* pb = p.data->GetBounds();
-    for (int k = 0; k < 3; ++k)
-    {
-      b[2 * k] = std::min(b[2 * k], pb[2 * k]);
-      b[2 * k + 1] = std::max(b[2 * k + 1], pb[2 * k + 1]);
-    }
-    auto mapper = vtkSmartPointer<vtkPolyDataMapper>::New();
-    mapper->SetInputData(p.data);
-    mapper->ScalarVisibilityOff();
-    mappers.push_back(mapper);
-    engineTriangles += p.data->GetNumberOfCells(); // polygons; the engine has triangles only
-  }
-  // Engines on a grid in x and z (glTF is y-up), 15 % apart.
-  for (int k = 0; k < 3; ++k)
-  {
-    g.pitch[k] = 1.15 * (b[2 * k + 1] - b[2 * k]);
-  }
-  for (int i = 0; i < n; ++i)
-  {
-    for (int j = 0; j < n; ++j)
-    {
-      for (std::size_t p = 0; p < parts.size(); ++p)
-      {
-        auto actor = vtkSmartPointer<vtkActor>::New();
-        actor->SetMapper(mappers[p]);
-        actor->SetPosition(i * g.pitch[0], 0.0, j * g.pitch[2]);
-        auto look = vtkSmartPointer<vtkProperty>::New();
-        look->SetColor(parts[p].colour[0], parts[p].colour[1], parts[p].colour[2]);
-        actor->SetProperty(look);
-        // The ID look: flat, unlit colour = actor index + 1 in 24 bits.
-        const std::size_t id = g.actors.size() + 1;
-        auto idLook = vtkSmartPointer<vtkProperty>::New();
-        idLook->SetColor(((id >> 16) & 255) / 255.0, ((id >> 8) & 255) / 255.0, (id & 255) / 255.0);
-        idLook->LightingOff();
-        idLook->SetAmbient(1.0);
-        idLook->SetDiffuse(0.0);
-        idLook->SetSpecular(0.0);
-        // AddActor() would scan all props first (O(n^2): 88 s for 46,000 actors).
-        g.renderer->GetViewProps()->AddItem(actor);
-        actor->AddConsumer(g.renderer);
-        g.actors.push_back(actor);
-        g.looks.push_back(look);
-        g.idLooks.push_back(idLook);
-      }
-    }
-  }
-  g.triangles = engineTriangles * n * n;
-  g.renderer->ComputeVisiblePropBounds(g.bounds);
-}
+using scenevis::bench::EngineGrid;
+using scenevis::bench::EnginePart;
 
 /// The actors seen at some pixel (every actor drawn, depth-tested, flat ID colours).
-std::set<std::size_t> VisibleActors(Grid& g, vtkRenderWindow* window)
+std::set<std::size_t> VisibleActors(EngineGrid& g, vtkRenderWindow* window)
 {
   for (std::size_t a = 0; a < g.actors.size(); ++a)
   {
@@ -280,7 +117,7 @@ struct Row
   std::size_t queries = 0;   ///< gl-queries: boxes queried
 };
 
-Row Measure(Grid& g, vtkRenderWindow* window, vtkOctreeCuller* culler, const char* name,
+Row Measure(EngineGrid& g, vtkRenderWindow* window, vtkOctreeCuller* culler, const char* name,
   const std::set<std::size_t>& visible, int frames)
 {
   Row row;
@@ -337,7 +174,7 @@ Row Measure(Grid& g, vtkRenderWindow* window, vtkOctreeCuller* culler, const cha
   return row;
 }
 /// The GL-queries row (see the file comment).
-Row MeasureQueries(Grid& g, vtkRenderWindow* window, const std::set<std::size_t>& visible)
+Row MeasureQueries(EngineGrid& g, vtkRenderWindow* window, const std::set<std::size_t>& visible)
 {
   Row row;
   row.culler = "gl-queries";
@@ -414,80 +251,10 @@ Row MeasureQueries(Grid& g, vtkRenderWindow* window, const std::set<std::size_t>
   row.queries = candidates.size();
   return row;
 }
-/// The grid as one polydata: every placed part's triangles, PartId = the actor's index.
-bool WriteFlat(const std::vector<Part>& parts, int n, const char* path)
+/// The grid as one polydata (FlattenEngineGrid()), written uncompressed to @p path.
+bool WriteFlat(const std::vector<EnginePart>& parts, int n, const char* path)
 {
-  double pitch[3];
-  double b[6] = { 1e300, -1e300, 1e300, -1e300, 1e300, -1e300 };
-  vtkIdType points = 0, cells = 0;
-  for (const Part& p : parts)
-  {
-    const double* pb = p.data->GetBounds();
-    for (int k = 0; k < 3; ++k)
-    {
-      b[2 * k] = std::min(b[2 * k], pb[2 * k]);
-      b[2 * k + 1] = std::max(b[2 * k + 1], pb[2 * k + 1]);
-    }
-    points += p.data->GetNumberOfPoints();
-    cells += p.data->GetNumberOfCells();
-  }
-  for (int k = 0; k < 3; ++k)
-  {
-    pitch[k] = 1.15 * (b[2 * k + 1] - b[2 * k]);
-  }
-  vtkNew<vtkPoints> allPoints;
-  allPoints->SetDataTypeToFloat();
-  allPoints->Allocate(points * n * n);
-  vtkNew<vtkCellArray> polys;
-  polys->AllocateEstimate(cells * n * n, 3);
-  vtkNew<vtkIdTypeArray> partId;
-  partId->SetName("PartId");
-  partId->Allocate(cells * n * n);
-  const bool withNormals = !parts.empty() && parts.front().data->GetPointData()->GetNormals();
-  vtkNew<vtkFloatArray> allNormals;
-  allNormals->SetName("Normals");
-  allNormals->SetNumberOfComponents(3);
-  allNormals->Allocate(3 * points * n * n);
-  vtkIdType actor = 0;
-  for (int i = 0; i < n; ++i)
-  {
-    for (int j = 0; j < n; ++j)
-    {
-      for (const Part& p : parts)
-      {
-        const vtkIdType base = allPoints->GetNumberOfPoints();
-        for (vtkIdType q = 0; q < p.data->GetNumberOfPoints(); ++q)
-        {
-          double x[3];
-          p.data->GetPoint(q, x);
-          allPoints->InsertNextPoint(x[0] + i * pitch[0], x[1], x[2] + j * pitch[2]);
-          if (withNormals)
-            allNormals->InsertNextTuple(p.data->GetPointData()->GetNormals()->GetTuple(q));
-        }
-        vtkIdType npts = 0;
-        const vtkIdType* ids = nullptr;
-        vtkCellArray* cellArray = p.data->GetPolys();
-        std::vector<vtkIdType> shifted;
-        for (cellArray->InitTraversal(); cellArray->GetNextCell(npts, ids);)
-        {
-          shifted.assign(ids, ids + npts);
-          for (vtkIdType& id : shifted)
-          {
-            id += base;
-          }
-          polys->InsertNextCell(npts, shifted.data());
-          partId->InsertNextValue(actor);
-        }
-        ++actor;
-      }
-    }
-  }
-  vtkNew<vtkPolyData> flat;
-  flat->SetPoints(allPoints);
-  flat->SetPolys(polys);
-  flat->GetCellData()->AddArray(partId);
-  if (withNormals)
-    flat->GetPointData()->SetNormals(allNormals);
+  vtkSmartPointer<vtkPolyData> flat = scenevis::bench::FlattenEngineGrid(parts, n);
   vtkNew<vtkXMLPolyDataWriter> writer;
   writer->SetInputData(flat);
   writer->SetFileName(path);
@@ -495,7 +262,8 @@ bool WriteFlat(const std::vector<Part>& parts, int n, const char* path)
   writer->SetCompressorTypeToNone();
   writer->EncodeAppendedDataOff(); // raw bytes, as big-model exporters write them (not base64)
   std::printf("writing %lld triangles of %lld parts to %s\n",
-    static_cast<long long>(flat->GetNumberOfCells()), static_cast<long long>(actor), path);
+    static_cast<long long>(flat->GetNumberOfCells()), static_cast<long long>(parts.size()) * n * n,
+    path);
   return writer->Write() == 1;
 }
 } // namespace
@@ -538,38 +306,26 @@ int main(int argc, char* argv[])
       return 2;
     }
   }
-  const std::string path = st::DataFile("engine-glb");
-  if (path.empty())
+  scenevis::bench::EngineModel engine;
+  if (const int status = scenevis::bench::LoadEngine(engine))
   {
-    std::cout << "SKIPPED: engine-glb is not in the data cache (run scripts/fetch-data.sh)\n";
-    return 0;
+    return status;
   }
-  auto t0 = Clock::now();
-  std::string error;
-  vtkSmartPointer<vtkPolyData> model = st::LoadModel(path, &error);
-  if (!model)
-  {
-    std::cerr << "cannot read " << path << ": " << error << "\n";
-    return 1;
-  }
-  const double readS = Seconds(t0);
-  t0 = Clock::now();
-  const std::vector<Part> parts = SplitParts(model);
-  const double splitS = Seconds(t0);
+  const std::vector<EnginePart>& parts = engine.parts;
   if (flatFile)
   {
     return WriteFlat(parts, n, flatFile) ? 0 : 1;
   }
-  t0 = Clock::now();
-  Grid g;
-  BuildGrid(g, parts, n);
+  auto t0 = Clock::now();
+  EngineGrid g;
+  scenevis::bench::BuildEngineGrid(g, parts, n);
   const double gridS = Seconds(t0);
   vtkSmartPointer<vtkRenderWindow> window = st::MakeRenderWindow(width, height);
   window->AddRenderer(g.renderer);
   std::printf("scene: 2CylinderEngine (%zu parts), %d x %d engines = %zu actors, %lld triangles; "
               "read %.2f s, split %.2f s, grid %.2f s; %dx%d, %d frames per row\n",
-    parts.size(), n, n, g.actors.size(), static_cast<long long>(g.triangles), readS, splitS, gridS,
-    width, height, frames);
+    parts.size(), n, n, g.actors.size(), static_cast<long long>(g.triangles), engine.readSeconds,
+    engine.splitSeconds, gridS, width, height, frames);
 
   struct View
   {

@@ -34,8 +34,8 @@ if [ -n "${SCENEVIS_SANITIZE_CXX:-}" ]; then compiler=(-DCMAKE_CXX_COMPILER="$SC
 mkdir -p "$build"
 cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo "${compiler[@]}" \
   -DSCENEVIS_SANITIZE=address,undefined -DSCENEVIS_WARNINGS_AS_ERRORS=$werror \
-  -DSCENEVIS_BUILD_BENCHMARKS=OFF -DSCENEVIS_BUILD_EXAMPLES=OFF -DSCENEVIS_BUILD_FUZZERS=ON \
-  >"$build.configure.log" 2>&1 || { cat "$build.configure.log"; exit 1; }
+  -DSCENEVIS_BUILD_BENCHMARKS=OFF -DSCENEVIS_BUILD_SOAK_BENCH=ON -DSCENEVIS_BUILD_EXAMPLES=OFF \
+  -DSCENEVIS_BUILD_FUZZERS=ON >"$build.configure.log" 2>&1 || { cat "$build.configure.log"; exit 1; }
 
 export ASAN_OPTIONS="detect_leaks=1:abort_on_error=0:strict_string_checks=1:detect_stack_use_after_return=1:check_initialization_order=1"
 export LSAN_OPTIONS="suppressions=$root/Testing/Sanitizers/lsan.supp:print_suppressions=0"
@@ -46,7 +46,7 @@ cmake --build "$build" -j"$jobs" --target scenevis_core_tests scenevis_fuzz_bsp_
   scenevis_fuzz_occlusion_replay scenevis_split_parts_tests scenevis_instances_tests \
   SceneVisFiltersSortingCxxTests SceneVisFiltersSortingRenderingCxxTests \
   SceneVisFiltersSourcesCxxTests SceneVisRenderingCullingCxxTests \
-  SceneVisRenderingPortalsCxxTests SceneVisRenderingTranslucencyCxxTests
+  SceneVisRenderingPortalsCxxTests SceneVisRenderingTranslucencyCxxTests scenevis_soak_bench
 echo "sanitize: asan build done in $(( $(date +%s) - start )) s ($build)"
 
 # The VTK-level tests are named after their module (SceneVis::FiltersSortingCxx-TestX), rendering
@@ -54,8 +54,10 @@ echo "sanitize: asan build done in $(( $(date +%s) - start )) s ($build)"
 # ctest shows an empty command for them. Fuzz.BspCorpus replays Core/Fuzz/corpus and crashes.
 # Every VTK-level test of the modules too (they render with OSMesa, no X needed): LeakSanitizer
 # is the leak check of the filters, mappers, passes and cullers; and the tool's own code paths
-# that take files and split them (Tool.SplitParts, Tool.Instances).
-tests='^(Core\.|Fuzz\.|SceneVis::|Tool\.(SplitParts|Instances)\.)'
+# that take files and split them (Tool.SplitParts, Tool.Instances). Bench.SoakLeaks: 300 frames of
+# the soak's moving camera per culling mode on a 2 x 2 engine grid (Benchmarks/BenchSoak.cxx), the
+# leak check of a long run (skipped without the data cache).
+tests='^(Core\.|Fuzz\.|SceneVis::|Tool\.(SplitParts|Instances)\.|Bench\.SoakLeaks$)'
 unbuilt=$(cd "$build" && ctest -N -V -R "$tests" | awk '
   /Test command:/ { cmd = $0; sub(/^[0-9]+: Test command: */, "", cmd); empty = (cmd == "" || cmd ~ /^"/) }
   /^ *Test +#[0-9]+:/ { if (empty) { sub(/^ *Test +#[0-9]+: /, ""); print } }' | paste -sd'|' -)

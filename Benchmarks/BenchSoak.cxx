@@ -1,0 +1,581 @@
+// scenevis_soak_bench: a soak run of every culling mode on a real CAD scene of 10M+ triangles:
+// does memory stay flat and do frames stay as fast over thousands of frames of a moving camera?
+//
+// Scene (EngineGrid.h): the 2CylinderEngine glTF instanced on an N x N grid (default 10 x 10 =
+// 100 engines, 11,500 actors, 12.1M triangles), opaque.
+//
+// Camera path: seeded and the same for every mode. Segments of 50 +- 15 frames; in each the eye
+// orbits its focal point at a fixed height (0.3 to 1 degree per frame) while zooming in and out
+// (the distance swings by up to a factor e^0.5 either way); each new segment is a random jump to
+// one of four kinds of view, the eye at the engines' height as a person walking through a plant:
+// from outside the grid (up to 30 % of an engine's height above it), the eye inside the grid
+// (often inside an engine), the eye in the gaps between engines, and the eye at the end of a row
+// looking down it.
+// Every jump breaks the cullers' temporal coherence (last frame's visible set, plane masks) and
+// brings other meshes into the occluder cache.
+//
+// Modes (each a separate soak, one after the other in this process, each with its own window):
+//  - none:      VTK's default culler (vtkFrustumCoverageCuller) over the 11,500 actors;
+//  - frustum:   vtkOctreeCuller (BVH frustum culling) over the actors;
+//  - occlusion: vtkOcclusionCuller (frustum + software occlusion culling) over the actors;
+//  - chunked:   the grid flattened into ONE polydata drawn by vtkChunkedPolyDataMapper with
+//               OcclusionCullingOn() (frustum + occlusion culling of its spatial chunks).
+//
+// Measured per mode: frame time (wall clock of vtkRenderWindow::Render(): cull + llvmpipe draw)
+// median / p95 / max per window of 250 frames; resident memory (/proc/self/statm) after the
+// warm-up (frame 100), at the end of every window and at the end, its growth after the warm-up,
+// and the process's peak (VmHWM of /proc/self/status, so far in the run). Verdicts per mode:
+//  - "RSS growth < 1% after warm-up": PASS / FAIL;
+//  - frame times stable: frames 100-149 are rendered again at the end with the same cameras; their
+//    median must be within 1.25x of the first time. The windows' medians are printed but are no
+//    verdict: each window holds another mix of views (a 10 x 10 grid seen from outside costs
+//    10-30x a view from inside it), so they differ by 5x and more on a steady renderer.
+//
+// Usage: scenevis_soak_bench [--grid N] [--size WxH] [--frames K] [--modes LIST] [--seed S]
+//        [--warm-up F] [--window W] [--smoke]
+//   LIST: comma-separated from none,frustum,occlusion,chunked (default all four).
+//   --smoke: 2 x 2 engines at 160x120, 20 frames (warm-up 5, windows of 10): a check that it runs,
+//   for CI. Default size 320x240: llvmpipe's frame is bound by geometry here (640x480 costs
+//   1.5x). Run the soak of issue 13 as
+//   LP_NUM_THREADS=1 nice -n 5 scenevis_soak_bench --grid 10 --frames 2000
+// Needs the data cache (scripts/fetch-data.sh); prints "SKIPPED" and exits 77 (CTest's
+// SKIP_RETURN_CODE) without it.
+#include "EngineGrid.h"
+#include "vtkChunkedPolyDataMapper.h"
+#include "vtkOcclusionCuller.h"
+#include "vtkOctreeCuller.h"
+
+#include "scenevis/testing/RenderWindow.h"
+
+#include <vtkActor.h>
+#include <vtkCamera.h>
+#include <vtkCuller.h>
+#include <vtkCullerCollection.h>
+#include <vtkFrustumCoverageCuller.h>
+#include <vtkNew.h>
+#include <vtkPolyData.h>
+#include <vtkProperty.h>
+#include <vtkRenderWindow.h>
+#include <vtkRenderer.h>
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <functional>
+#include <iostream>
+#include <memory>
+#include <random>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace
+{
+namespace sb = scenevis::bench;
+using Clock = std::chrono::steady_clock;
+
+constexpr double kPi = 3.14159265358979323846;
+constexpr double kMiB = 1024.0 * 1024.0;
+
+double Milliseconds(Clock::time_point since)
+{
+  return std::chrono::duration<double, std::milli>(Clock::now() - since).count();
+}
+
+/// Resident bytes of this process now (/proc/self/statm).
+double ResidentBytes()
+{
+  std::ifstream statm("/proc/self/statm");
+  double size = 0, resident = 0;
+  statm >> size >> resident;
+  return resident * static_cast<double>(sysconf(_SC_PAGESIZE));
+}
+
+/// Peak resident bytes of this process so far (VmHWM of /proc/self/status).
+double PeakResidentBytes()
+{
+  std::ifstream status("/proc/self/status");
+  std::string line;
+  while (std::getline(status, line))
+  {
+    if (line.rfind("VmHWM:", 0) == 0)
+    {
+      return 1024.0 * std::atof(line.c_str() + 6);
+    }
+  }
+  return 0.0;
+}
+
+/// The kinds of view a jump goes to.
+enum ViewKind
+{
+  Outside,
+  Inside,
+  Gaps,
+  Row,
+  NumberOfViewKinds
+};
+const char* const kViewKindNames[NumberOfViewKinds] = { "outside", "inside", "gaps", "row" };
+
+/// One camera of the path.
+struct Pose
+{
+  double eye[3], focal[3], viewAngle;
+  ViewKind kind;
+  int segment; ///< index of the jump that started this segment of the path
+};
+
+/// The seeded camera path (see the file comment); the same numbers on every platform (the
+/// generator's raw output is mapped to [0, 1) here, not by a standard distribution).
+class CameraPath
+{
+public:
+  CameraPath(const double bounds[6], const double pitch[3], int n, std::uint64_t seed)
+    : Gen(seed)
+    , N(n)
+  {
+    std::copy(bounds, bounds + 6, this->B);
+    std::copy(pitch, pitch + 3, this->Pitch);
+  }
+
+  std::vector<Pose> Make(int frames)
+  {
+    std::vector<Pose> path;
+    while (static_cast<int>(path.size()) < frames)
+    {
+      this->Jump();
+      const int length = 35 + static_cast<int>(this->U() * 31.0);
+      const double zoomPeriod = 40.0 + 60.0 * this->U(), zoomPhase = 2.0 * kPi * this->U();
+      for (int t = 0; t < length && static_cast<int>(path.size()) < frames; ++t)
+      {
+        const double azimuth = this->Azimuth + this->Orbit * t;
+        const double distance =
+          this->Distance * std::exp(this->Zoom * std::sin(zoomPhase + 2.0 * kPi * t / zoomPeriod));
+        Pose p;
+        for (int k = 0; k < 3; ++k)
+        {
+          p.focal[k] = this->Focal[k];
+        }
+        p.eye[0] = this->Focal[0] + distance * std::sin(azimuth);
+        p.eye[1] = this->EyeY;
+        p.eye[2] = this->Focal[2] + distance * std::cos(azimuth);
+        p.viewAngle = this->ViewAngle;
+        p.kind = this->Kind;
+        p.segment = this->Segments;
+        path.push_back(p);
+      }
+    }
+    return path;
+  }
+
+private:
+  double U() { return static_cast<double>(this->Gen() >> 11) * 0x1.0p-53; }
+  double Between(double a, double b) { return a + (b - a) * this->U(); }
+  double Radians(double degrees) { return degrees * kPi / 180.0; }
+
+  void Jump()
+  {
+    const double* b = this->B;
+    const double midY = 0.5 * (b[2] + b[3]), height = b[3] - b[2];
+    const double spanX = b[1] - b[0], spanZ = b[5] - b[4];
+    const double diagonal =
+      std::sqrt(spanX * spanX + spanZ * spanZ + (b[3] - b[2]) * (b[3] - b[2]));
+    const double engineX = this->Pitch[0] / 1.15, engineZ = this->Pitch[2] / 1.15;
+    this->Orbit = this->Radians(this->Between(0.3, 1.0)) * (this->U() < 0.5 ? -1.0 : 1.0);
+    this->Zoom = this->Between(0.2, 0.5);
+    this->Azimuth = this->Radians(this->Between(0.0, 360.0));
+    ++this->Segments;
+    this->Kind = static_cast<ViewKind>(static_cast<int>(this->U() * NumberOfViewKinds));
+    if (this->Kind == Outside) // from outside the grid, a little above it, as around a plant
+    {
+      this->Focal[0] = 0.5 * (b[0] + b[1]) + this->Between(-0.25, 0.25) * spanX;
+      this->Focal[1] = midY;
+      this->Focal[2] = 0.5 * (b[4] + b[5]) + this->Between(-0.25, 0.25) * spanZ;
+      this->Distance = this->Between(0.8, 1.4) * diagonal;
+      this->EyeY = this->Between(b[2] + 0.3 * height, b[3] + 0.3 * height);
+      this->ViewAngle = 30.0;
+    }
+    else if (this->Kind == Inside) // the eye inside the grid, often inside an engine
+    {
+      this->Focal[0] = this->Between(b[0], b[1]);
+      this->Focal[1] = this->Between(b[2], b[3]);
+      this->Focal[2] = this->Between(b[4], b[5]);
+      this->Distance = this->Between(0.3, 1.0) * this->Pitch[0];
+      this->EyeY = this->Between(b[2] + 0.2 * height, b[3] - 0.1 * height);
+      this->ViewAngle = 60.0;
+    }
+    else if (this->Kind ==
+      Gaps) // the eye in the gaps between engines, around a corner of four engines
+    {
+      const int i = static_cast<int>(this->U() * this->N),
+                j = static_cast<int>(this->U() * this->N);
+      this->Focal[0] = b[0] + i * this->Pitch[0] + 0.5 * (engineX + this->Pitch[0]);
+      this->Focal[1] = this->Between(b[2], b[3]);
+      this->Focal[2] = b[4] + j * this->Pitch[2] + 0.5 * (engineZ + this->Pitch[2]);
+      this->Distance = this->Between(0.03, 0.07) * this->Pitch[0];
+      this->EyeY = this->Between(b[2] + 0.2 * height, b[3] - 0.1 * height);
+      this->ViewAngle = 60.0;
+    }
+    else // at the end of a row looking down it: the focal point half-way along the row
+    {
+      const bool alongX = this->U() < 0.5;
+      const int row = static_cast<int>(this->U() * this->N);
+      const double lateral = (alongX ? b[4] : b[0]) + row * this->Pitch[alongX ? 2 : 0] +
+        0.5 * (alongX ? engineZ : engineX);
+      const double span = alongX ? spanX : spanZ;
+      const bool fromLow = this->U() < 0.5;
+      this->Focal[1] = this->Between(b[2], b[3]);
+      this->Focal[alongX ? 0 : 2] = 0.5 * (alongX ? b[0] + b[1] : b[4] + b[5]);
+      this->Focal[alongX ? 2 : 0] = lateral;
+      // The eye 0.55 spans from the focal point: just outside the grid, zooming in and out of it.
+      this->Distance = 0.55 * span;
+      this->Zoom = this->Between(0.1, 0.3);
+      this->Azimuth = alongX ? (fromLow ? -0.5 * kPi : 0.5 * kPi) : (fromLow ? kPi : 0.0);
+      this->Orbit = this->Radians(this->Between(0.02, 0.08)) * (this->U() < 0.5 ? -1.0 : 1.0);
+      this->EyeY = this->Between(b[2] + 0.2 * height, b[3] - 0.1 * height);
+      this->ViewAngle = 60.0;
+    }
+  }
+
+  std::mt19937_64 Gen;
+  int N;
+  double B[6], Pitch[3];
+  double Focal[3] = { 0, 0, 0 };
+  double Azimuth = 0, EyeY = 0, Distance = 1, Orbit = 0, Zoom = 0, ViewAngle = 30;
+  ViewKind Kind = Outside;
+  int Segments = -1;
+};
+
+struct Options
+{
+  int grid = 10, width = 320, height = 240, frames = 2000, warmUp = 100, window = 250;
+  int replay = 50;
+  std::uint64_t seed = 13;
+  std::vector<std::string> modes{ "none", "frustum", "occlusion", "chunked" };
+};
+
+/// Median, p95 and max of @p ms.
+struct Spread
+{
+  double median = 0, p95 = 0, max = 0;
+};
+
+Spread SpreadOf(std::vector<double> ms)
+{
+  Spread s;
+  if (ms.empty())
+  {
+    return s;
+  }
+  std::sort(ms.begin(), ms.end());
+  const auto at = [&ms](double q)
+  { return ms[std::min(ms.size() - 1, static_cast<std::size_t>(q * (ms.size() - 1) + 0.5))]; };
+  s.median = at(0.5);
+  s.p95 = at(0.95);
+  s.max = ms.back();
+  return s;
+}
+
+struct SoakResult
+{
+  std::string mode;
+  std::vector<double> frameMs, replayMs, windowRss;
+  double rssWarm = 0, rssEnd = 0, peak = 0, seconds = 0;
+  double meanDrawn = 0; ///< props (actor modes) or triangles (chunked) drawn per frame
+  std::string drawnUnit;
+  bool rssPass = false, framesStable = false;
+};
+
+/// Renders @p path in @p renderer (already holding the scene) in a new window; @p drawn reports
+/// what the last frame drew.
+SoakResult Soak(const std::string& mode, vtkRenderer* renderer, const double bounds[6],
+  const std::vector<Pose>& path, const Options& o, const std::function<double()>& drawn)
+{
+  SoakResult r;
+  r.mode = mode;
+  vtkSmartPointer<vtkRenderWindow> window = scenevis::testing::MakeRenderWindow(o.width, o.height);
+  window->AddRenderer(renderer);
+  vtkCamera* camera = renderer->GetActiveCamera();
+  const auto render = [&](const Pose& p)
+  {
+    camera->SetFocalPoint(p.focal);
+    camera->SetPosition(p.eye);
+    camera->SetViewUp(0, 1, 0);
+    camera->SetViewAngle(p.viewAngle);
+    renderer->ResetCameraClippingRange(bounds);
+    const auto start = Clock::now();
+    window->Render();
+    return Milliseconds(start);
+  };
+  const auto start = Clock::now();
+  double drawnSum = 0;
+  for (std::size_t f = 0; f < path.size(); ++f)
+  {
+    r.frameMs.push_back(render(path[f]));
+    drawnSum += drawn();
+    if (static_cast<int>(f) + 1 == o.warmUp)
+    {
+      r.rssWarm = ResidentBytes();
+    }
+    if ((f + 1) % static_cast<std::size_t>(o.window) == 0 || f + 1 == path.size())
+    {
+      r.windowRss.push_back(ResidentBytes());
+      // Progress of a long run, on stderr so that stdout keeps only the figures.
+      std::fprintf(stderr, "[%s] %zu frames in %.0f s, RSS %.1f MiB\n", mode.c_str(), f + 1,
+        1e-3 * Milliseconds(start), r.windowRss.back() / kMiB);
+    }
+  }
+  r.rssEnd = ResidentBytes();
+  r.meanDrawn = drawnSum / std::max<std::size_t>(1, path.size());
+  // The same cameras again: frames warm-up .. warm-up + replay - 1.
+  for (int f = o.warmUp; f < o.warmUp + o.replay && f < static_cast<int>(path.size()); ++f)
+  {
+    r.replayMs.push_back(render(path[static_cast<std::size_t>(f)]));
+  }
+  r.seconds = 1e-3 * Milliseconds(start);
+  r.peak = PeakResidentBytes();
+  window->RemoveRenderer(renderer);
+  return r;
+}
+
+/// Prints the figures and verdicts of @p r; fills its verdicts.
+void Report(SoakResult& r, const std::vector<Pose>& path, const Options& o)
+{
+  std::printf("mode %s: %zu frames (+%zu replayed) in %.1f s; %.1f %s drawn per frame on "
+              "average\n",
+    r.mode.c_str(), r.frameMs.size(), r.replayMs.size(), r.seconds, r.meanDrawn,
+    r.drawnUnit.c_str());
+  std::printf("  %-7s %-11s %10s %10s %10s %12s\n", "window", "frames", "median ms", "p95 ms",
+    "max ms", "RSS MiB end");
+  std::vector<double> medians;
+  for (std::size_t w = 0; w * static_cast<std::size_t>(o.window) < r.frameMs.size(); ++w)
+  {
+    const std::size_t from = w * static_cast<std::size_t>(o.window);
+    const std::size_t to = std::min(r.frameMs.size(), from + static_cast<std::size_t>(o.window));
+    const Spread s =
+      SpreadOf(std::vector<double>(r.frameMs.begin() + static_cast<std::ptrdiff_t>(from),
+        r.frameMs.begin() + static_cast<std::ptrdiff_t>(to)));
+    medians.push_back(s.median);
+    const std::string frames = std::to_string(from) + "-" + std::to_string(to - 1);
+    std::printf("  %-7zu %-11s %10.1f %10.1f %10.1f %12.1f\n", w + 1, frames.c_str(), s.median,
+      s.p95, s.max, w < r.windowRss.size() ? r.windowRss[w] / kMiB : 0.0);
+  }
+  std::printf("  by view:");
+  for (int kind = 0; kind < NumberOfViewKinds; ++kind)
+  {
+    std::vector<double> ms;
+    for (std::size_t f = 0; f < r.frameMs.size(); ++f)
+    {
+      if (path[f].kind == kind)
+      {
+        ms.push_back(r.frameMs[f]);
+      }
+    }
+    if (!ms.empty())
+    {
+      std::printf(
+        " %s %zu frames median %.1f ms;", kViewKindNames[kind], ms.size(), SpreadOf(ms).median);
+    }
+  }
+  std::printf("\n");
+  const double growth = 100.0 * (r.rssEnd - r.rssWarm) / std::max(1.0, r.rssWarm);
+  std::printf("  RSS: after warm-up (frame %d) %.1f MiB, end %.1f MiB, growth %+.2f %%; peak "
+              "(VmHWM, process so far) %.1f MiB\n",
+    o.warmUp, r.rssWarm / kMiB, r.rssEnd / kMiB, growth, r.peak / kMiB);
+  const double lowest = *std::min_element(medians.begin(), medians.end());
+  const double highest = *std::max_element(medians.begin(), medians.end());
+  const std::size_t replayed = r.replayMs.size();
+  const Spread first = SpreadOf(std::vector<double>(r.frameMs.begin() + o.warmUp,
+    r.frameMs.begin() + o.warmUp + static_cast<std::ptrdiff_t>(replayed)));
+  const Spread again = SpreadOf(r.replayMs);
+  const double replayRatio = again.median / std::max(1e-9, first.median);
+  const double windowRatio = highest / std::max(1e-9, medians.front());
+  r.framesStable = replayRatio <= 1.25;
+  std::printf("  frame times: window medians %.2fx..%.2fx of the first; frames %d-%zu again at "
+              "the end: median %.1f ms vs %.1f ms the first time (%.2fx) -> %s (replay within "
+              "1.25x)\n",
+    lowest / std::max(1e-9, medians.front()), windowRatio, o.warmUp, o.warmUp + replayed - 1,
+    again.median, first.median, replayRatio, r.framesStable ? "stable" : "NOT STABLE");
+  r.rssPass = growth < 1.0;
+  std::printf("  %s %s: RSS growth < 1%% after warm-up (%+.2f %%)\n", r.mode.c_str(),
+    r.rssPass ? "PASS" : "FAIL", growth);
+  std::fflush(stdout);
+}
+
+bool ParseOptions(int argc, char* argv[], Options& o)
+{
+  for (int i = 1; i < argc; ++i)
+  {
+    const std::string a = argv[i];
+    const bool value = i + 1 < argc;
+    if (a == "--grid" && value)
+      o.grid = std::max(1, std::atoi(argv[++i]));
+    else if (a == "--size" && value && std::sscanf(argv[++i], "%dx%d", &o.width, &o.height) == 2 &&
+      o.width > 0 && o.height > 0)
+      ;
+    else if (a == "--frames" && value)
+      o.frames = std::max(1, std::atoi(argv[++i]));
+    else if (a == "--warm-up" && value)
+      o.warmUp = std::max(1, std::atoi(argv[++i]));
+    else if (a == "--window" && value)
+      o.window = std::max(1, std::atoi(argv[++i]));
+    else if (a == "--seed" && value)
+      o.seed = std::strtoull(argv[++i], nullptr, 10);
+    else if (a == "--modes" && value)
+    {
+      o.modes.clear();
+      std::stringstream list(argv[++i]);
+      for (std::string m; std::getline(list, m, ',');)
+      {
+        if (m != "none" && m != "frustum" && m != "occlusion" && m != "chunked")
+        {
+          std::cerr << "unknown mode '" << m << "' (none, frustum, occlusion, chunked)\n";
+          return false;
+        }
+        o.modes.push_back(m);
+      }
+    }
+    else if (a == "--smoke")
+    {
+      o.grid = 2;
+      o.width = 160;
+      o.height = 120;
+      o.frames = 20;
+      o.warmUp = 5;
+      o.window = 10;
+      o.replay = 5;
+    }
+    else
+    {
+      std::cerr << "usage: scenevis_soak_bench [--grid N] [--size WxH] [--frames K] [--modes "
+                   "none,frustum,occlusion,chunked] [--seed S] [--warm-up F] [--window W] "
+                   "[--smoke]\n";
+      return false;
+    }
+  }
+  if (o.warmUp >= o.frames)
+  {
+    std::cerr << "--warm-up must be below --frames\n";
+    return false;
+  }
+  o.replay = std::min(o.replay, o.frames - o.warmUp);
+  return true;
+}
+} // namespace
+
+int main(int argc, char* argv[])
+{
+  Options o;
+  if (!ParseOptions(argc, argv, o))
+  {
+    return 2;
+  }
+  sb::EngineModel engine;
+  if (const int status = sb::LoadEngine(engine))
+  {
+    return status;
+  }
+  double pitch[3], bounds[6];
+  sb::EnginePitch(engine.parts, pitch);
+  sb::EngineGridBounds(engine.parts, o.grid, bounds);
+  const std::vector<Pose> path = CameraPath(bounds, pitch, o.grid, o.seed).Make(o.frames);
+  std::printf("camera path (seed %llu), first frame and kind of each segment:",
+    static_cast<unsigned long long>(o.seed));
+  for (std::size_t f = 0; f < path.size(); ++f)
+  {
+    if (f == 0 || path[f].segment != path[f - 1].segment)
+    {
+      std::printf(
+        "%s %zu %s", path[f].segment % 10 == 0 ? "\n " : "", f, kViewKindNames[path[f].kind]);
+    }
+  }
+  std::printf("\n");
+  std::unique_ptr<sb::EngineGrid> grid;
+  std::size_t actorModesLeft = static_cast<std::size_t>(std::count_if(
+    o.modes.begin(), o.modes.end(), [](const std::string& m) { return m != "chunked"; }));
+  std::vector<SoakResult> results;
+  for (const std::string& mode : o.modes)
+  {
+    auto t0 = Clock::now();
+    SoakResult r;
+    if (mode == "chunked")
+    {
+      vtkSmartPointer<vtkPolyData> flat = sb::FlattenEngineGrid(engine.parts, o.grid);
+      vtkNew<vtkChunkedPolyDataMapper> mapper;
+      mapper->SetInputData(flat);
+      mapper->ScalarVisibilityOff();
+      mapper->OcclusionCullingOn();
+      vtkNew<vtkActor> actor;
+      actor->SetMapper(mapper);
+      vtkNew<vtkRenderer> renderer;
+      renderer->AddActor(actor);
+      std::printf("mode chunked: %lld triangles as one polydata, flattened in %.2f s\n",
+        static_cast<long long>(flat->GetNumberOfCells()), 1e-3 * Milliseconds(t0));
+      std::fflush(stdout);
+      flat = nullptr; // the mapper holds it
+      r = Soak(mode, renderer, bounds, path, o,
+        [&mapper] { return static_cast<double>(mapper->GetNumberOfTrianglesDrawn()); });
+      r.drawnUnit = "triangles";
+    }
+    else
+    {
+      if (!grid)
+      {
+        grid = std::make_unique<sb::EngineGrid>();
+        sb::BuildEngineGrid(*grid, engine.parts, o.grid);
+        std::printf("scene: 2CylinderEngine (%zu parts, read %.2f s, split %.2f s), %d x %d "
+                    "engines = %zu actors, %lld triangles, built in %.2f s; %dx%d, seed %llu\n",
+          engine.parts.size(), engine.readSeconds, engine.splitSeconds, o.grid, o.grid,
+          grid->actors.size(), static_cast<long long>(grid->triangles), 1e-3 * Milliseconds(t0),
+          o.width, o.height, static_cast<unsigned long long>(o.seed));
+        std::fflush(stdout);
+      }
+      vtkRenderer* renderer = grid->renderer;
+      renderer->GetCullers()->RemoveAllItems();
+      vtkSmartPointer<vtkCuller> culler;
+      vtkOctreeCuller* octree = nullptr;
+      if (mode == "none")
+      {
+        culler = vtkSmartPointer<vtkFrustumCoverageCuller>::New();
+      }
+      else
+      {
+        auto ours = mode == "occlusion"
+          ? vtkSmartPointer<vtkOctreeCuller>(vtkSmartPointer<vtkOcclusionCuller>::New())
+          : vtkSmartPointer<vtkOctreeCuller>::New();
+        octree = ours;
+        culler = ours;
+      }
+      renderer->AddCuller(culler);
+      r = Soak(mode, renderer, bounds, path, o,
+        [octree] { return octree ? static_cast<double>(octree->GetNumberOfPropsDrawn()) : 0.0; });
+      r.drawnUnit = octree ? "props" : "(not counted by VTK's culler)";
+      renderer->GetCullers()->RemoveAllItems();
+      if (--actorModesLeft == 0)
+      {
+        grid.reset(); // before the one-mesh mode, whose flattened copy is as big
+      }
+    }
+    Report(r, path, o);
+    results.push_back(r);
+  }
+  std::printf("\nsummary (%zu frames per mode, %d x %d engines, %dx%d, seed %llu)\n", path.size(),
+    o.grid, o.grid, o.width, o.height, static_cast<unsigned long long>(o.seed));
+  std::printf("%-10s %10s %10s %10s %12s %12s %9s %11s %7s %10s\n", "mode", "median ms", "p95 ms",
+    "max ms", "RSS warm MiB", "RSS end MiB", "growth %", "peak MiB", "RSS", "frames");
+  for (const SoakResult& r : results)
+  {
+    const Spread s = SpreadOf(r.frameMs);
+    std::printf("%-10s %10.1f %10.1f %10.1f %12.1f %12.1f %+9.2f %11.1f %7s %10s\n", r.mode.c_str(),
+      s.median, s.p95, s.max, r.rssWarm / kMiB, r.rssEnd / kMiB,
+      100.0 * (r.rssEnd - r.rssWarm) / std::max(1.0, r.rssWarm), r.peak / kMiB,
+      r.rssPass ? "PASS" : "FAIL", r.framesStable ? "stable" : "UNSTABLE");
+  }
+  return 0;
+}
