@@ -1614,8 +1614,8 @@ LoadedScene LoadSceneWithNormals(const Options& options)
   CheckKeyArrays(scene.polydata, options);
   scene.checkMs = Milliseconds(checkStart);
   const auto normalsStart = std::chrono::steady_clock::now();
-  vtkNew<vtkFieldData> placements; // a mesh library's, which filters need not pass on
-  placements->ShallowCopy(scene.polydata->GetFieldData());
+  // A mesh library's placements, which filters need not pass on (kept alive, not copied).
+  const vtkSmartPointer<vtkFieldData> placements = scene.polydata->GetFieldData();
   if (!scene.polydata->GetPointData()->GetNormals())
   {
     // Smooth shading; sharp edges (CAD, buildings) stay sharp. The sorters carry normals along.
@@ -1633,7 +1633,7 @@ LoadedScene LoadSceneWithNormals(const Options& options)
   scene.normalsMs = Milliseconds(normalsStart);
   if (options.instances)
   {
-    scene.polydata->GetFieldData()->ShallowCopy(placements);
+    scene.polydata->SetFieldData(placements);
     scene.instanced = std::make_shared<scenevis::tool::InstancedScene>(
       scenevis::tool::UnpackMeshLibrary(scene.polydata));
     scene.description += ", " + std::to_string(scene.instanced->meshes.size()) + " meshes placed " +
@@ -1834,6 +1834,21 @@ std::vector<PartBox> PartBoxes(vtkPolyData* pd, const std::string& partArray)
   boxes.reserve(parts.size());
   for (const auto& entry : parts)
     boxes.push_back(entry.second);
+  return boxes;
+}
+
+/// The box and triangles of each placement of @p scene (each mesh's triangles counted once).
+std::vector<PartBox> InstanceBoxes(const scenevis::tool::InstancedScene& scene)
+{
+  std::vector<vtkIdType> trianglesOf(scene.meshes.size());
+  for (std::size_t m = 0; m < scene.meshes.size(); ++m)
+    trianglesOf[m] = CountTriangles(scene.meshes[m]);
+  std::vector<PartBox> boxes(scene.instances.size());
+  for (std::size_t i = 0; i < scene.instances.size(); ++i)
+  {
+    scenevis::tool::InstanceBounds(scene, scene.instances[i], boxes[i].box);
+    boxes[i].triangles = trianglesOf[scene.instances[i].mesh];
+  }
   return boxes;
 }
 
@@ -2339,19 +2354,9 @@ ScenePlan PlanScene(
                               : InspectScene(scene.polydata, scene.portals, options);
   if (plan.facts.parts >= kManyProps)
   {
-    std::vector<PartBox> boxes;
-    if (plan.instanced)
-    {
-      for (const auto& instance : plan.instanced->instances)
-      {
-        PartBox box;
-        scenevis::tool::InstanceBounds(*plan.instanced, instance, box.box);
-        box.triangles = CountTriangles(plan.instanced->meshes[instance.mesh]);
-        boxes.push_back(box);
-      }
-    }
-    else
-      boxes = PartBoxes(scene.polydata, options.partArray);
+    const std::vector<PartBox> boxes = plan.instanced
+      ? InstanceBoxes(*plan.instanced)
+      : PartBoxes(scene.polydata, options.partArray);
     plan.facts.inView = TrianglesInView(boxes, renderer->GetActiveCamera(),
       static_cast<double>(options.width) / static_cast<double>(options.height),
       &plan.facts.depthComplexity);

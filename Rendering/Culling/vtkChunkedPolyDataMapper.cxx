@@ -275,7 +275,7 @@ void vtkChunkedPolyDataMapper::Internals::Build(vtkPolyData* input, int chunkSiz
   }
 
   // Median splits along the largest centroid extent, over items that carry their centroid (the
-  // splits then stream through memory instead of looking each centroid up: 2x faster at 12M).
+  // splits stream through memory instead of looking each centroid up).
   struct Item
   {
     std::array<float, 3> centroid;
@@ -583,7 +583,8 @@ void vtkChunkedPolyDataMapper::Internals::BuildOccluderData()
   }
   // Neighbours per chunk, on first use: a chunk is drawn as an occluder on its own, so only edges
   // between two of its triangles can be inner edges (the others are outline edges either way).
-  // A whole-mesh table cost a sort of every edge before the first frame (15 s at 48.6M).
+  // A whole-mesh table cost a sort of every edge before the first frame (the first cull of the
+  // 12.1M-triangle engine grid: 7.7 s with it, 0.4 s without).
   this->ChunkNeighborTables.assign(this->ChunkBegin.empty() ? 0 : this->ChunkBegin.size() - 1,
     std::vector<std::uint32_t>());
 }
