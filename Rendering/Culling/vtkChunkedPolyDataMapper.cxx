@@ -23,6 +23,7 @@
 #include "vtkRenderer.h"
 #include "vtkShaderProgram.h"
 #include "vtkSmartPointer.h"
+#include "vtkTypeInt32Array.h"
 #include "vtk_glew.h"
 
 #include "scenevis/Frustum.h"
@@ -70,7 +71,7 @@ struct vtkChunkedPolyDataMapper::Internals
   int BuiltChunkSize = 0;
   vtkSmartPointer<vtkPolyData> Chunked;  // null: the input has no polygons or strips
   vtkIdType PolyBase = 0;                // cells before the polygons (verts + lines)
-  std::vector<vtkIdType> InputCellOf;    // triangle k of the copy -> input cell id
+  std::vector<std::uint32_t> InputCellOf; // triangle k of the copy -> input cell id
   std::vector<std::uint32_t> ChunkBegin; // chunk c: triangles [b[c], b[c+1]) of the copy
   std::vector<Node> Nodes;               // depth first, root 0 (none without triangles)
   bool HasSurface = false;               // polygons or strips in the input
@@ -95,9 +96,11 @@ struct vtkChunkedPolyDataMapper::Internals
   double MaxScale = 1.0;
   glm::dvec3 EyeWorld{ 0.0 }, ViewDirWorld{ 0.0, 0.0, -1.0 };
 
-  // Occlusion (OcclusionCulling): the copy's triangles (3 point ids each, chunk order), built on
-  // first use per partition; each chunk's edge neighbours inside the chunk (chunk-local triangle
-  // ids), built the first time the chunk occludes; the depth buffer; chunk scratch.
+  // Occlusion (OcclusionCulling): the copy's triangles (3 point ids each, chunk order): its own
+  // 32-bit connectivity, else a copy built on first use per partition; each chunk's edge
+  // neighbours inside the chunk (chunk-local triangle ids), built the first time the chunk
+  // occludes; the depth buffer; chunk scratch.
+  const std::uint32_t* OccluderIds = nullptr;
   std::vector<std::uint32_t> OccluderTriangles;
   std::vector<std::vector<std::uint32_t>> ChunkNeighborTables;
   bool OccluderDataBuilt = false;
@@ -162,6 +165,7 @@ void vtkChunkedPolyDataMapper::Internals::Build(vtkPolyData* input, int chunkSiz
 {
   this->Chunked = nullptr;
   this->OccluderDataBuilt = false;
+  this->OccluderIds = nullptr;
   this->OccluderTriangles.clear();
   this->ChunkNeighborTables.clear();
   this->InputCellOf.clear();
@@ -180,8 +184,13 @@ void vtkChunkedPolyDataMapper::Internals::Build(vtkPolyData* input, int chunkSiz
   {
     return; // nothing to cull: the superclass draws the input itself
   }
-  const auto start = std::chrono::steady_clock::now();
   const vtkIdType numPoints = points->GetNumberOfPoints();
+  if (numPoints > std::numeric_limits<std::uint32_t>::max() ||
+    input->GetNumberOfCells() >= std::numeric_limits<std::uint32_t>::max())
+  {
+    return; // beyond VTK's 32-bit index buffers: the superclass draws the input itself
+  }
+  const auto start = std::chrono::steady_clock::now();
 
   // Point access without a virtual call per coordinate for the common array types.
   vtkDataArray* pointData = points->GetData();
@@ -219,8 +228,10 @@ void vtkChunkedPolyDataMapper::Internals::Build(vtkPolyData* input, int chunkSiz
   // the rule of the VTK version: our triangle k is exactly triangle k of the index buffer.
   // Triangles with a point id out of range (invalid input; VTK would read out of bounds) are
   // left out as well.
-  std::vector<std::array<vtkIdType, 3>> tris;
-  std::vector<vtkIdType> triCell; // triangle -> input cell id
+  // 32-bit ids (points and cells fit, see above): 16 bytes per triangle, a third of 64-bit ids,
+  // while the copy's own arrays are built beside them.
+  std::vector<std::array<std::uint32_t, 3>> tris;
+  std::vector<std::uint32_t> triCell; // triangle -> input cell id
   const vtkIdType polyCount = polys ? polys->GetNumberOfCells() : 0;
   const vtkIdType expected = (polys ? polys->GetNumberOfConnectivityIds() - 2 * polyCount : 0) +
     (strips ? strips->GetNumberOfConnectivityIds() - 2 * strips->GetNumberOfCells() : 0);
@@ -237,8 +248,9 @@ void vtkChunkedPolyDataMapper::Internals::Build(vtkPolyData* input, int chunkSiz
     {
       return;
     }
-    tris.push_back({ a, b, c });
-    triCell.push_back(cell);
+    tris.push_back({ static_cast<std::uint32_t>(a), static_cast<std::uint32_t>(b),
+      static_cast<std::uint32_t>(c) });
+    triCell.push_back(static_cast<std::uint32_t>(cell));
   };
   for (int kind = 0; kind < 2; ++kind)
   {
@@ -404,10 +416,16 @@ void vtkChunkedPolyDataMapper::Internals::Build(vtkPolyData* input, int chunkSiz
   this->InputCellOf.resize(nt);
   for (std::size_t k = 0; k < nt; ++k)
   {
-    newPolys->InsertNextCell(3, tris[items[k].triangle].data());
+    const auto& t = tris[items[k].triangle];
+    const vtkIdType ids[3] = { t[0], t[1], t[2] };
+    newPolys->InsertNextCell(3, ids);
     this->InputCellOf[k] = triCell[items[k].triangle];
   }
   out->SetPolys(newPolys);
+  // The scratch goes back before the cell data is copied (the peak of a big model's setup).
+  decltype(tris)().swap(tris);
+  decltype(triCell)().swap(triCell);
+  decltype(items)().swap(items);
   // Cell data: one tuple per cell of the copy, that of the input cell it comes from.
   vtkCellData* inCD = input->GetCellData();
   if (inCD->GetNumberOfArrays() > 0)
@@ -563,6 +581,7 @@ double vtkChunkedPolyDataMapper::Internals::Nearness(const Node& n) const
 void vtkChunkedPolyDataMapper::Internals::BuildOccluderData()
 {
   this->OccluderDataBuilt = true;
+  this->OccluderIds = nullptr;
   this->OccluderTriangles.clear();
   vtkPoints* points = this->Chunked ? this->Chunked->GetPoints() : nullptr;
   if (!points)
@@ -572,6 +591,19 @@ void vtkChunkedPolyDataMapper::Internals::BuildOccluderData()
   vtkIdType npts = 0;
   const vtkIdType* pts = nullptr;
   vtkCellArray* polys = this->Chunked->GetPolys();
+  // Neighbours per chunk, on first use: a chunk is drawn as an occluder on its own, so only edges
+  // between two of its triangles can be inner edges (the others are outline edges either way).
+  // A whole-mesh table cost a sort of every edge before the first frame (the first cull of the
+  // 12.1M-triangle engine grid: 7.7 s with it, 0.4 s without).
+  this->ChunkNeighborTables.assign(this->ChunkCount(), std::vector<std::uint32_t>());
+  if (!polys->IsStorage64Bit())
+  {
+    // The copy's connectivity is already 3 non-negative 32-bit ids per triangle in chunk order
+    // (12 bytes per triangle not copied: 0.58 GB on the 48.6M-triangle grid).
+    this->OccluderIds =
+      reinterpret_cast<const std::uint32_t*>(polys->GetConnectivityArray32()->GetPointer(0));
+    return;
+  }
   this->OccluderTriangles.reserve(static_cast<std::size_t>(3 * polys->GetNumberOfCells()));
   for (vtkIdType c = 0; c < polys->GetNumberOfCells(); ++c)
   {
@@ -581,12 +613,7 @@ void vtkChunkedPolyDataMapper::Internals::BuildOccluderData()
       this->OccluderTriangles.push_back(static_cast<std::uint32_t>(pts[k]));
     }
   }
-  // Neighbours per chunk, on first use: a chunk is drawn as an occluder on its own, so only edges
-  // between two of its triangles can be inner edges (the others are outline edges either way).
-  // A whole-mesh table cost a sort of every edge before the first frame (the first cull of the
-  // 12.1M-triangle engine grid: 7.7 s with it, 0.4 s without).
-  this->ChunkNeighborTables.assign(this->ChunkBegin.empty() ? 0 : this->ChunkBegin.size() - 1,
-    std::vector<std::uint32_t>());
+  this->OccluderIds = this->OccluderTriangles.data();
 }
 
 //------------------------------------------------------------------------------
@@ -607,7 +634,7 @@ void vtkChunkedPolyDataMapper::Internals::DrawChunkOccluder(std::uint32_t chunk)
     for (int k = 0; k < 3; ++k)
     {
       double p[3];
-      points->GetPoint(this->OccluderTriangles[3 * std::size_t(t) + k], p);
+      points->GetPoint(this->OccluderIds[3 * std::size_t(t) + k], p);
       this->ChunkIndices.push_back(static_cast<std::uint32_t>(this->ChunkClip.size()));
       this->ChunkClip.push_back(this->ClipFromModel * glm::dvec4(p[0], p[1], p[2], 1.0));
       if (build)
@@ -750,7 +777,7 @@ vtkIdType vtkChunkedPolyDataMapper::GetInputCellId(vtkIdType id) const
     return id; // the input itself is drawn, or a vert / line (shared with the input)
   }
   const auto k = static_cast<std::size_t>(id - in.PolyBase);
-  return k < in.InputCellOf.size() ? in.InputCellOf[k] : -1;
+  return k < in.InputCellOf.size() ? static_cast<vtkIdType>(in.InputCellOf[k]) : -1;
 }
 
 //------------------------------------------------------------------------------

@@ -49,8 +49,10 @@
  * input itself rather than the copy (switching rebuilds the buffers).
  *
  * Limits: picking a surface reports cell ids of the copy (GetInputCellId() maps them back);
- * memory: the copy's triangle connectivity (32-bit ids below 2^31 points) and one cell-data
- * tuple per triangle are a second copy of the input's.
+ * memory: the copy's triangle connectivity (32-bit ids below 2^31 points; the occlusion raster
+ * reads it in place), 4 bytes per triangle naming its input cell, and one cell-data tuple per
+ * triangle are a second copy of the input's (inputs of 2^32 points or cells and more are drawn
+ * whole, as VTK's 32-bit index buffers cannot address them).
  *
  * Statistics of the last render: nodes visited, chunks tested / drawn / culled by reason,
  * triangles drawn, draw calls; counters of partition builds and vertex buffer builds.
