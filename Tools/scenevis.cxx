@@ -614,9 +614,12 @@ struct LoadedScene
   std::string description;
   bool zUp = false; ///< the cad and building demos are z-up
   double loadMs = 0.0;
-  double checkMs = 0.0;   ///< checking the part and room arrays
+  double checkMs = 0.0;   ///< checking the part and room arrays, compacting the cells
   double normalsMs = 0.0; ///< computing normals (0 when the file has them)
   std::uint64_t rssAfterLoad = 0;
+  /// Bytes the cells took beyond their 32-bit storage as the reader gave them (CompactCellStorage):
+  /// the polydata as loaded is its size now plus these.
+  std::uint64_t compactedBytes = 0;
   /// --instances: the meshes and their placements; polydata is then the mesh library (every
   /// distinct mesh once), not the scene.
   std::shared_ptr<scenevis::tool::InstancedScene> instanced;
@@ -835,6 +838,25 @@ void CheckPointIds(vtkPolyData* pd, const std::string& path)
       }
     }
   }
+}
+
+/// Stores the cells of @p pd with 32-bit offsets and ids when they fit, as VTK can: readers give
+/// 64-bit ids, 32 bytes per triangle where 16 do (0.78 GB of the 48.6M-triangle engine grid, on
+/// top of which every path builds its own buffers). The copy is made one cell array at a time.
+/// Returns the bytes saved.
+std::uint64_t CompactCellStorage(vtkPolyData* pd)
+{
+  std::uint64_t saved = 0;
+  for (vtkCellArray* cells : { pd->GetVerts(), pd->GetLines(), pd->GetPolys(), pd->GetStrips() })
+  {
+    if (cells && cells->IsStorage64Bit() && cells->CanConvertTo32BitStorage())
+    {
+      const unsigned long before = cells->GetActualMemorySize();
+      if (cells->ConvertTo32BitStorage())
+        saved += 1024u * (before - std::min(before, cells->GetActualMemorySize()));
+    }
+  }
+  return saved;
 }
 
 /// The portal scene format (vtkPortalCuller.h): one polygon per portal, RoomA/RoomB cell data.
@@ -1210,9 +1232,10 @@ std::string FrameFileName(const std::string& out, int frame, int frames)
   return name.str();
 }
 
-std::vector<vtkSmartPointer<vtkPolyData>> SplitByPart(vtkPolyData* pd, const std::string& partArray)
+std::vector<vtkSmartPointer<vtkPolyData>> SplitByPart(
+  vtkPolyData* pd, const std::string& partArray, bool releaseInputPolygons = false)
 {
-  return SplitByKeys(pd, { partArray });
+  return SplitByKeys(pd, { partArray }, releaseInputPolygons);
 }
 
 /// One translucency method set up on a renderer: what `render`, `cull` and `bench` share. The
@@ -1221,7 +1244,8 @@ std::vector<vtkSmartPointer<vtkPolyData>> SplitByPart(vtkPolyData* pd, const std
 /// method must then be none, oit, multi-actor or peel:N); multi-actor draws one actor per group
 /// (the parts) and one actor without @p groups. @p chunked draws the one mesh through
 /// vtkChunkedPolyDataMapper (method none, oit or peel:N). With @p instanced, @p groups are its
-/// meshes: one mapper per mesh, one actor per placement (its matrix as the user matrix).
+/// meshes: one mapper per mesh, one actor per placement (its matrix as the user matrix). @p pd
+/// may be null when more than one group is drawn (the flattened scene they came from released).
 class MethodPipeline
 {
 public:
@@ -1230,6 +1254,7 @@ public:
     bool chunked = false, const scenevis::tool::InstancedScene* instanced = nullptr)
     : Method(method)
     , Input(pd)
+    , InputPolygons(pd ? pd->GetNumberOfPolys() : 0)
     , Renderer(renderer)
   {
     if (chunked)
@@ -1242,6 +1267,11 @@ public:
       this->Mapper = vtkSmartPointer<vtkPolyDataMapper>::New();
     }
     const bool split = instanced || (groups && groups->size() > 1);
+    if (!pd && groups)
+    {
+      for (const auto& group : *groups)
+        this->InputPolygons += group->GetNumberOfPolys();
+    }
     vtkCamera* camera = renderer->GetActiveCamera();
     auto makeActor = [&](vtkPolyDataMapper* mapper)
     {
@@ -1286,11 +1316,12 @@ public:
     else if (method == "multi-actor" || split)
     {
       const std::vector<vtkSmartPointer<vtkPolyData>> whole{ pd };
+      vtkNew<vtkProperty> property; // shared, as for instances (colours are cell scalars)
       for (const auto& part : groups && !groups->empty() ? *groups : whole)
       {
         auto mapper = vtkSmartPointer<vtkPolyDataMapper>::New();
         mapper->SetInputData(part);
-        makeActor(mapper);
+        makeActor(mapper)->SetProperty(property);
       }
       if (method == "multi-actor")
         this->OrderedPass->SetTranslucentPass(this->BspPass);
@@ -1413,7 +1444,7 @@ public:
       return this->BspMapper->GetNumberOfFragments();
     if (this->Method == "multi-actor")
       return this->BspPass->GetNumberOfFragments();
-    return this->InstancedPolygons > 0 ? this->InstancedPolygons : this->Input->GetNumberOfPolys();
+    return this->InstancedPolygons > 0 ? this->InstancedPolygons : this->InputPolygons;
   }
 
   int Parts() const { return static_cast<int>(this->Actors.size()); }
@@ -1505,6 +1536,7 @@ private:
 
   std::string Method;
   vtkSmartPointer<vtkPolyData> Input;
+  vtkIdType InputPolygons = 0;
   vtkRenderer* Renderer;
   std::vector<vtkSmartPointer<vtkActor>> Actors;
   vtkSmartPointer<vtkPolyDataMapper> Mapper;
@@ -1631,6 +1663,9 @@ LoadedScene LoadSceneWithNormals(const Options& options)
     scene.polydata = normals->GetOutput();
   }
   scene.normalsMs = Milliseconds(normalsStart);
+  const auto compactStart = std::chrono::steady_clock::now();
+  scene.compactedBytes = CompactCellStorage(scene.polydata);
+  scene.checkMs += Milliseconds(compactStart);
   if (options.instances)
   {
     scene.polydata->SetFieldData(placements);
@@ -2343,9 +2378,11 @@ struct ScenePlan
   double splitMs = 0.0;   ///< splitting it into one polydata per part / room
 };
 
-/// @p renderer: its camera already set up, for what the first frame sees.
-ScenePlan PlanScene(
-  const Options& options, const LoadedScene& scene, const std::string& sort, vtkRenderer* renderer)
+/// @p renderer: its camera already set up, for what the first frame sees. With
+/// @p releaseSplitScene, a split leaves the scene without its polygons (the caller draws the parts
+/// only and lets the scene go; see SplitByKeys).
+ScenePlan PlanScene(const Options& options, const LoadedScene& scene, const std::string& sort,
+  vtkRenderer* renderer, bool releaseSplitScene = false)
 {
   ScenePlan plan;
   const auto inspectStart = std::chrono::steady_clock::now();
@@ -2374,7 +2411,8 @@ ScenePlan PlanScene(
   {
     // Rooms first: an actor must lie in one room for the portal culler to cull it.
     const auto splitStart = std::chrono::steady_clock::now();
-    plan.groups = SplitByKeys(scene.polydata, { options.roomArray, options.partArray });
+    plan.groups =
+      SplitByKeys(scene.polydata, { options.roomArray, options.partArray }, releaseSplitScene);
     plan.splitMs = Milliseconds(splitStart);
   }
   const std::size_t actors = plan.instanced ? plan.instanced->instances.size() : plan.groups.size();
@@ -2383,7 +2421,7 @@ ScenePlan PlanScene(
   if (plan.sort == "multi-actor" && plan.groups.empty())
   {
     const auto splitStart = std::chrono::steady_clock::now();
-    plan.groups = SplitByPart(scene.polydata, options.partArray);
+    plan.groups = SplitByPart(scene.polydata, options.partArray, releaseSplitScene);
     plan.splitMs = Milliseconds(splitStart);
   }
   return plan;
@@ -2416,6 +2454,10 @@ int Render(const Options& options)
   }
   LoadedScene scene = LoadSceneWithNormals(options);
   vtkPolyData* pd = scene.polydata;
+  // The polydata as loaded, with the cell storage the reader gave it (the figure peak memory is
+  // compared with: BENCHMARKS.md, "48.6M triangles from file to frames").
+  const double polydataBytes = 1024.0 * static_cast<double>(pd->GetActualMemorySize()) +
+    static_cast<double>(scene.compactedBytes);
 
   const auto windowStart = std::chrono::steady_clock::now();
   const scenevis::testing::Backend backend = scenevis::testing::DefaultBackend();
@@ -2435,7 +2477,15 @@ int Render(const Options& options)
   SceneBounds(scene, bounds);
   const double boundsMs = Milliseconds(boundsStart);
   SetUpCamera(cameras[0], renderer, bounds, scene.zUp); // auto looks at what the first frame sees
-  const ScenePlan plan = PlanScene(options, scene, options.sort, renderer);
+  const ScenePlan plan =
+    PlanScene(options, scene, options.sort, renderer, /*releaseSplitScene=*/true);
+  if (!plan.instanced && plan.groups.size() > 1)
+  {
+    // The parts are drawn, not the flattened scene they were split from: its polygons went back
+    // as soon as the parts had theirs, the rest goes before the parts get mappers and buffers.
+    scene.polydata = nullptr;
+    pd = nullptr;
+  }
   const bool translucent = plan.facts.translucentFraction > 0.0;
   const std::string& method = plan.sort;
   std::string reason = plan.sortReason;
@@ -2547,7 +2597,6 @@ int Render(const Options& options)
   // Report.
   const vtkIdType cells = plan.facts.polygons;
   const scenevis::tool::ResidentMemory memory = scenevis::tool::ReadResidentMemory();
-  const double polydataBytes = 1024.0 * static_cast<double>(pd->GetActualMemorySize());
   const double accountedMs = scene.loadMs + scene.checkMs + scene.normalsMs + windowMs + boundsMs +
     plan.inspectMs + plan.splitMs + actorsMs + cullersMs + firstFrameTotalMs;
   std::ostringstream json;
@@ -2579,6 +2628,7 @@ int Render(const Options& options)
        << ",\n  \"memory\": {\"peak_rss\": " << memory.peak
        << ", \"rss_after_load\": " << scene.rssAfterLoad << ", \"rss_end\": " << memory.current
        << ", \"polydata_bytes\": " << polydataBytes
+       << ", \"cells_compacted_bytes\": " << scene.compactedBytes
        << ", \"peak_over_polydata\": " << static_cast<double>(memory.peak) / polydataBytes
        << ", \"peak_bytes_per_triangle\": "
        << static_cast<double>(memory.peak) /

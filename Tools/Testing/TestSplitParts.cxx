@@ -138,6 +138,7 @@ TEST(SplitParts, EveryCellLandsOnceInItsPartWithItsPointsAndData)
       }
       EXPECT_EQ(std::count(used.begin(), used.end(), false), 0);
       EXPECT_NE(part->GetPointData()->GetScalars(), nullptr) << "attributes keep their role";
+      EXPECT_FALSE(part->GetPolys()->IsStorage64Bit()) << "a part's cells take 32-bit ids";
     }
     EXPECT_EQ(seen, expected);
   }
@@ -156,4 +157,29 @@ TEST(SplitParts, OnePartOrNoKeyGivesTheInputItself)
   EXPECT_EQ(parts.front(), scene);
   vtkNew<vtkPolyData> empty;
   EXPECT_EQ(SplitByKeys(empty, { "PartId" }).size(), 1u);
+}
+
+TEST(SplitParts, ReleasingTheInputGivesTheSamePartsAndLeavesItWithoutPolygons)
+{
+  std::mt19937 random(11);
+  for (int trial = 0; trial < 5; ++trial)
+  {
+    vtkSmartPointer<vtkPolyData> scene = RandomScene(random, 300, 120);
+    const auto kept = SplitByKeys(scene, { "RoomId", "PartId" });
+    const vtkIdType points = scene->GetNumberOfPoints();
+    const auto released = SplitByKeys(scene, { "RoomId", "PartId" }, true);
+    ASSERT_EQ(kept.size(), released.size());
+    for (std::size_t i = 0; i < kept.size(); ++i)
+    {
+      EXPECT_EQ(Polygons(kept[i]), Polygons(released[i])) << "part " << i;
+      EXPECT_EQ(kept[i]->GetNumberOfPoints(), released[i]->GetNumberOfPoints()) << "part " << i;
+    }
+    EXPECT_EQ(scene->GetNumberOfPolys(), 0) << "the input's polygons went back";
+    EXPECT_EQ(scene->GetNumberOfPoints(), points) << "its points stay";
+  }
+  // No split, nothing released: the caller draws the input itself.
+  vtkSmartPointer<vtkPolyData> one = RandomScene(random, 50, 40);
+  const vtkIdType polygons = one->GetNumberOfPolys();
+  EXPECT_EQ(SplitByKeys(one, { "NoSuchArray" }, true).front(), one);
+  EXPECT_EQ(one->GetNumberOfPolys(), polygons);
 }
