@@ -8,7 +8,9 @@
  * applied, and the output gets two cell arrays:
  *  - "PartId" (vtkIdTypeArray): the actor's index in import order;
  *  - "Colors" (RGBA unsigned char, the cell scalars): the actor's diffuse colour and opacity.
- * Other formats keep the arrays their files have.
+ * Other formats keep the arrays their files have. VRML parts also keep the point scalars
+ * vtkVRMLImporter gives them, which a mapper prefers by default: draw the parts' colours with
+ * mapper->SetScalarModeToUseCellData().
  *
  * VRML text is first passed through InlineVrmlMaterialUses(): VTK 9.1's importer ignores
  * `material USE NAME`, so KiCad parts (one DEF per material, USE for every shape) would come out

@@ -1,8 +1,10 @@
 // vtkSceneVisModelReader on what it is for: the parts and colours of glTF and VRML scenes (the
-// VRML `material USE` fix), NaN/Inf clean-up, and real third-party models of the data cache
-// (scripts/fetch-data.sh; those checks are skipped, exit 77, when the cache has none of them).
+// VRML `material USE` fix, as text and as colours), NaN/Inf clean-up, and real third-party models
+// of the data cache (scripts/fetch-data.sh; those checks are skipped, exit 77, when the cache has
+// none of them).
 #include "vtkSceneVisModelReader.h"
 
+#include "scenevis/testing/Expect.h"
 #include "scenevis/testing/Models.h"
 
 #include "vtkCellData.h"
@@ -22,17 +24,6 @@
 
 namespace
 {
-int failures = 0;
-#define EXPECT(cond)                                                                               \
-  do                                                                                               \
-  {                                                                                                \
-    if (!(cond))                                                                                   \
-    {                                                                                              \
-      std::cerr << __FILE__ << ":" << __LINE__ << ": expected " #cond << std::endl;                \
-      ++failures;                                                                                  \
-    }                                                                                              \
-  } while (false)
-
 // Two triangles that USE a material DEF'd on an earlier shape, and one with an unknown name.
 const char* const kUsedMaterial = R"(#VRML V2.0 utf8
 Shape {
@@ -96,6 +87,18 @@ std::set<std::array<int, 4>> DistinctColors(vtkPolyData* pd)
   return colors;
 }
 
+void TestInlineVrmlMaterialUses()
+{
+  const std::string fixed = vtkSceneVisModelReader::InlineVrmlMaterialUses(kUsedMaterial);
+  SCENEVIS_EXPECT(fixed.find("material USE LED-GREEN") == std::string::npos);
+  // The USE became the DEF'd node itself (without DEF, so the name is defined once).
+  SCENEVIS_EXPECT(fixed.find("material Material {\n        diffuseColor 0.400 0.700 0.150\n"
+                             "        transparency 0.10\n        }") != std::string::npos);
+  // An unknown name stays as it was; text without USE is returned unchanged.
+  SCENEVIS_EXPECT(fixed.find("material USE UNKNOWN") != std::string::npos);
+  SCENEVIS_EXPECT(vtkSceneVisModelReader::InlineVrmlMaterialUses("Shape { }") == "Shape { }");
+}
+
 void TestVrmlPartsGetTheirUsedMaterial()
 {
   const std::string path = WriteText("scenevis-test-model-reader.wrl", kUsedMaterial);
@@ -104,22 +107,22 @@ void TestVrmlPartsGetTheirUsedMaterial()
   reader->Update();
   std::remove(path.c_str());
   vtkPolyData* pd = reader->GetOutput();
-  EXPECT(std::string(reader->GetErrorMessage()).empty());
-  EXPECT(pd->GetNumberOfCells() == 2);
+  SCENEVIS_EXPECT(std::string(reader->GetErrorMessage()).empty());
+  SCENEVIS_EXPECT(pd->GetNumberOfCells() == 2);
   vtkDataArray* parts = pd->GetCellData()->GetArray("PartId");
   auto* colors = vtkUnsignedCharArray::SafeDownCast(pd->GetCellData()->GetScalars());
-  EXPECT(parts && colors);
+  SCENEVIS_EXPECT(parts && colors);
   if (!parts || !colors || pd->GetNumberOfCells() != 2)
   {
     return;
   }
-  EXPECT(parts->GetComponent(0, 0) != parts->GetComponent(1, 0));
-  EXPECT(std::string(colors->GetName()) == "Colors");
+  SCENEVIS_EXPECT(parts->GetComponent(0, 0) != parts->GetComponent(1, 0));
+  SCENEVIS_EXPECT(std::string(colors->GetName()) == "Colors");
   // First shape: the USEd LED-GREEN (0.4 0.7 0.15, transparency 0.1 -> opacity 0.9).
-  EXPECT(colors->GetValue(0) == 102 && colors->GetValue(1) == 178 && colors->GetValue(2) == 38 &&
-    colors->GetValue(3) == 229);
+  SCENEVIS_EXPECT(colors->GetValue(0) == 102 && colors->GetValue(1) == 178 &&
+    colors->GetValue(2) == 38 && colors->GetValue(3) == 229);
   // Second shape: unknown material -> VTK's default, opaque.
-  EXPECT(colors->GetValue(7) == 255);
+  SCENEVIS_EXPECT(colors->GetValue(7) == 255);
 }
 
 void TestNonFiniteCellsAreRemoved()
@@ -128,16 +131,16 @@ void TestNonFiniteCellsAreRemoved()
   vtkNew<vtkSceneVisModelReader> reader;
   reader->SetFileName(path.c_str());
   reader->Update();
-  EXPECT(reader->GetNumberOfRemovedCells() == 1);
-  EXPECT(reader->GetOutput()->GetNumberOfCells() == 2);
+  SCENEVIS_EXPECT(reader->GetNumberOfRemovedCells() == 1);
+  SCENEVIS_EXPECT(reader->GetOutput()->GetNumberOfCells() == 2);
   double bounds[6];
   reader->GetOutput()->GetBounds(bounds);
-  EXPECT(bounds[0] == 0 && bounds[1] == 3); // the NaN point is parked on a finite one
+  SCENEVIS_EXPECT(bounds[0] == 0 && bounds[1] == 3); // the NaN point is parked on a finite one
   // Off: the file as it is.
   reader->RemoveNonFiniteCellsOff();
   reader->Update();
-  EXPECT(reader->GetNumberOfRemovedCells() == 0);
-  EXPECT(reader->GetOutput()->GetNumberOfCells() == 3);
+  SCENEVIS_EXPECT(reader->GetNumberOfRemovedCells() == 0);
+  SCENEVIS_EXPECT(reader->GetOutput()->GetNumberOfCells() == 3);
   std::remove(path.c_str());
 }
 
@@ -154,14 +157,14 @@ int TestRealModels()
     reader->Update();
     vtkPolyData* pd = reader->GetOutput();
     // /work/shared/DATA.md: vtkGLTFImporter gives 115 parts, 121,496 triangles.
-    EXPECT(pd->GetNumberOfPolys() == 121496);
+    SCENEVIS_EXPECT(pd->GetNumberOfPolys() == 121496);
     double range[2] = { -1, -1 };
     if (vtkDataArray* parts = pd->GetCellData()->GetArray("PartId"))
     {
       parts->GetRange(range);
     }
-    EXPECT(range[0] == 0 && range[1] == 114);
-    EXPECT(DistinctColors(pd).size() >= 3);
+    SCENEVIS_EXPECT(range[0] == 0 && range[1] == 114);
+    SCENEVIS_EXPECT(DistinctColors(pd).size() >= 3);
   }
   for (const char* key : { "wuson-obj", "wuson-ply", "wuson-stl", "wuson-wrl", "bunny-stl" })
   {
@@ -178,7 +181,7 @@ int TestRealModels()
     {
       std::cerr << key << ": " << reader->GetOutput()->GetNumberOfCells() << " cells; "
                 << reader->GetErrorMessage() << std::endl;
-      ++failures;
+      ++scenevis::testing::ExpectFailures();
     }
   }
   const std::string kicad = scenevis::testing::DataFile("kicad-wrl-dir");
@@ -192,8 +195,8 @@ int TestRealModels()
     reader->Update();
     const auto colors = DistinctColors(reader->GetOutput());
     // Without the USE fix every shape is VTK's default white, opaque.
-    EXPECT(colors.count({ 255, 255, 255, 255 }) == 0);
-    EXPECT(colors.count({ 102, 178, 38, 229 }) == 1);
+    SCENEVIS_EXPECT(colors.count({ 255, 255, 255, 255 }) == 0);
+    SCENEVIS_EXPECT(colors.count({ 102, 178, 38, 229 }) == 1);
   }
   return found;
 }
@@ -201,10 +204,11 @@ int TestRealModels()
 
 int TestSceneVisModelReader(int, char*[])
 {
+  TestInlineVrmlMaterialUses();
   TestVrmlPartsGetTheirUsedMaterial();
   TestNonFiniteCellsAreRemoved();
   const int real = TestRealModels();
-  if (failures)
+  if (const int failures = scenevis::testing::ExpectFailures())
   {
     std::cerr << failures << " failure(s)" << std::endl;
     return EXIT_FAILURE;

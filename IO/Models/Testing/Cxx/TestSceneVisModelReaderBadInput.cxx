@@ -10,6 +10,8 @@
 // - The next update with a good file gives the ordinary model, and no error.
 #include "vtkSceneVisModelReader.h"
 
+#include "scenevis/testing/Expect.h"
+
 #include "vtkCommand.h"
 #include "vtkErrorCode.h"
 #include "vtkLogger.h"
@@ -27,17 +29,6 @@
 
 namespace
 {
-int failures = 0;
-#define EXPECT(cond)                                                                               \
-  do                                                                                               \
-  {                                                                                                \
-    if (!(cond))                                                                                   \
-    {                                                                                              \
-      std::cerr << __FILE__ << ":" << __LINE__ << ": expected " #cond << std::endl;                \
-      ++failures;                                                                                  \
-    }                                                                                              \
-  } while (false)
-
 /// Fails the test on anything that reaches the output window, unless Allowed names its source.
 class FailingOutputWindow : public vtkOutputWindow
 {
@@ -50,7 +41,7 @@ public:
       return;
     }
     std::cerr << "unexpected output window text: " << text << std::endl;
-    ++failures;
+    ++scenevis::testing::ExpectFailures();
   }
   std::string Allowed;
 };
@@ -137,7 +128,7 @@ void ExpectRefused(const std::string& path, const std::string& reason, unsigned 
               << message << "', code "
               << vtkErrorCode::GetStringFromErrorCode(reader->GetErrorCode()) << ", "
               << reader->GetOutput()->GetNumberOfCells() << " cells" << std::endl;
-    ++failures;
+    ++scenevis::testing::ExpectFailures();
   }
 }
 } // namespace
@@ -197,24 +188,24 @@ int TestSceneVisModelReaderBadInput(int, char*[])
     reader->AddObserver(vtkCommand::ErrorEvent, observer);
     reader->SetFileName("/nonexistent/model.stl");
     reader->Update();
-    EXPECT(observer->Errors == 1);
+    SCENEVIS_EXPECT(observer->Errors == 1);
     reader->SetFileName(triangle.c_str());
     reader->Update();
-    EXPECT(observer->Errors == 1);
-    EXPECT(reader->GetOutput()->GetNumberOfCells() == 1);
-    EXPECT(std::string(reader->GetErrorMessage()).empty());
-    EXPECT(reader->GetErrorCode() == vtkErrorCode::NoError);
+    SCENEVIS_EXPECT(observer->Errors == 1);
+    SCENEVIS_EXPECT(reader->GetOutput()->GetNumberOfCells() == 1);
+    SCENEVIS_EXPECT(std::string(reader->GetErrorMessage()).empty());
+    SCENEVIS_EXPECT(reader->GetErrorCode() == vtkErrorCode::NoError);
   }
-  EXPECT(vtkSceneVisModelReader::CanReadFile("a/b.GLB"));
-  EXPECT(!vtkSceneVisModelReader::CanReadFile("a.b/c"));
-  EXPECT(!vtkSceneVisModelReader::CanReadFile(nullptr));
+  SCENEVIS_EXPECT(vtkSceneVisModelReader::CanReadFile("a/b.GLB"));
+  SCENEVIS_EXPECT(!vtkSceneVisModelReader::CanReadFile("a.b/c"));
+  SCENEVIS_EXPECT(!vtkSceneVisModelReader::CanReadFile(nullptr));
 
   for (const std::string& path : written)
   {
     std::remove(path.c_str());
   }
   vtkOutputWindow::SetInstance(nullptr);
-  if (failures)
+  if (const int failures = scenevis::testing::ExpectFailures())
   {
     std::cerr << failures << " failure(s)" << std::endl;
     return EXIT_FAILURE;
