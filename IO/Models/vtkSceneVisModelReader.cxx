@@ -308,6 +308,31 @@ std::string vtkSceneVisModelReader::InlineVrmlMaterialUses(const std::string& te
 
 namespace
 {
+/// A reader of type @p Reader for @p path.
+template <typename Reader>
+vtkSmartPointer<vtkAlgorithm> NewFileReader(const std::string& path)
+{
+  auto reader = vtkSmartPointer<Reader>::New();
+  reader->SetFileName(path.c_str());
+  return reader;
+}
+
+/// Removes the file it names when it goes (also when an importer throws).
+struct TemporaryFile
+{
+  TemporaryFile() = default;
+  TemporaryFile(const TemporaryFile&) = delete;
+  TemporaryFile& operator=(const TemporaryFile&) = delete;
+  ~TemporaryFile()
+  {
+    if (!this->Path.empty())
+    {
+      std::remove(this->Path.c_str());
+    }
+  }
+  std::string Path;
+};
+
 /// Reads @p path with the reader its extension names; nullptr and @p error on failure.
 vtkSmartPointer<vtkPolyData> ReadModel(const std::string& path, std::string* error)
 {
@@ -321,41 +346,30 @@ vtkSmartPointer<vtkPolyData> ReadModel(const std::string& path, std::string* err
   };
   const std::string ext = Extension(path);
   vtkSmartPointer<vtkAlgorithm> reader;
-  vtkSmartPointer<vtkAlgorithm> last;
   if (ext == "vtp")
   {
-    auto r = vtkSmartPointer<vtkXMLPolyDataReader>::New();
-    r->SetFileName(path.c_str());
-    reader = r;
+    reader = NewFileReader<vtkXMLPolyDataReader>(path);
   }
   else if (ext == "vtk")
   {
-    auto r = vtkSmartPointer<vtkPolyDataReader>::New();
-    r->SetFileName(path.c_str());
-    reader = r;
+    reader = NewFileReader<vtkPolyDataReader>(path);
   }
   else if (ext == "ply")
   {
-    auto r = vtkSmartPointer<vtkPLYReader>::New();
-    r->SetFileName(path.c_str());
-    reader = r;
+    reader = NewFileReader<vtkPLYReader>(path);
   }
   else if (ext == "stl")
   {
-    auto r = vtkSmartPointer<vtkSTLReader>::New();
-    r->SetFileName(path.c_str());
-    reader = r;
+    reader = NewFileReader<vtkSTLReader>(path);
   }
   else if (ext == "obj")
   {
-    auto r = vtkSmartPointer<vtkOBJReader>::New();
-    r->SetFileName(path.c_str());
-    reader = r;
+    reader = NewFileReader<vtkOBJReader>(path);
   }
   else if (ext == "glb" || ext == "gltf" || ext == "wrl")
   {
     std::string file = path;
-    std::string temporary;
+    TemporaryFile temporary;
     vtkSmartPointer<vtkImporter> importer;
     if (ext == "wrl")
     {
@@ -366,12 +380,12 @@ vtkSmartPointer<vtkPolyData> ReadModel(const std::string& path, std::string* err
       const std::string fixed = vtkSceneVisModelReader::InlineVrmlMaterialUses(original);
       if (fixed != original)
       {
-        temporary = WriteTemporary(fixed, ".wrl");
-        if (temporary.empty())
+        temporary.Path = WriteTemporary(fixed, ".wrl");
+        if (temporary.Path.empty())
         {
           return fail("cannot write a temporary copy of '" + path + "'");
         }
-        file = temporary;
+        file = temporary.Path;
       }
       auto vrml = vtkSmartPointer<vtkVRMLImporter>::New();
       vrml->SetFileName(file.c_str());
@@ -386,10 +400,6 @@ vtkSmartPointer<vtkPolyData> ReadModel(const std::string& path, std::string* err
     vtkNew<FirstError> errors;
     std::string why;
     auto scene = ImportScene(importer, errors, why);
-    if (!temporary.empty())
-    {
-      std::remove(temporary.c_str());
-    }
     if (!errors->Message.empty())
     {
       return fail("cannot read '" + path + "': " + errors->Message);
@@ -404,15 +414,10 @@ vtkSmartPointer<vtkPolyData> ReadModel(const std::string& path, std::string* err
   {
     return fail(UnsupportedFormat(ext));
   }
-  if (!last)
-  {
-    last = reader;
-  }
   vtkNew<FirstError> errors;
   errors->Watch(reader);
-  errors->Watch(last);
-  last->Update();
-  auto* output = vtkPolyData::SafeDownCast(last->GetOutputDataObject(0));
+  reader->Update();
+  auto* output = vtkPolyData::SafeDownCast(reader->GetOutputDataObject(0));
   if (!errors->Message.empty())
   {
     return fail("cannot read '" + path + "': " + errors->Message);
