@@ -45,7 +45,7 @@ export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
 cmake --build "$build" -j"$jobs" --target scenevis_core_tests scenevis_fuzz_bsp_replay \
   scenevis_fuzz_occlusion_replay scenevis_split_parts_tests scenevis_instances_tests \
   SceneVisFiltersSortingCxxTests SceneVisFiltersSortingRenderingCxxTests \
-  SceneVisFiltersSourcesCxxTests SceneVisRenderingCullingCxxTests \
+  SceneVisFiltersSourcesCxxTests SceneVisIOModelsCxxTests SceneVisRenderingCullingCxxTests \
   SceneVisRenderingPortalsCxxTests SceneVisRenderingTranslucencyCxxTests scenevis_soak_bench
 echo "sanitize: asan build done in $(( $(date +%s) - start )) s ($build)"
 
@@ -53,7 +53,8 @@ echo "sanitize: asan build done in $(( $(date +%s) - start )) s ($build)"
 # ones included; those live in executables not built here (left to the main run) and are skipped:
 # ctest shows an empty command for them. Fuzz.BspCorpus replays Core/Fuzz/corpus and crashes.
 # Every VTK-level test of the modules too (they render with OSMesa, no X needed): LeakSanitizer
-# is the leak check of the filters, mappers, passes and cullers; and the tool's own code paths
+# is the leak check of the filters, mappers, passes, cullers and the model reader (bad input
+# included: SceneVis::IOModelsCxx-TestSceneVisModelReaderBadInput); and the tool's own code paths
 # that take files and split them (Tool.SplitParts, Tool.Instances). Bench.SoakLeaks: 300 frames of
 # the soak's moving camera per culling mode on a 2 x 2 engine grid (Benchmarks/BenchSoak.cxx), the
 # leak check of a long run (skipped without the data cache).

@@ -1,12 +1,36 @@
-// Sorts a sphere for a camera through the installed SceneVis package.
+// Through the installed SceneVis package: sorts a sphere for a camera (SceneVis::FiltersSorting),
+// reads a VRML part whose material is USEd (SceneVis::IOModels), and renders it offscreen without X
+// through the OSMesa window (SceneVis::RenderingHeadless): the frame must show the part's green.
+#include <vtkActor.h>
 #include <vtkBSPSortFilter.h>
 #include <vtkCamera.h>
 #include <vtkNew.h>
 #include <vtkPolyData.h>
+#include <vtkPolyDataMapper.h>
+#include <vtkProperty.h>
+#include <vtkRenderWindow.h>
+#include <vtkRenderer.h>
+#include <vtkSceneVisModelReader.h>
+#include <vtkSceneVisOSMesaRenderWindow.h>
 #include <vtkSphereSource.h>
+#include <vtkUnsignedCharArray.h>
 
+#include <cstdio>
 #include <cstdlib>
+#include <fstream>
 #include <iostream>
+#include <string>
+
+namespace
+{
+// A quad in the xy plane whose material is DEF'd on one shape and USEd on the quad's.
+const char* const kPart = R"(#VRML V2.0 utf8
+Shape { appearance Appearance { material DEF GREEN Material { diffuseColor 0.1 0.8 0.2 } } }
+Shape { geometry IndexedFaceSet { coordIndex [0,1,2,3,-1]
+  coord Coordinate { point [-1 -1 0, 1 -1 0, 1 1 0, -1 1 0] } }
+  appearance Appearance { material USE GREEN } }
+)";
+}
 
 int main()
 {
@@ -19,5 +43,62 @@ int main()
   sorter->Update();
   const vtkIdType sorted = sorter->GetOutput()->GetNumberOfPolys();
   std::cout << "consumer: sorted " << sorted << " polygons" << std::endl;
-  return sorted >= sphere->GetOutput()->GetNumberOfPolys() ? EXIT_SUCCESS : EXIT_FAILURE;
+  if (sorted < sphere->GetOutput()->GetNumberOfPolys())
+  {
+    return EXIT_FAILURE;
+  }
+
+  const std::string path = "consumer-part.wrl";
+  std::ofstream(path) << kPart;
+  vtkNew<vtkSceneVisModelReader> reader;
+  reader->SetFileName(path.c_str());
+  reader->Update();
+  std::remove(path.c_str());
+  const vtkIdType cells = reader->GetOutput()->GetNumberOfCells();
+  std::cout << "consumer: read " << cells << " cell(s) " << reader->GetErrorMessage() << std::endl;
+  if (cells != 1)
+  {
+    return EXIT_FAILURE;
+  }
+
+  const std::string linkOrder = vtkSceneVisOSMesaRenderWindow::CheckLinkOrder();
+  if (!linkOrder.empty())
+  {
+    std::cerr << "consumer: " << linkOrder << std::endl;
+    return EXIT_FAILURE;
+  }
+  vtkNew<vtkSceneVisOSMesaRenderWindow> window;
+  window->SetSize(64, 48);
+  std::string error;
+  if (!window->CreateContext(&error))
+  {
+    std::cerr << "consumer: " << error << std::endl;
+    return EXIT_FAILURE;
+  }
+  vtkNew<vtkPolyDataMapper> mapper;
+  mapper->SetInputConnection(reader->GetOutputPort());
+  mapper->SetScalarModeToUseCellData(); // the parts' colours (VRML parts also get point scalars)
+  vtkNew<vtkActor> actor;
+  actor->SetMapper(mapper);
+  actor->GetProperty()->LightingOff(); // the cell colours as they are
+  vtkNew<vtkRenderer> renderer;
+  renderer->AddActor(actor);
+  renderer->SetBackground(0, 0, 0);
+  window->AddRenderer(renderer);
+  renderer->ResetCamera();
+  window->Render();
+  vtkNew<vtkUnsignedCharArray> pixels;
+  vtkRenderWindow* base = window; // vtkOpenGLRenderWindow hides the array overload
+  base->GetPixelData(0, 0, 63, 47, /*front=*/0, pixels);
+  vtkIdType green = 0;
+  for (vtkIdType i = 0; i < pixels->GetNumberOfTuples(); ++i)
+  {
+    if (pixels->GetValue(3 * i + 1) > 150 && pixels->GetValue(3 * i) < 80)
+    {
+      ++green;
+    }
+  }
+  std::cout << "consumer: rendered " << green << " of " << pixels->GetNumberOfTuples()
+            << " pixels green through the installed OSMesa window" << std::endl;
+  return green > pixels->GetNumberOfTuples() / 4 ? EXIT_SUCCESS : EXIT_FAILURE;
 }

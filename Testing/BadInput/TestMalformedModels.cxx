@@ -15,21 +15,31 @@
 // A crash of the tool, a hang (timeout), exit 0 with an empty image, or any outcome other than the
 // table's fails: a change of behaviour must update the table.
 //
+// Every file is also read by vtkSceneVisModelReader (SceneVis::IOModels, what users link) alone in
+// a child process: Renders must give cells and no error; Rejected ONE error (matching the table's
+// pattern) and an empty output. The reader does not guard against VTK's reader crashes (its header
+// says so; the tool reads in a child process): on ReaderCrash files it may crash too, and only a
+// hang fails.
+//
 // Usage: scenevis_bad_input_models <path of scenevis> <scratch directory>
 //        scenevis_bad_input_models --bare-read FILE   (VTK's reader alone; used internally)
+//        scenevis_bad_input_models --module-read FILE (vtkSceneVisModelReader; used internally)
 // Exit 77 (skip) when the real data was not fetched (scripts/fetch-data.sh).
 #include "ChildProcess.h"
 
 #include "scenevis/testing/ImageCompare.h"
 #include "scenevis/testing/Models.h"
 
+#include <vtkCommand.h>
 #include <vtkGLTFImporter.h>
 #include <vtkImageData.h>
 #include <vtkNew.h>
 #include <vtkOBJReader.h>
 #include <vtkPLYReader.h>
+#include <vtkPolyData.h>
 #include <vtkRenderWindow.h>
 #include <vtkSTLReader.h>
+#include <vtkSceneVisModelReader.h>
 
 #include <fcntl.h>
 #include <sys/stat.h>
@@ -154,6 +164,96 @@ int BareRead(const std::string& file)
   return EXIT_SUCCESS;
 }
 
+/// Counts the error events of the object it observes (and keeps them from the output window).
+class CountErrors : public vtkCommand
+{
+public:
+  static CountErrors* New() { return new CountErrors; }
+  void Execute(vtkObject*, unsigned long, void*) override { ++this->Count; }
+  int Count = 0;
+};
+
+/// Reads @p file with vtkSceneVisModelReader: the body of the `--module-read FILE` mode. Prints
+/// the reader's error message; exit 0: cells and no error, 1: one error and an empty output,
+/// 2: anything else (then the counts are printed too).
+int ModuleRead(const std::string& file)
+{
+  vtkNew<vtkSceneVisModelReader> reader;
+  vtkNew<CountErrors> errors;
+  reader->AddObserver(vtkCommand::ErrorEvent, errors);
+  reader->SetFileName(file.c_str());
+  reader->Update();
+  const vtkIdType cells = reader->GetOutput()->GetNumberOfCells();
+  const std::string message = reader->GetErrorMessage();
+  std::cout << message << std::endl;
+  if (cells > 0 && errors->Count == 0 && message.empty())
+  {
+    return 0;
+  }
+  if (cells == 0 && errors->Count == 1 && !message.empty() &&
+    message.find('\n') == std::string::npos)
+  {
+    return 1;
+  }
+  std::cout << cells << " cells, " << errors->Count << " error events" << std::endl;
+  return 2;
+}
+
+/// vtkSceneVisModelReader on @p file in a child process, against the table's outcome: what
+/// happened (appended to @p seen), and the problem, if any, in @p problem (unless already set).
+void CheckModuleReader(const Case& c, const std::string& file, const std::string& scratch,
+  std::string& seen, std::string& problem)
+{
+  const Run run = RunChild({ "/proc/self/exe", "--module-read", file }, scratch);
+  const std::vector<std::string> out = Lines(run.out);
+  const std::string message = out.empty() ? std::string() : out.front();
+  std::string wrong;
+  seen += "; vtkSceneVisModelReader: ";
+  if (run.timedOut)
+  {
+    seen += "hang";
+    wrong = "vtkSceneVisModelReader hangs";
+  }
+  else if (run.signal != 0)
+  {
+    seen += "killed by signal " + std::to_string(run.signal);
+    if (c.expected != Outcome::ReaderCrash)
+    {
+      wrong = "vtkSceneVisModelReader crashed on a file VTK's reader survives";
+    }
+  }
+  else if (run.exitCode == 0)
+  {
+    seen += "cells, no error";
+    if (c.expected == Outcome::Rejected)
+    {
+      wrong = "vtkSceneVisModelReader read a file the tool rejects";
+    }
+  }
+  else if (run.exitCode == 1)
+  {
+    seen += "one error, empty output (\"" + message + "\")";
+    if (c.expected == Outcome::Renders)
+    {
+      wrong = "vtkSceneVisModelReader rejected a file the tool renders";
+    }
+    else if (c.expected == Outcome::Rejected && !std::regex_search(message, std::regex(c.message)))
+    {
+      wrong = std::string("vtkSceneVisModelReader's error does not match '") + c.message + "'";
+    }
+  }
+  else
+  {
+    seen += "exit " + std::to_string(run.exitCode) + " (" + run.out + ")";
+    wrong = "vtkSceneVisModelReader broke its contract (cells and no error, or one error and an "
+            "empty output)";
+  }
+  if (problem.empty())
+  {
+    problem = wrong;
+  }
+}
+
 /// Whether VTK's own reader, alone in a fresh process (this executable in --bare-read mode),
 /// crashes on @p file: the signal of the first of up to 3 runs that crashed, else 0. This makes
 /// "the crash is VTK's" a checked fact rather than a comment. Fresh processes, and more than one
@@ -200,6 +300,10 @@ int main(int argc, char* argv[])
   if (argc == 3 && std::string(argv[1]) == "--bare-read")
   {
     return BareRead(argv[2]);
+  }
+  if (argc == 3 && std::string(argv[1]) == "--module-read")
+  {
+    return ModuleRead(argv[2]);
   }
   if (argc != 3)
   {
@@ -334,6 +438,7 @@ int main(int argc, char* argv[])
         problem = std::string("error line does not match '") + c.message + "'";
       }
     }
+    CheckModuleReader(c, file, scratch, seen, problem);
     std::cout << (problem.empty() ? "ok   " : "FAIL ") << label << " [" << c.why << "]: expected "
               << OutcomeName(c.expected) << ", got " << seen;
     std::cout << " (" << static_cast<int>(run.seconds * 1000) << " ms)\n";

@@ -1,8 +1,6 @@
 #include "scenevis/testing/RenderWindow.h"
 
-#include "OSMesaContext.h"
 #include "scenevis/testing/StrictVtkOutput.h"
-#include "scenevis/testing/vtkSceneVisOSMesaRenderWindow.h"
 
 #include <vtkActor.h>
 #include <vtkAutoInit.h>
@@ -18,6 +16,7 @@
 #include <vtkRenderWindow.h>
 #include <vtkRenderer.h>
 #include <vtkRendererCollection.h>
+#include <vtkSceneVisOSMesaRenderWindow.h>
 #include <vtkUnsignedCharArray.h>
 
 #include <algorithm>
@@ -266,7 +265,7 @@ std::string CheckRenderingWorks(vtkRenderWindow* window)
   problem << "Likely causes: ";
   if (osmesa)
   {
-    const std::string order = detail::CheckOSMesaSymbolOrder();
+    const std::string order = vtkSceneVisOSMesaRenderWindow::CheckLinkOrder();
     if (!order.empty())
     {
       problem << "[link order] " << order << ". ";

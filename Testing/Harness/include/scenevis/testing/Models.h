@@ -2,6 +2,10 @@
  * @file Models.h
  * @brief Loading third-party models for tests, benchmarks and tools.
  *
+ * The reading itself is vtkSceneVisModelReader (module SceneVis::IOModels, what users link);
+ * LoadModel() and InlineVrmlMaterialUses() forward to it for the existing callers. The data cache
+ * (DataDirectory(), DataFile()) is test-only and lives here.
+ *
  * Real models are never committed: scripts/fetch-data.sh puts them into a cache directory
  * ($SCENEVIS_DATA_DIR, default ~/.cache/scenevis-data) and writes `manifest.txt` there, one
  * `key=relative/path` per line (e.g. `bunny-stl`, `engine-glb`). DataFile() resolves a key;
@@ -28,23 +32,14 @@ std::string DataDirectory();
 std::string DataFile(const std::string& key);
 
 /**
- * Read a surface model as one polydata: .vtp, .vtk (legacy polydata), .ply, .stl, .obj, and the
- * scene formats .glb/.gltf and .wrl (VRML 2.0), which go through VTK's importers: every imported
- * actor becomes one part, its matrix applied, and the merged output gets two cell arrays:
- * "PartId" (vtkIdTypeArray, the actor's index in import order) and "Colors" (RGBA unsigned char
- * cell scalars from the actor's diffuse colour and opacity). VRML files are first passed through
- * InlineVrmlMaterialUses(), because VTK 9.1's importer ignores `material USE NAME`.
+ * A model read by vtkSceneVisModelReader (formats, "PartId" and "Colors" arrays: see there), with
+ * RemoveNonFiniteCells off (the scenevis tool removes and counts those cells itself) and without
+ * printing the reader's error.
  * @return nullptr when the file cannot be read; @p error then says why in one line.
  */
 vtkSmartPointer<vtkPolyData> LoadModel(const std::string& path, std::string* error = nullptr);
 
-/**
- * VRML text with every `material USE NAME` replaced by a copy of the `material DEF NAME
- * Material { ... }` node defined earlier in the text (VTK 9.1's vtkVRMLImporter ignores USE for
- * materials, so KiCad parts, which define each material once and USE it for every shape, would
- * come out white and opaque). Unknown names are left as they are. Text without USE is returned
- * unchanged.
- */
+/// vtkSceneVisModelReader::InlineVrmlMaterialUses().
 std::string InlineVrmlMaterialUses(const std::string& text);
 
 } // namespace testing

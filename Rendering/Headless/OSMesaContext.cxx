@@ -4,11 +4,11 @@
 // Why a GLX shim: Debian's VTK is built for X11/GLX, so VTK calls glewInit(), whose Linux build
 // fetches every OpenGL entry point with glXGetProcAddressARB and then probes GLX (a current
 // Display, the GLX version, the client extension string). Under OSMesa there is no GLX. The
-// definitions below live in the executable (this is a static library linked into executables
-// only, and CMake exports these symbols with --export-dynamic-symbol), so they interpose on
-// libGLX's: while an OSMesa context is current they answer from OSMesa (entry points via
-// OSMesaGetProcAddress, a dummy Display, GLX 1.4, no extensions); otherwise they forward to the
-// next definition (libGLX) so that the X11 back-end in the same executable is unaffected.
+// definitions below live in the executable (SceneVis::RenderingHeadless is a static library
+// linked into executables, and CMake exports these symbols with --export-dynamic-symbol), so they
+// interpose on libGLX's: while an OSMesa context is current they answer from OSMesa (entry points
+// via OSMesaGetProcAddress, a dummy Display, GLX 1.4, no extensions); otherwise they forward to
+// the next definition (libGLX) so that the X11 back-end in the same executable is unaffected.
 
 #include "OSMesaContext.h"
 
@@ -152,9 +152,7 @@ extern "C"
 
 namespace scenevis
 {
-namespace testing
-{
-namespace detail
+namespace headless
 {
 
 void* CreateOSMesaContext(std::string* error)
@@ -231,10 +229,9 @@ std::string CheckOSMesaSymbolOrder()
   return std::string("glClear resolves to ") + info.dli_fname +
     " instead of libOSMesa: libGL/libOpenGL precede libOSMesa in the executable's link order, so "
     "VTK's direct OpenGL 1.1 calls go to glvnd, which has no current context under OSMesa, and "
-    "renders are silently black. Link the CMake target SceneVis::Testing (it puts libOSMesa "
-    "first) or put libOSMesa before libGL/libOpenGL on the link line";
+    "renders are silently black. Link the CMake target SceneVis::RenderingHeadless into the "
+    "executable (it puts libOSMesa first) or put libOSMesa before libGL/libOpenGL on the link line";
 }
 
-} // namespace detail
-} // namespace testing
+} // namespace headless
 } // namespace scenevis

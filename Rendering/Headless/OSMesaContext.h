@@ -3,18 +3,16 @@
  * @brief Internal: the only place that talks to OSMesa and provides the GLX shim for GLEW.
  *
  * Kept in its own translation unit because <GL/osmesa.h> includes <GL/gl.h>, which must not meet
- * VTK's GLEW headers. Not installed; used by OSMesaRenderWindow.cxx and RenderWindow.cxx.
+ * VTK's GLEW headers. Not installed; used by vtkSceneVisOSMesaRenderWindow.cxx.
  */
-#ifndef scenevis_testing_OSMesaContext_h
-#define scenevis_testing_OSMesaContext_h
+#ifndef scenevis_headless_OSMesaContext_h
+#define scenevis_headless_OSMesaContext_h
 
 #include <string>
 
 namespace scenevis
 {
-namespace testing
-{
-namespace detail
+namespace headless
 {
 
 /// Create an OpenGL 3.2+ core-profile OSMesa context (RGBA8, depth 24, stencil 8).
@@ -42,8 +40,7 @@ void DestroyOSMesaContext(void* context);
  */
 std::string CheckOSMesaSymbolOrder();
 
-} // namespace detail
-} // namespace testing
+} // namespace headless
 } // namespace scenevis
 
 #endif

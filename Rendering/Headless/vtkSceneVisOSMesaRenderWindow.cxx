@@ -1,20 +1,27 @@
-#include "scenevis/testing/vtkSceneVisOSMesaRenderWindow.h"
+#include "vtkSceneVisOSMesaRenderWindow.h"
 
 #include "OSMesaContext.h"
 
-#include <vtkObjectFactory.h>
+#include "vtkAutoInit.h"
+#include "vtkObjectFactory.h"
 
 #include <algorithm>
 
-vtkStandardNewMacro(vtkSceneVisOSMesaRenderWindow)
+// The window is drawn into by vtkRenderer, vtkPolyDataMapper, ... made through VTK's object
+// factories: an executable that links this window gets the OpenGL2 overrides without its own
+// vtk_module_autoinit().
+VTK_MODULE_INIT(vtkRenderingOpenGL2);
 
-  vtkSceneVisOSMesaRenderWindow::vtkSceneVisOSMesaRenderWindow()
+vtkStandardNewMacro(vtkSceneVisOSMesaRenderWindow);
+
+vtkSceneVisOSMesaRenderWindow::vtkSceneVisOSMesaRenderWindow()
 {
   // The generic window asks observers whether it is current/ready; this subclass answers itself.
   this->SetReadyForRendering(true);
   this->SetIsDirect(1);
   this->SetSupportsOpenGL(1);
   this->SetScreenSize(4096, 4096);
+  this->SetMultiSamples(0);
 }
 
 vtkSceneVisOSMesaRenderWindow::~vtkSceneVisOSMesaRenderWindow()
@@ -26,7 +33,7 @@ vtkSceneVisOSMesaRenderWindow::~vtkSceneVisOSMesaRenderWindow()
     // MakeCurrent() no longer reaches ours).
     this->MakeCurrent();
     this->ReleaseGraphicsResources(this);
-    scenevis::testing::detail::DestroyOSMesaContext(this->Context);
+    scenevis::headless::DestroyOSMesaContext(this->Context);
     this->Context = nullptr;
   }
   this->SetReadyForRendering(false);
@@ -36,7 +43,7 @@ bool vtkSceneVisOSMesaRenderWindow::CreateContext(std::string* error)
 {
   if (!this->Context)
   {
-    this->Context = scenevis::testing::detail::CreateOSMesaContext(error);
+    this->Context = scenevis::headless::CreateOSMesaContext(error);
   }
   if (this->Context)
   {
@@ -63,19 +70,19 @@ void vtkSceneVisOSMesaRenderWindow::MakeCurrent()
   {
     return;
   }
-  scenevis::testing::detail::MakeOSMesaCurrent(this->Context, this->Buffer.data(), width, height);
+  scenevis::headless::MakeOSMesaCurrent(this->Context, this->Buffer.data(), width, height);
 }
 
 bool vtkSceneVisOSMesaRenderWindow::IsCurrent()
 {
-  return scenevis::testing::detail::IsOSMesaCurrent(this->Context);
+  return scenevis::headless::IsOSMesaCurrent(this->Context);
 }
 
 void vtkSceneVisOSMesaRenderWindow::ReleaseCurrent()
 {
   if (this->IsCurrent())
   {
-    scenevis::testing::detail::ReleaseOSMesaCurrent();
+    scenevis::headless::ReleaseOSMesaCurrent();
   }
 }
 
@@ -87,6 +94,11 @@ int vtkSceneVisOSMesaRenderWindow::SupportsOpenGL()
 vtkTypeBool vtkSceneVisOSMesaRenderWindow::IsDirect()
 {
   return this->Context ? 1 : 0;
+}
+
+std::string vtkSceneVisOSMesaRenderWindow::CheckLinkOrder()
+{
+  return scenevis::headless::CheckOSMesaSymbolOrder();
 }
 
 void vtkSceneVisOSMesaRenderWindow::SetSize(int width, int height)
