@@ -1,0 +1,82 @@
+// The command line of scenevis: the options of its four commands, their parsing and the checks
+// that make a bad command line a usage error (one line, exit 2), and the --help text.
+#ifndef scenevis_tool_Options_h
+#define scenevis_tool_Options_h
+
+#include "CameraFile.h"
+
+#include <vtkType.h>
+
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace scenevis
+{
+namespace tool
+{
+
+/// A bad command line (or a scene or camera that contradicts it): exit code 2.
+struct UsageError : std::runtime_error
+{
+  using std::runtime_error::runtime_error;
+};
+
+/// Everything the command line says; ParseOptions fills in the per-command defaults.
+struct Options
+{
+  std::string command;
+  std::string scene = "spheres";
+  std::vector<std::string> scenes; ///< bench: every --scene, in order
+  std::string outDir = ".";
+  bool framesSet = false;
+  bool sizeSet = false;
+  bool orbitSet = false;
+  bool trianglesSet = false;
+  vtkIdType triangles = 20000;
+  vtkIdType parts = 1000;
+  double opacity = 0.4; ///< a model file's: only with --opacity (else its own materials')
+  bool opacitySet = false;
+  bool instances = false; ///< --instances: a glTF's meshes once each, one actor per placement
+  /// --camera, --up, --parallel, --view-angle, --parallel-scale, --clipping-range.
+  scenevis::tool::CameraSpec camera;
+  /// --cameras FILE.json: one run per camera (the command line's camera options as defaults).
+  std::string camerasFile;
+  std::vector<scenevis::tool::CameraSpec> cameras;
+  /// The integer cell arrays that name parts and rooms (--part-array, --room-array).
+  std::string partArray = "PartId";
+  std::string roomArray = "RoomId";
+  bool partArraySet = false;
+  bool roomArraySet = false;
+  std::string sort = "auto";
+  std::string cull = "auto";
+  std::string portals;      ///< --portals FILE.vtp
+  std::string exportScene;  ///< cull --export-scene PREFIX
+  bool exact = false;       ///< cull --exact: compare with the ID-buffer visible set
+  int width = 800;
+  int height = 600;
+  int frames = 1;
+  double orbit = 5.0;
+  std::string out;
+  std::string report;
+  std::string backend;
+  bool frontToBack = false;
+};
+
+/// The text of `scenevis --help`.
+const char* HelpText();
+
+/// The options of `scenevis COMMAND ...` (argv[1] is the command), checked together; reads the
+/// --cameras file. Throws UsageError.
+Options ParseOptions(int argc, char* argv[]);
+
+/// The cameras a command runs: every camera of --cameras, else the command line's one.
+std::vector<CameraSpec> CamerasToRun(const Options& options);
+
+/// --backend: sets SCENEVIS_BACKEND, which the render windows made after this read.
+void ApplyBackendOption(const Options& options);
+
+} // namespace tool
+} // namespace scenevis
+
+#endif
