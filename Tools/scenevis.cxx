@@ -21,6 +21,8 @@
 #include "Memory.h"
 #include "SplitParts.h"
 #include "Options.h"
+#include "Progress.h"
+#include "Report.h"
 
 #include "scenevis/testing/IdBuffer.h"
 #include "scenevis/testing/ImageCompare.h"
@@ -116,46 +118,6 @@ constexpr int kExitUsage = 2;
 constexpr int kExitFailure = 1;
 
 using namespace scenevis::tool;
-
-
-/// When the tool started: the reports' first_frame_ms counts from here.
-const std::chrono::steady_clock::time_point kProgramStart = std::chrono::steady_clock::now();
-
-double Milliseconds(std::chrono::steady_clock::time_point start)
-{
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
-    .count();
-}
-
-/// Prints a progress bar on stderr, as an observer of ProgressEvent (BSP build, PVS precompute)
-/// or called directly (frames). Callers attach it only when stderr is a terminal, so that logs
-/// and pipes stay clean.
-class ProgressBar : public vtkCommand
-{
-public:
-  static ProgressBar* New() { return new ProgressBar; }
-  static bool OnTerminal() { return isatty(STDERR_FILENO) != 0; }
-  void Execute(vtkObject*, unsigned long, void* data) override
-  {
-    this->Show(*static_cast<double*>(data));
-  }
-  void Show(double fraction)
-  {
-    const int percent = static_cast<int>(std::clamp(fraction, 0.0, 1.0) * 100.0);
-    if (percent != LastPercent)
-    {
-      LastPercent = percent;
-      std::fprintf(stderr, "\r%s [%-40s] %3d%%", Label.c_str(),
-        std::string(static_cast<std::size_t>(percent * 40 / 100), '#').c_str(), percent);
-      if (percent >= 100)
-      {
-        std::fprintf(stderr, "\n");
-      }
-    }
-  }
-  std::string Label;
-  int LastPercent = -1;
-};
 
 struct LoadedScene
 {
@@ -720,67 +682,6 @@ void SceneBounds(const LoadedScene& scene, double bounds[6])
     scenevis::tool::InstancedBounds(*scene.instanced, bounds);
   else
     scene.polydata->GetBounds(bounds);
-}
-
-std::string JsonString(const std::string& text)
-{
-  std::string out = "\"";
-  for (char c : text)
-  {
-    if (c == '"' || c == '\\')
-    {
-      out += '\\';
-    }
-    out += c;
-  }
-  return out + "\"";
-}
-
-std::string JsonVector(const double* v)
-{
-  std::ostringstream out;
-  out << std::setprecision(9) << "[" << v[0] << ", " << v[1] << ", " << v[2] << "]";
-  return out.str();
-}
-
-/// The camera a frame or result used, as it was when drawn: eye, focal point, up, projection,
-/// view angle (perspective) or parallel scale, and the clipping range and whether it was fixed.
-std::string JsonCamera(vtkCamera* camera, bool fixedClippingRange)
-{
-  std::ostringstream out;
-  out << std::setprecision(9) << "{\"position\": " << JsonVector(camera->GetPosition())
-      << ", \"focal_point\": " << JsonVector(camera->GetFocalPoint())
-      << ", \"view_up\": " << JsonVector(camera->GetViewUp())
-      << ", \"parallel\": " << (camera->GetParallelProjection() ? "true" : "false")
-      << ", \"view_angle\": " << camera->GetViewAngle()
-      << ", \"parallel_scale\": " << camera->GetParallelScale() << ", \"clipping_range\": ["
-      << camera->GetClippingRange()[0] << ", " << camera->GetClippingRange()[1]
-      << "], \"clipping_range_fixed\": " << (fixedClippingRange ? "true" : "false") << "}";
-  return out.str();
-}
-
-/// The output of camera @p index of --cameras: OUT-INDEX.EXT (out-0.png, out-1.png, ...).
-std::string CameraFileName(const std::string& out, std::size_t index, const char* extension)
-{
-  const auto slash = out.find_last_of('/');
-  auto dot = out.find_last_of('.');
-  if (dot != std::string::npos && slash != std::string::npos && dot < slash)
-    dot = std::string::npos; // a dot in a directory name
-  return out.substr(0, dot) + "-" + std::to_string(index) +
-    (dot == std::string::npos ? std::string(extension) : out.substr(dot));
-}
-
-std::string FrameFileName(const std::string& out, int frame, int frames)
-{
-  if (frames == 1)
-  {
-    return out;
-  }
-  const auto dot = out.find_last_of('.');
-  std::ostringstream name;
-  name << out.substr(0, dot) << "-" << std::setw(4) << std::setfill('0') << frame
-       << (dot == std::string::npos ? ".png" : out.substr(dot));
-  return name.str();
 }
 
 std::vector<vtkSmartPointer<vtkPolyData>> SplitByPart(
@@ -2201,14 +2102,7 @@ int Render(const Options& options)
   }
   json << "\n  ]\n}\n";
   if (!options.report.empty())
-  {
-    std::ofstream report(options.report);
-    report << json.str();
-    if (!report)
-    {
-      throw std::runtime_error("cannot write '" + options.report + "'");
-    }
-  }
+    WriteReport(json.str(), options.report);
 
   std::cout << std::fixed << std::setprecision(1);
   std::cout << "scenevis render: " << scene.description << ", " << cells << " polygons"
@@ -2248,31 +2142,6 @@ int Render(const Options& options)
   }
   ExitNowIfManyActors(pipeline.Parts());
   return EXIT_SUCCESS;
-}
-
-void WritePolyData(vtkPolyData* pd, const std::string& path)
-{
-  vtkNew<vtkXMLPolyDataWriter> writer;
-  writer->SetInputData(pd);
-  writer->SetFileName(path.c_str());
-  writer->SetDataModeToBinary();
-  if (writer->Write() != 1)
-  {
-    throw std::runtime_error("cannot write '" + path + "'");
-  }
-}
-
-std::string JsonIds(const std::set<long long>& ids)
-{
-  std::ostringstream out;
-  out << "[";
-  bool first = true;
-  for (const long long id : ids)
-  {
-    out << (first ? "" : ", ") << id;
-    first = false;
-  }
-  return out.str() + "]";
 }
 
 /// The key of a cell: its values of the arrays the scene is split into actors by.
@@ -2519,12 +2388,7 @@ int Cull(const Options& options)
   }
   std::cout << text;
   if (!options.report.empty())
-  {
-    std::ofstream report(options.report);
-    report << text;
-    if (!report)
-      throw std::runtime_error("cannot write '" + options.report + "'");
-  }
+    WriteReport(text, options.report);
   ExitNowIfManyActors(pipeline.Parts());
   return EXIT_SUCCESS;
 }
