@@ -1,0 +1,87 @@
+// Auto mode: the facts of a scene that --cull auto and --sort auto decide on (parts, triangles,
+// translucency, rooms and portals, what the first camera sees) and the plan made from them: the
+// culling mode, the translucency method and the groups drawn as actors, each with its reason.
+#ifndef scenevis_tool_AutoPlan_h
+#define scenevis_tool_AutoPlan_h
+
+#include "Instances.h"
+#include "Options.h"
+#include "SceneLoading.h"
+
+#include <vtkPolyData.h>
+#include <vtkSmartPointer.h>
+
+#include <cstddef>
+#include <set>
+#include <string>
+#include <vector>
+
+class vtkRenderer;
+
+namespace scenevis
+{
+namespace tool
+{
+
+/// What auto mode decides on, and what the reports quote as the reason.
+struct SceneFacts
+{
+  vtkIdType polygons = 0;
+  vtkIdType triangles = 0;
+  std::size_t parts = 1;            ///< distinct PartId values (1 without the array)
+  double translucentFraction = 0.0; ///< of the polygons: RGBA alpha < 255
+  int rooms = 0;                    ///< distinct RoomId values >= 0
+  vtkIdType portals = 0;
+  /// Fraction of the triangles in parts whose bounds meet the first camera's view (the side
+  /// planes of its frustum); < 0 when not measured.
+  double inView = -1.0;
+  /// Sum of the screen rectangles of the parts in view over the viewport's area (a box reaching
+  /// the eye's plane counts as the whole viewport); < 0 when not measured.
+  double depthComplexity = -1.0;
+
+  /// The facts in one line, as the reports quote them.
+  std::string Summary() const;
+};
+
+/// The distinct values of the one-component cell array @p name (all cells, or @p cells only).
+std::set<long long> DistinctValues(
+  vtkPolyData* pd, const char* name, const std::vector<vtkIdType>* cells = nullptr);
+
+/// The culling mode to use and why.
+struct CullPlan
+{
+  std::string method;
+  std::string reason;
+  bool needsActors = false; ///< a prop culler: one actor per part / room
+  bool chunked = false;
+  double smallPixels = 0.0;
+  std::string roomArray = "RoomId"; ///< the cell array the portal culler reads rooms from
+};
+
+/// The --cull plan applied to a loaded scene: the groups drawn as actors and the sort method.
+struct ScenePlan
+{
+  SceneFacts facts;
+  CullPlan cull;
+  std::vector<vtkSmartPointer<vtkPolyData>> groups;
+  std::string sort;
+  std::string sortReason;
+  /// --instances: the placed meshes (groups then holds the meshes, one mapper each).
+  const scenevis::tool::InstancedScene* instanced = nullptr;
+  double inspectMs = 0.0; ///< reading the scene's facts (parts, rooms, translucency, view)
+  double splitMs = 0.0;   ///< splitting it into one polydata per part / room
+};
+
+/// The plan for @p scene: its facts (with 100+ parts, also what the first camera sees), the
+/// --cull mode (auto: chosen from the facts), the groups drawn as actors and the translucency
+/// method for @p sort (auto: chosen with the culling). @p renderer: its camera already set up,
+/// for what the first frame sees. With @p releaseSplitScene, a split leaves the scene without
+/// its polygons (the caller draws the parts only and lets the scene go; see SplitByKeys). Throws
+/// UsageError for a mode the scene cannot take.
+ScenePlan PlanScene(const Options& options, const LoadedScene& scene, const std::string& sort,
+  vtkRenderer* renderer, bool releaseSplitScene = false);
+
+} // namespace tool
+} // namespace scenevis
+
+#endif
