@@ -1,0 +1,293 @@
+// `scenevis cull`: what a culling mode keeps for a camera, as JSON; with --exact, against the
+// exact visible set of an ID-buffer render.
+#include "AutoPlan.h"
+#include "Commands.h"
+#include "CullSetup.h"
+#include "MethodPipeline.h"
+#include "Progress.h"
+#include "Report.h"
+#include "SceneLoading.h"
+#include "ViewSetup.h"
+#include "vtkChunkedPolyDataMapper.h"
+
+#include "scenevis/testing/IdBuffer.h"
+#include "scenevis/testing/RenderWindow.h"
+
+#include <vtkActor.h>
+#include <vtkCamera.h>
+#include <vtkCellData.h>
+#include <vtkDataArray.h>
+#include <vtkMapper.h>
+#include <vtkNew.h>
+#include <vtkPolyData.h>
+#include <vtkRenderWindow.h>
+#include <vtkRenderer.h>
+#include <vtkSmartPointer.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdint>
+#include <cstdlib>
+#include <iomanip>
+#include <iostream>
+#include <set>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace scenevis
+{
+namespace tool
+{
+namespace
+{
+/// The key of a cell: its values of the arrays the scene is split into actors by.
+std::vector<long long> CellKey(const std::vector<vtkDataArray*>& arrays, vtkIdType cell)
+{
+  std::vector<long long> key;
+  for (vtkDataArray* array : arrays)
+    key.push_back(static_cast<long long>(array->GetTuple1(cell)));
+  return key;
+}
+
+/// The arrays of @p names (the room and the part array) that @p pd has.
+std::vector<vtkDataArray*> KeyArrays(vtkPolyData* pd, const std::vector<std::string>& names)
+{
+  std::vector<vtkDataArray*> arrays;
+  for (const std::string& name : names)
+  {
+    if (vtkDataArray* array = pd->GetCellData()->GetArray(name.c_str()))
+      arrays.push_back(array);
+  }
+  return arrays;
+}
+
+/// cull --exact: the exact visible set (cells with a pixel in a depth-tested ID render of the
+/// whole scene) against what the mode drew. False negatives break the promise of a conservative
+/// mode; over-draw is what it costs. Translucent surfaces are opaque in the ID render, so what
+/// is seen only through glass counts as over-draw, never as a false negative.
+void DescribeExact(std::ostream& json, vtkRenderWindow* window, vtkCamera* camera,
+  bool fixedClippingRange, vtkPolyData* pd, const std::vector<std::string>& keys,
+  const MethodPipeline& pipeline, const CullSetup& culling)
+{
+  namespace st = scenevis::testing;
+  const auto start = std::chrono::steady_clock::now();
+  st::IdRenderOptions idOptions;
+  // A fixed clipping range clips what the mode draws too: the exact set must be clipped alike.
+  idOptions.cameraClippingRange = fixedClippingRange;
+  const st::IdImage visibleIds = st::RenderIdBuffer(window, pd, camera, idOptions);
+  const std::vector<std::uint32_t> visibleCells = st::VisibleSet(visibleIds);
+  const double exactMs = Milliseconds(start);
+
+  // Which cells of the scene were drawn: the chunked mapper's cells, the cells of the actors
+  // kept (matched by their room and part key), or all cells of the one actor if it was kept.
+  const std::vector<vtkDataArray*> arrays = KeyArrays(pd, keys);
+  const vtkIdType cells = pd->GetNumberOfCells();
+  std::vector<char> drawn(static_cast<std::size_t>(cells), 0);
+  std::set<std::vector<long long>> drawnKeys;
+  const bool split = pipeline.Parts() > 1;
+  if (vtkChunkedPolyDataMapper* chunked = pipeline.GetChunkedMapper())
+  {
+    std::vector<vtkIdType> ids;
+    chunked->GetDrawnCellIds(ids);
+    for (const vtkIdType id : ids)
+      drawn[static_cast<std::size_t>(id)] = 1;
+  }
+  else if (split)
+  {
+    const std::vector<vtkProp*>* kept = culling.Visible();
+    for (vtkProp* prop : kept ? *kept : std::vector<vtkProp*>())
+    {
+      auto* actor = vtkActor::SafeDownCast(prop);
+      auto* input =
+        actor ? vtkPolyData::SafeDownCast(actor->GetMapper()->GetInputDataObject(0, 0)) : nullptr;
+      if (input && input->GetNumberOfCells() > 0)
+        drawnKeys.insert(CellKey(KeyArrays(input, keys), 0));
+    }
+    for (vtkIdType c = 0; c < cells; ++c)
+      drawn[static_cast<std::size_t>(c)] = drawnKeys.count(CellKey(arrays, c)) ? 1 : 0;
+  }
+  else if (culling.PropsDrawn() > 0)
+  {
+    std::fill(drawn.begin(), drawn.end(), 1);
+  }
+  vtkIdType falseNegativeCells = 0;
+  std::set<std::vector<long long>> visibleKeys;
+  std::set<std::vector<long long>> missedKeys;
+  for (const std::uint32_t id : visibleCells)
+  {
+    const auto cell = static_cast<vtkIdType>(id);
+    const std::vector<long long> key = CellKey(arrays, cell);
+    visibleKeys.insert(key);
+    if (!drawn[static_cast<std::size_t>(cell)])
+    {
+      ++falseNegativeCells;
+      missedKeys.insert(key);
+    }
+  }
+  // What an approximate mode costs on screen: the pixels whose visible cell it did not draw.
+  std::size_t visiblePixels = 0;
+  std::size_t lostPixels = 0;
+  for (const std::uint32_t id : visibleIds.ids)
+  {
+    if (id == st::kNoId || id >= drawn.size())
+      continue;
+    ++visiblePixels;
+    lostPixels += drawn[id] ? 0 : 1;
+  }
+  const auto drawnCells = std::count(drawn.begin(), drawn.end(), 1);
+  json << ",\n  \"exact\": {\"visible_pixels\": " << visiblePixels
+       << ", \"lost_pixels\": " << lostPixels << ", \"visible_cells\": " << visibleCells.size()
+       << ", \"drawn_cells\": " << drawnCells
+       << ", \"false_negative_cells\": " << falseNegativeCells << ", \"overdraw_cells\": "
+       << drawnCells - static_cast<vtkIdType>(visibleCells.size()) + falseNegativeCells;
+  if (split)
+  {
+    vtkIdType overdrawProps = 0;
+    for (const auto& key : drawnKeys)
+      overdrawProps += visibleKeys.count(key) ? 0 : 1;
+    json << ", \"visible_props\": " << visibleKeys.size()
+         << ", \"drawn_props\": " << drawnKeys.size()
+         << ", \"false_negative_props\": " << missedKeys.size()
+         << ", \"overdraw_props\": " << overdrawProps;
+  }
+  json << ", \"id_render_ms\": " << exactMs << "}";
+}
+} // namespace
+
+int RunCull(const Options& options)
+{
+  ApplyBackendOption(options);
+  LoadedScene scene = LoadSceneWithNormals(options);
+  vtkPolyData* pd = scene.polydata;
+  std::vector<std::string> exported;
+  if (!options.exportScene.empty())
+  {
+    exported.push_back(options.exportScene + ".vtp");
+    WritePolyData(pd, exported.back());
+    if (scene.portals)
+    {
+      exported.push_back(options.exportScene + "-portals.vtp");
+      WritePolyData(scene.portals, exported.back());
+    }
+  }
+  const bool perCamera = !options.cameras.empty();
+  const std::vector<scenevis::tool::CameraSpec> cameras = CamerasToRun(options);
+  vtkSmartPointer<vtkRenderWindow> window =
+    scenevis::testing::MakeRenderWindow(options.width, options.height);
+  vtkNew<vtkRenderer> renderer;
+  window->AddRenderer(renderer);
+  SetUpCamera(cameras[0], renderer, pd, scene.zUp);
+  // Visibility does not depend on the drawing order: nothing is sorted.
+  const ScenePlan plan = PlanScene(options, scene, "none", renderer);
+  MethodPipeline pipeline("none", pd, renderer, false, &plan.groups, plan.cull.chunked);
+  SetUpCamera(cameras[0], renderer, pd, scene.zUp); // again: the clipping range from the actors
+  const CullSetup culling(
+    plan.cull, pipeline, renderer, pd, scene.portals, ProgressBar::OnTerminal());
+  const std::vector<std::string> keys = { options.roomArray, options.partArray };
+  const char* const partArray = options.partArray.c_str();
+  const char* const roomArray = options.roomArray.c_str();
+
+  std::vector<std::string> results;
+  for (std::size_t c = 0; c < cameras.size(); ++c)
+  {
+    const scenevis::tool::CameraSpec& spec = cameras[c];
+    if (c > 0)
+      SetUpCamera(spec, renderer, pd, scene.zUp);
+    window->Render();
+
+    // What was drawn: the visible actors' polygons, or the chunked mapper's drawn cells.
+    std::set<long long> parts;
+    std::set<long long> rooms;
+    vtkIdType propsVisible = culling.PropsDrawn();
+    if (vtkChunkedPolyDataMapper* chunked = pipeline.GetChunkedMapper())
+    {
+      std::vector<vtkIdType> cells;
+      chunked->GetDrawnCellIds(cells);
+      parts = DistinctValues(pd, partArray, &cells);
+      rooms = DistinctValues(pd, roomArray, &cells);
+      propsVisible = cells.empty() ? 0 : 1;
+    }
+    else
+    {
+      std::set<vtkProp*> visible;
+      if (const std::vector<vtkProp*>* kept = culling.Visible())
+        visible.insert(kept->begin(), kept->end());
+      for (const auto& actor : pipeline.GetActors())
+      {
+        if (culling.Visible() && !visible.count(actor))
+          continue;
+        auto* input = vtkPolyData::SafeDownCast(actor->GetMapper()->GetInputDataObject(0, 0));
+        if (!input)
+          continue;
+        const std::set<long long> p = DistinctValues(input, partArray);
+        const std::set<long long> r = DistinctValues(input, roomArray);
+        parts.insert(p.begin(), p.end());
+        rooms.insert(r.begin(), r.end());
+      }
+    }
+    vtkCamera* camera = renderer->GetActiveCamera();
+    std::ostringstream json;
+    json << std::fixed << std::setprecision(3);
+    json << "{\n  \"command\": \"cull\",\n  \"scene\": " << JsonString(scene.description)
+         << ",\n  \"camera\": " << JsonCamera(camera, spec.FixedClippingRange())
+         << ",\n  \"size\": [" << options.width << ", " << options.height
+         << "],\n  \"culling\": {\"method\": " << JsonString(plan.cull.method)
+         << ", \"reason\": " << JsonString(plan.cull.reason);
+    culling.Describe(json);
+    json << "},\n  \"cull_ms\": " << culling.CullMs()
+         << ",\n  \"props\": {\"total\": " << pipeline.Parts() << ", \"visible\": " << propsVisible
+         << "},\n  \"triangles\": {\"total\": " << plan.facts.triangles
+         << ", \"visible\": " << culling.TrianglesDrawn()
+         << "},\n  \"parts\": {\"total\": " << plan.facts.parts << ", \"visible\": " << parts.size()
+         << ", \"ids\": " << JsonIds(parts) << "}";
+    if (plan.facts.rooms > 0)
+    {
+      // -1 is the outside (facade, roof): listed when its props are drawn, not counted as a room.
+      const auto insideRooms =
+        std::count_if(rooms.begin(), rooms.end(), [](long long room) { return room >= 0; });
+      json << ",\n  \"rooms\": {\"total\": " << plan.facts.rooms << ", \"visible\": " << insideRooms
+           << ", \"ids\": " << JsonIds(rooms) << "}";
+    }
+    if (vtkChunkedPolyDataMapper* chunked = pipeline.GetChunkedMapper())
+    {
+      json << ",\n  \"chunks\": {\"total\": " << chunked->GetNumberOfChunks()
+           << ", \"visible\": " << chunked->GetNumberOfChunksDrawn() << "}";
+    }
+    if (options.exact)
+    {
+      DescribeExact(json, window, camera, spec.FixedClippingRange(), pd, keys, pipeline, culling);
+    }
+    if (!exported.empty())
+    {
+      json << ",\n  \"exported\": [";
+      for (std::size_t i = 0; i < exported.size(); ++i)
+        json << (i ? ", " : "") << JsonString(exported[i]);
+      json << "]";
+    }
+    json << "\n}";
+    results.push_back(json.str());
+  }
+  std::string text;
+  if (perCamera)
+  {
+    // One result per camera, in the file's order.
+    text = "[\n";
+    for (std::size_t i = 0; i < results.size(); ++i)
+      text += results[i] + (i + 1 < results.size() ? ",\n" : "\n");
+    text += "]\n";
+  }
+  else
+  {
+    text = results.front() + "\n";
+  }
+  std::cout << text;
+  if (!options.report.empty())
+    WriteReport(text, options.report);
+  ExitNowIfManyActors(pipeline.Parts());
+  return EXIT_SUCCESS;
+}
+
+} // namespace tool
+} // namespace scenevis
