@@ -73,7 +73,7 @@ SceneFacts InspectScene(vtkPolyData* pd, vtkPolyData* portals, const Options& op
 }
 
 /// The facts of an instanced scene: every placement is a part, counted with its mesh's polygons.
-SceneFacts InspectInstances(const scenevis::tool::InstancedScene& scene)
+SceneFacts InspectInstances(const InstancedScene& scene)
 {
   SceneFacts facts;
   std::vector<vtkIdType> translucentOf(scene.meshes.size(), 0);
@@ -149,7 +149,7 @@ std::vector<PartBox> PartBoxes(vtkPolyData* pd, const std::string& partArray)
 }
 
 /// The box and triangles of each placement of @p scene (each mesh's triangles counted once).
-std::vector<PartBox> InstanceBoxes(const scenevis::tool::InstancedScene& scene)
+std::vector<PartBox> InstanceBoxes(const InstancedScene& scene)
 {
   std::vector<vtkIdType> trianglesOf(scene.meshes.size());
   for (std::size_t m = 0; m < scene.meshes.size(); ++m)
@@ -157,7 +157,7 @@ std::vector<PartBox> InstanceBoxes(const scenevis::tool::InstancedScene& scene)
   std::vector<PartBox> boxes(scene.instances.size());
   for (std::size_t i = 0; i < scene.instances.size(); ++i)
   {
-    scenevis::tool::InstanceBounds(scene, scene.instances[i], boxes[i].box);
+    InstanceBounds(scene, scene.instances[i], boxes[i].box);
     boxes[i].triangles = trianglesOf[scene.instances[i].mesh];
   }
   return boxes;
@@ -314,7 +314,6 @@ CullPlan PlanCulling(
   }
   return plan;
 }
-
 
 /// The translucency method given the culling plan: prop culling draws one actor per group, which
 /// only methods that work across actors can order; chunked drawing reorders the polygons chunk by

@@ -67,7 +67,7 @@ struct ScenePlan
   std::string sort;
   std::string sortReason;
   /// --instances: the placed meshes (groups then holds the meshes, one mapper each).
-  const scenevis::tool::InstancedScene* instanced = nullptr;
+  const InstancedScene* instanced = nullptr;
   double inspectMs = 0.0; ///< reading the scene's facts (parts, rooms, translucency, view)
   double splitMs = 0.0;   ///< splitting it into one polydata per part / room
 };

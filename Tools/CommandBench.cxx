@@ -86,9 +86,9 @@ double Median(std::vector<double> values)
 
 double Mean(const std::vector<double>& values)
 {
-  return values.empty() ? 0.0
-                        : std::accumulate(values.begin(), values.end(), 0.0) /
-      static_cast<double>(values.size());
+  return values.empty()
+    ? 0.0
+    : std::accumulate(values.begin(), values.end(), 0.0) / static_cast<double>(values.size());
 }
 
 /// The scene's name in the report: the demo name, the data key, or the file's stem.
@@ -173,8 +173,8 @@ BenchRow BenchMethod(const Options& options, const std::string& method, const st
         // Without the edge mask: on fine meshes (triangles of a few pixels) nearly every pixel
         // is next to another id, so the masked comparison sees little; every pixel counts here,
         // at the price of a few legitimate differences along intersection lines.
-        const st::OrderComparison unmasked = st::OrderMatchesDepth(painterIds, depthIds,
-          std::vector<std::uint8_t>(depthIds.ids.size(), std::uint8_t(0)));
+        const st::OrderComparison unmasked = st::OrderMatchesDepth(
+          painterIds, depthIds, std::vector<std::uint8_t>(depthIds.ids.size(), std::uint8_t(0)));
         if (!order.problem.empty() || !unmasked.problem.empty())
         {
           throw std::runtime_error("ID oracle: " + order.problem + unmasked.problem);
@@ -448,8 +448,8 @@ int RunBench(const Options& options)
   std::vector<std::string> labels;
   std::cout << std::fixed << std::setprecision(2);
   std::cout << "scenevis bench: " << scenes.size() << " scene(s), " << options.frames
-            << " frames of " << options.orbit << " deg, " << options.width << "x"
-            << options.height << "\n";
+            << " frames of " << options.orbit << " deg, " << options.width << "x" << options.height
+            << "\n";
   {
     vtkSmartPointer<vtkRenderWindow> window =
       scenevis::testing::MakeRenderWindow(options.width, options.height);
@@ -500,10 +500,10 @@ int RunBench(const Options& options)
         else
         {
           row = BenchMethod(sceneOptions, method, label, pd, groups, window, reference);
-          std::cout << "    " << std::setw(11) << std::left << method << std::right
-                    << " frame " << std::setw(9) << row.frameMs << " ms, sort " << std::setw(9)
-                    << row.sortMs << " ms, error " << std::setw(6) << row.meanAbsError
-                    << " levels, " << std::setw(6) << row.badPercent << " % bad";
+          std::cout << "    " << std::setw(11) << std::left << method << std::right << " frame "
+                    << std::setw(9) << row.frameMs << " ms, sort " << std::setw(9) << row.sortMs
+                    << " ms, error " << std::setw(6) << row.meanAbsError << " levels, "
+                    << std::setw(6) << row.badPercent << " % bad";
           if (row.misordered >= 0.0)
           {
             std::cout << ", misordered " << row.misordered << " of " << row.compared

@@ -173,7 +173,7 @@ int RunCull(const Options& options)
     }
   }
   const bool perCamera = !options.cameras.empty();
-  const std::vector<scenevis::tool::CameraSpec> cameras = CamerasToRun(options);
+  const std::vector<CameraSpec> cameras = CamerasToRun(options);
   vtkSmartPointer<vtkRenderWindow> window =
     scenevis::testing::MakeRenderWindow(options.width, options.height);
   vtkNew<vtkRenderer> renderer;
@@ -192,7 +192,7 @@ int RunCull(const Options& options)
   std::vector<std::string> results;
   for (std::size_t c = 0; c < cameras.size(); ++c)
   {
-    const scenevis::tool::CameraSpec& spec = cameras[c];
+    const CameraSpec& spec = cameras[c];
     if (c > 0)
       SetUpCamera(spec, renderer, pd, scene.zUp);
     window->Render();

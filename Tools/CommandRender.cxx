@@ -56,7 +56,7 @@ int RunRender(const Options& options)
   window->AddRenderer(renderer);
   // With --cameras, every camera is one frame; else the command line's camera, orbited.
   const bool perCamera = !options.cameras.empty();
-  const std::vector<scenevis::tool::CameraSpec> cameras = CamerasToRun(options);
+  const std::vector<CameraSpec> cameras = CamerasToRun(options);
   const int frameCount = perCamera ? static_cast<int>(cameras.size()) : options.frames;
   double bounds[6];
   const auto boundsStart = std::chrono::steady_clock::now();
@@ -117,7 +117,7 @@ int RunRender(const Options& options)
   const bool showFrames = onTerminal && frameCount > 1;
   for (int f = 0; f < frameCount; ++f)
   {
-    const scenevis::tool::CameraSpec& spec = cameras[perCamera ? static_cast<std::size_t>(f) : 0];
+    const CameraSpec& spec = cameras[perCamera ? static_cast<std::size_t>(f) : 0];
     Frame frame;
     if (perCamera)
     {
@@ -182,7 +182,7 @@ int RunRender(const Options& options)
 
   // Report.
   const vtkIdType cells = plan.facts.polygons;
-  const scenevis::tool::ResidentMemory memory = scenevis::tool::ReadResidentMemory();
+  const ResidentMemory memory = ReadResidentMemory();
   const double accountedMs = scene.loadMs + scene.checkMs + scene.normalsMs + windowMs + boundsMs +
     plan.inspectMs + plan.splitMs + actorsMs + cullersMs + firstFrameTotalMs;
   std::ostringstream json;
@@ -205,10 +205,10 @@ int RunRender(const Options& options)
        << ",\n  \"size\": [" << options.width << ", " << options.height
        << "],\n  \"load_ms\": " << scene.loadMs << ",\n  \"check_ms\": " << scene.checkMs
        << ",\n  \"normals_ms\": " << scene.normalsMs << ",\n  \"window_ms\": " << windowMs
-       << ",\n  \"bounds_ms\": " << boundsMs
-       << ",\n  \"inspect_ms\": " << plan.inspectMs << ",\n  \"split_ms\": " << plan.splitMs
-       << ",\n  \"actors_ms\": " << actorsMs << ",\n  \"cullers_ms\": " << cullersMs
-       << ",\n  \"build_ms\": " << buildMs << ",\n  \"cull_setup_ms\": " << culling.SetupMs()
+       << ",\n  \"bounds_ms\": " << boundsMs << ",\n  \"inspect_ms\": " << plan.inspectMs
+       << ",\n  \"split_ms\": " << plan.splitMs << ",\n  \"actors_ms\": " << actorsMs
+       << ",\n  \"cullers_ms\": " << cullersMs << ",\n  \"build_ms\": " << buildMs
+       << ",\n  \"cull_setup_ms\": " << culling.SetupMs()
        << ",\n  \"first_frame_ms\": " << firstFrameMs
        << ",\n  \"unaccounted_ms\": " << std::max(0.0, firstFrameMs - accountedMs)
        << ",\n  \"memory\": {\"peak_rss\": " << memory.peak
@@ -257,10 +257,9 @@ int RunRender(const Options& options)
             << scene.normalsMs / 1000.0 << ", facts " << plan.inspectMs / 1000.0 << ", split "
             << plan.splitMs / 1000.0 << ", actors " << actorsMs / 1000.0 << ", cullers "
             << cullersMs / 1000.0 << ", frame " << firstFrameTotalMs / 1000.0 << " s)\n";
-  std::cout << "  memory: peak " << scenevis::tool::FormatBytes(memory.peak) << " = "
-            << std::setprecision(2) << static_cast<double>(memory.peak) / polydataBytes
-            << "x the scene's polydata ("
-            << scenevis::tool::FormatBytes(static_cast<std::uint64_t>(polydataBytes)) << "), "
+  std::cout << "  memory: peak " << FormatBytes(memory.peak) << " = " << std::setprecision(2)
+            << static_cast<double>(memory.peak) / polydataBytes << "x the scene's polydata ("
+            << FormatBytes(static_cast<std::uint64_t>(polydataBytes)) << "), "
             << std::setprecision(0)
             << static_cast<double>(memory.peak) /
       static_cast<double>(std::max<vtkIdType>(1, plan.facts.triangles))

@@ -34,7 +34,7 @@ int RunSort(const Options& options)
   const double center[3] = { (bounds[0] + bounds[1]) / 2, (bounds[2] + bounds[3]) / 2,
     (bounds[4] + bounds[5]) / 2 };
   const bool perCamera = !options.cameras.empty();
-  const std::vector<scenevis::tool::CameraSpec> cameras = CamerasToRun(options);
+  const std::vector<CameraSpec> cameras = CamerasToRun(options);
   vtkNew<vtkCamera> camera;
   vtkNew<vtkBSPSortFilter> sorter;
   sorter->SetInputData(scene.polydata);
@@ -56,7 +56,7 @@ int RunSort(const Options& options)
   {
     // The order depends on the eye (perspective) or the view direction (parallel) only; the rest
     // is set so that the output is what a renderer with this camera would see in this order.
-    const scenevis::tool::CameraSpec& spec = cameras[c];
+    const CameraSpec& spec = cameras[c];
     camera->SetParallelProjection(spec.parallel);
     if (spec.hasEye)
     {

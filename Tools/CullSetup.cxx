@@ -197,8 +197,7 @@ CullSetup::CullSetup(const CullPlan& plan, const MethodPipeline& pipeline, vtkRe
 
 vtkIdType CullSetup::PropsDrawn() const
 {
-  return this->Stage ? static_cast<vtkIdType>(this->Stage->Visible.size())
-                     : this->Pipeline.Parts();
+  return this->Stage ? static_cast<vtkIdType>(this->Stage->Visible.size()) : this->Pipeline.Parts();
 }
 
 vtkIdType CullSetup::TrianglesDrawn() const

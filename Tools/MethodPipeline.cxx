@@ -4,8 +4,8 @@
 #include <vtkCamera.h>
 #include <vtkCommand.h>
 #include <vtkMatrix4x4.h>
-#include <vtkProperty.h>
 #include <vtkPropCollection.h>
+#include <vtkProperty.h>
 #include <vtkRenderer.h>
 
 #include <chrono>
@@ -24,8 +24,8 @@ constexpr int kFastExitActors = 1000;
 } // namespace
 
 MethodPipeline::MethodPipeline(const std::string& method, vtkPolyData* pd, vtkRenderer* renderer,
-  bool showProgress, const std::vector<vtkSmartPointer<vtkPolyData>>* groups,
-  bool chunked, const scenevis::tool::InstancedScene* instanced)
+  bool showProgress, const std::vector<vtkSmartPointer<vtkPolyData>>* groups, bool chunked,
+  const InstancedScene* instanced)
   : Method(method)
   , Input(pd)
   , InputPolygons(pd ? pd->GetNumberOfPolys() : 0)
@@ -245,8 +245,8 @@ void MethodPipeline::Describe(std::ostream& json, std::ostream& text) const
          << ", \"splits\": " << this->Painter->GetNumberOfSplits()
          << ", \"forced_emissions\": " << this->Painter->GetNumberOfForcedEmissions()
          << ", \"removed_polygons\": " << this->Painter->GetNumberOfRemovedPolygons() << "}";
-    text << ", painter's normalisation " << this->BuildMs() << " ms (last frame: "
-         << this->Painter->GetNumberOfFragments() << " fragments, "
+    text << ", painter's normalisation " << this->BuildMs()
+         << " ms (last frame: " << this->Painter->GetNumberOfFragments() << " fragments, "
          << this->Painter->GetNumberOfSplits() << " splits)";
   }
   else if (this->Method == "bsp-mapper")

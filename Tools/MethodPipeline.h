@@ -45,7 +45,7 @@ class MethodPipeline
 public:
   MethodPipeline(const std::string& method, vtkPolyData* pd, vtkRenderer* renderer,
     bool showProgress, const std::vector<vtkSmartPointer<vtkPolyData>>* groups = nullptr,
-    bool chunked = false, const scenevis::tool::InstancedScene* instanced = nullptr);
+    bool chunked = false, const InstancedScene* instanced = nullptr);
 
   /// Brings a filter's order up to date for the camera (before rendering); milliseconds.
   double Update();
@@ -55,7 +55,10 @@ public:
   bool Sorted() const { return this->OrderCount() != this->OrderCountBefore; }
 
   /// Whether the per-frame sort happens inside the render (the mapper and the pass).
-  bool SortsInRender() const { return this->Method == "bsp-mapper" || this->Method == "multi-actor"; }
+  bool SortsInRender() const
+  {
+    return this->Method == "bsp-mapper" || this->Method == "multi-actor";
+  }
 
   /// Sort time of the last frame in ms (call after rendering it); 0 for methods without a sort
   /// and for frames whose order did not need updating.

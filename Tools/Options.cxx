@@ -184,7 +184,7 @@ std::vector<double> ParseList(const std::string& flag, const std::string& text)
 /// anything is loaded or written.
 void CheckCameraOptions(Options& options)
 {
-  const scenevis::tool::CameraSpec& camera = options.camera;
+  const CameraSpec& camera = options.camera;
   if (camera.viewAngle > 0.0 && camera.parallel)
   {
     throw UsageError("--view-angle is for perspective projection; with --parallel, "
@@ -201,7 +201,7 @@ void CheckCameraOptions(Options& options)
     throw UsageError(std::string(options.framesSet ? "--frames" : "--orbit") +
       " orbits one camera; with --cameras, every camera of the file is one frame");
   }
-  options.cameras = scenevis::tool::ReadCameraFile(options.camerasFile, camera);
+  options.cameras = ReadCameraFile(options.camerasFile, camera);
 }
 
 } // namespace
@@ -227,7 +227,8 @@ Options ParseOptions(int argc, char* argv[])
   for (int i = 2; i < argc; ++i)
   {
     const std::string flag = argv[i];
-    auto value = [&]() -> std::string {
+    auto value = [&]() -> std::string
+    {
       if (i + 1 >= argc)
       {
         throw UsageError(flag + " needs a value");
@@ -278,7 +279,7 @@ Options ParseOptions(int argc, char* argv[])
     {
       const std::string text = value();
       options.camera.parallelScale = ParseNumber(flag, text);
-      const std::string problem = scenevis::tool::CheckParallelScale(options.camera.parallelScale);
+      const std::string problem = CheckParallelScale(options.camera.parallelScale);
       if (!problem.empty())
         throw UsageError(flag + " " + problem);
       options.camera.parallel = true; // a parallel scale only means something in parallel
@@ -286,7 +287,7 @@ Options ParseOptions(int argc, char* argv[])
     else if (flag == "--view-angle")
     {
       options.camera.viewAngle = ParseNumber(flag, value());
-      const std::string problem = scenevis::tool::CheckViewAngle(options.camera.viewAngle);
+      const std::string problem = CheckViewAngle(options.camera.viewAngle);
       if (!problem.empty())
         throw UsageError(flag + " " + problem);
     }
@@ -296,7 +297,7 @@ Options ParseOptions(int argc, char* argv[])
       const std::vector<double> v = ParseList(flag, text);
       if (v.size() != 2)
         throw UsageError(flag + " expects NEAR,FAR, got '" + text + "'");
-      const std::string problem = scenevis::tool::CheckClippingRange(v[0], v[1]);
+      const std::string problem = CheckClippingRange(v[0], v[1]);
       if (!problem.empty())
         throw UsageError(flag + " " + problem);
       std::copy_n(v.begin(), 2, options.camera.clippingRange);
@@ -385,13 +386,13 @@ Options ParseOptions(int argc, char* argv[])
   {
     const double pixels = ParseNumber("--cull small:N", c.substr(6));
     if (pixels <= 0.0 || pixels > 10000.0)
-      throw UsageError("--cull small:N expects a size in pixels in (0, 10000], got '" +
-        c.substr(6) + "'");
+      throw UsageError(
+        "--cull small:N expects a size in pixels in (0, 10000], got '" + c.substr(6) + "'");
   }
   if ((!options.exportScene.empty() || options.exact) && options.command != "cull")
   {
-    throw UsageError(std::string(options.exact ? "--exact" : "--export-scene") +
-      " belongs to the cull command");
+    throw UsageError(
+      std::string(options.exact ? "--exact" : "--export-scene") + " belongs to the cull command");
   }
   if (options.command == "sort" && options.out.empty())
   {

@@ -39,10 +39,10 @@ struct Options
   bool opacitySet = false;
   bool instances = false; ///< --instances: a glTF's meshes once each, one actor per placement
   /// --camera, --up, --parallel, --view-angle, --parallel-scale, --clipping-range.
-  scenevis::tool::CameraSpec camera;
+  CameraSpec camera;
   /// --cameras FILE.json: one run per camera (the command line's camera options as defaults).
   std::string camerasFile;
-  std::vector<scenevis::tool::CameraSpec> cameras;
+  std::vector<CameraSpec> cameras;
   /// The integer cell arrays that name parts and rooms (--part-array, --room-array).
   std::string partArray = "PartId";
   std::string roomArray = "RoomId";
@@ -50,9 +50,9 @@ struct Options
   bool roomArraySet = false;
   std::string sort = "auto";
   std::string cull = "auto";
-  std::string portals;      ///< --portals FILE.vtp
-  std::string exportScene;  ///< cull --export-scene PREFIX
-  bool exact = false;       ///< cull --exact: compare with the ID-buffer visible set
+  std::string portals;     ///< --portals FILE.vtp
+  std::string exportScene; ///< cull --export-scene PREFIX
+  bool exact = false;      ///< cull --exact: compare with the ID-buffer visible set
   int width = 800;
   int height = 600;
   int frames = 1;

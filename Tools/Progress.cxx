@@ -11,8 +11,7 @@ namespace scenevis
 namespace tool
 {
 
-extern const std::chrono::steady_clock::time_point kProgramStart =
-  std::chrono::steady_clock::now();
+extern const std::chrono::steady_clock::time_point kProgramStart = std::chrono::steady_clock::now();
 
 double Milliseconds(std::chrono::steady_clock::time_point start)
 {

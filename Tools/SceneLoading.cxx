@@ -9,13 +9,13 @@
 
 #include "scenevis/Scenes.h"
 #include "scenevis/testing/Models.h"
+#include "scenevis/testing/Scenes.h"
 
 #include <vtkAbstractArray.h>
 #include <vtkCellArray.h>
 #include <vtkCellData.h>
 #include <vtkDataArray.h>
 #include <vtkFieldData.h>
-#include <vtkIntArray.h>
 #include <vtkNew.h>
 #include <vtkPointData.h>
 #include <vtkPoints.h>
@@ -51,33 +51,6 @@ std::uint64_t CompactCellStorage(vtkPolyData* pd)
     }
   }
   return saved;
-}
-
-/// The portal scene format (vtkPortalCuller.h): one polygon per portal, RoomA/RoomB cell data.
-vtkSmartPointer<vtkPolyData> PortalPolyData(const scenevis::scenes::BuildingScene& building)
-{
-  vtkNew<vtkPoints> points;
-  vtkNew<vtkCellArray> polys;
-  vtkNew<vtkIntArray> roomA;
-  vtkNew<vtkIntArray> roomB;
-  roomA->SetName("RoomA");
-  roomB->SetName("RoomB");
-  for (const auto& portal : building.portals)
-  {
-    polys->InsertNextCell(static_cast<vtkIdType>(portal.polygon.size()));
-    for (const auto& q : portal.polygon)
-    {
-      polys->InsertCellPoint(points->InsertNextPoint(q.x, q.y, q.z));
-    }
-    roomA->InsertNextValue(portal.roomA);
-    roomB->InsertNextValue(portal.roomB);
-  }
-  auto pd = vtkSmartPointer<vtkPolyData>::New();
-  pd->SetPoints(points);
-  pd->SetPolys(polys);
-  pd->GetCellData()->AddArray(roomA);
-  pd->GetCellData()->AddArray(roomB);
-  return pd;
 }
 
 /// Reads --portals; a missing file or one without RoomA/RoomB arrays is an error (exit 1).
@@ -206,7 +179,7 @@ LoadedScene LoadScene(const Options& options)
     if (demo->GetScene() == vtkDemoSceneSource::SCENE_BUILDING)
     {
       // The same generator call as the source's, for the portals it does not output.
-      loaded.portals = PortalPolyData(scenevis::scenes::building(
+      loaded.portals = scenevis::testing::MakePortalPolyData(scenevis::scenes::building(
         demo->GetFloors(), demo->GetRoomsX(), demo->GetRoomsY(), demo->GetSeed()));
     }
     if (!options.portals.empty())
@@ -240,9 +213,8 @@ LoadedScene LoadScene(const Options& options)
   std::string error;
   {
     QuietVtkOutput quiet;
-    loaded.polydata = options.instances
-      ? LoadModelIsolated(name, error, scenevis::tool::LoadGltfMeshLibrary)
-      : LoadModelIsolated(name, error);
+    loaded.polydata = options.instances ? LoadModelIsolated(name, error, LoadGltfMeshLibrary)
+                                        : LoadModelIsolated(name, error);
   }
   if (!loaded.polydata)
   {
@@ -324,19 +296,18 @@ LoadedScene LoadSceneWithNormals(const Options& options)
   if (options.instances)
   {
     scene.polydata->SetFieldData(placements);
-    scene.instanced = std::make_shared<scenevis::tool::InstancedScene>(
-      scenevis::tool::UnpackMeshLibrary(scene.polydata));
+    scene.instanced = std::make_shared<InstancedScene>(UnpackMeshLibrary(scene.polydata));
     scene.description += ", " + std::to_string(scene.instanced->meshes.size()) + " meshes placed " +
       std::to_string(scene.instanced->instances.size()) + " times";
   }
-  scene.rssAfterLoad = scenevis::tool::ReadResidentMemory().current;
+  scene.rssAfterLoad = ReadResidentMemory().current;
   return scene;
 }
 
 void SceneBounds(const LoadedScene& scene, double bounds[6])
 {
   if (scene.instanced)
-    scenevis::tool::InstancedBounds(*scene.instanced, bounds);
+    InstancedBounds(*scene.instanced, bounds);
   else
     scene.polydata->GetBounds(bounds);
 }

@@ -36,7 +36,7 @@ struct LoadedScene
   std::uint64_t compactedBytes = 0;
   /// --instances: the meshes and their placements; polydata is then the mesh library (every
   /// distinct mesh once), not the scene.
-  std::shared_ptr<scenevis::tool::InstancedScene> instanced;
+  std::shared_ptr<InstancedScene> instanced;
 };
 
 /// The scene of --scene as read: an embedded demo (with the building's portals), or a data-cache

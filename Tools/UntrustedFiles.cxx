@@ -140,7 +140,6 @@ vtkSmartPointer<vtkPolyData> LoadModelIsolated(
   return result;
 }
 
-
 vtkIdType RemoveCellsWithNonFinitePoints(vtkPolyData* pd)
 {
   vtkPoints* points = pd->GetPoints();
@@ -208,13 +207,12 @@ void CheckPointIds(vtkPolyData* pd, const std::string& path)
 
 void CheckFitsInMemory(const std::string& path)
 {
-  namespace tl = scenevis::tool;
-  const std::uint64_t available = tl::AvailableMemory();
+  const std::uint64_t available = AvailableMemory();
   if (available == 0)
     return; // the system does not say: nothing to compare with
   std::string basis;
   double polydata = 0.0;
-  const tl::VtpHeader header = tl::ReadVtpHeader(path);
+  const VtpHeader header = ReadVtpHeader(path);
   if (header.valid)
   {
     polydata = kBytesPerPoint * static_cast<double>(header.points) +
@@ -228,14 +226,14 @@ void CheckFitsInMemory(const std::string& path)
     if (::stat(path.c_str(), &info) != 0)
       return; // the reader says what is wrong with the path
     polydata = kBytesPerFileByte * static_cast<double>(info.st_size);
-    basis = tl::FormatBytes(static_cast<std::uint64_t>(info.st_size)) + " on disk";
+    basis = FormatBytes(static_cast<std::uint64_t>(info.st_size)) + " on disk";
   }
   const double needed = kPeakPerPolyDataByte * polydata;
   if (needed > static_cast<double>(available))
   {
     throw std::runtime_error("'" + path + "' is too big for this machine: about " +
-      tl::FormatBytes(static_cast<std::uint64_t>(needed)) + " needed (" + basis + ") and " +
-      tl::FormatBytes(available) +
+      FormatBytes(static_cast<std::uint64_t>(needed)) + " needed (" + basis + ") and " +
+      FormatBytes(available) +
       " available; refusing to load it (SCENEVIS_MEMORY_LIMIT sets the limit)");
   }
 }

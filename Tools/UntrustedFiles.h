@@ -80,7 +80,7 @@ void CheckPointIds(vtkPolyData* pd, const std::string& path);
 /**
  * Refuses, before reading it, a model that the machine cannot hold: its polydata estimated from a
  * .vtp header's point and polygon counts (else from the file's size), times what the tool's paths
- * need on top of it, against the memory available now (scenevis::tool::AvailableMemory). A
+ * need on top of it, against the memory available now (AvailableMemory, Memory.h). A
  * refused scene costs a line and exit 1, not minutes of reading and a kill by the kernel.
  */
 void CheckFitsInMemory(const std::string& path);

@@ -16,7 +16,7 @@ namespace scenevis
 namespace tool
 {
 
-void ResetClippingRange(const scenevis::tool::CameraSpec& spec, vtkRenderer* renderer)
+void ResetClippingRange(const CameraSpec& spec, vtkRenderer* renderer)
 {
   if (spec.FixedClippingRange())
     renderer->GetActiveCamera()->SetClippingRange(spec.clippingRange);
@@ -24,8 +24,7 @@ void ResetClippingRange(const scenevis::tool::CameraSpec& spec, vtkRenderer* ren
     renderer->ResetCameraClippingRange();
 }
 
-void SetUpCamera(const scenevis::tool::CameraSpec& spec, vtkRenderer* renderer,
-  const double bounds[6], bool zUp)
+void SetUpCamera(const CameraSpec& spec, vtkRenderer* renderer, const double bounds[6], bool zUp)
 {
   vtkCamera* camera = renderer->GetActiveCamera();
   camera->SetParallelProjection(spec.parallel);
@@ -102,8 +101,7 @@ void SetUpCamera(const scenevis::tool::CameraSpec& spec, vtkRenderer* renderer,
     camera->SetClippingRange(spec.clippingRange);
 }
 
-void SetUpCamera(
-  const scenevis::tool::CameraSpec& spec, vtkRenderer* renderer, vtkPolyData* pd, bool zUp)
+void SetUpCamera(const CameraSpec& spec, vtkRenderer* renderer, vtkPolyData* pd, bool zUp)
 {
   double bounds[6];
   pd->GetBounds(bounds); // finite: LoadScene removed cells with NaN/Inf points

@@ -67,7 +67,7 @@ int main(int argc, char* argv[])
       return scenevis::tool::RunCull(options);
     }
     return options.command == "render" ? scenevis::tool::RunRender(options)
-                                        : scenevis::tool::RunSort(options);
+                                       : scenevis::tool::RunSort(options);
   }
   catch (const scenevis::tool::UsageError& e)
   {
