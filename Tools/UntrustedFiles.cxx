@@ -4,8 +4,6 @@
 #include "Memory.h"
 
 #include <vtkCellArray.h>
-#include <vtkIdList.h>
-#include <vtkPoints.h>
 #include <vtkXMLPolyDataReader.h>
 #include <vtkXMLPolyDataWriter.h>
 
@@ -16,13 +14,10 @@
 #include <unistd.h>
 
 #include <cerrno>
-#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
-#include <set>
 #include <stdexcept>
-#include <vector>
 
 namespace scenevis
 {
@@ -138,47 +133,6 @@ vtkSmartPointer<vtkPolyData> LoadModelIsolated(
   }
   std::remove(file.c_str());
   return result;
-}
-
-vtkIdType RemoveCellsWithNonFinitePoints(vtkPolyData* pd)
-{
-  vtkPoints* points = pd->GetPoints();
-  const vtkIdType count = points ? points->GetNumberOfPoints() : 0;
-  std::vector<vtkIdType> bad;
-  for (vtkIdType i = 0; i < count; ++i)
-  {
-    double p[3];
-    points->GetPoint(i, p);
-    if (!(std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2])))
-      bad.push_back(i);
-  }
-  if (bad.empty())
-    return 0;
-  pd->BuildLinks();
-  vtkNew<vtkIdList> cells;
-  std::set<vtkIdType> removed;
-  for (vtkIdType point : bad)
-  {
-    pd->GetPointCells(point, cells);
-    for (vtkIdType k = 0; k < cells->GetNumberOfIds(); ++k)
-    {
-      if (removed.insert(cells->GetId(k)).second)
-        pd->DeleteCell(cells->GetId(k));
-    }
-  }
-  pd->RemoveDeletedCells();
-  // No cell uses them now, but point bounds still would: park them on a finite point.
-  double parked[3] = { 0.0, 0.0, 0.0 };
-  for (vtkIdType i = 0; i < count; ++i)
-  {
-    points->GetPoint(i, parked);
-    if (std::isfinite(parked[0]) && std::isfinite(parked[1]) && std::isfinite(parked[2]))
-      break;
-  }
-  for (vtkIdType point : bad)
-    points->SetPoint(point, parked);
-  points->Modified();
-  return static_cast<vtkIdType>(removed.size());
 }
 
 void CheckPointIds(vtkPolyData* pd, const std::string& path)

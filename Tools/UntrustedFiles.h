@@ -1,6 +1,6 @@
 // Reading model files the tool cannot trust: VTK's output silenced (the tool's errors are one
 // line), readers run in a child process (a reader crash costs the child, not the tool), a file
-// refused up front when the machine cannot hold it, bad point ids and NaN/Inf points caught.
+// refused up front when the machine cannot hold it, bad point ids caught.
 #ifndef scenevis_tool_UntrustedFiles_h
 #define scenevis_tool_UntrustedFiles_h
 
@@ -64,14 +64,6 @@ using ModelLoader = vtkSmartPointer<vtkPolyData> (*)(const std::string&, std::st
 
 vtkSmartPointer<vtkPolyData> LoadModelIsolated(
   const std::string& path, std::string& error, ModelLoader load = scenevis::testing::LoadModel);
-
-/**
- * Removes the cells that use a NaN or infinite point and returns how many; the points themselves
- * are moved onto a finite one (point data stays as it is). No renderer can draw such cells, and
- * VTK's point bounds (hence camera fitting and clipping ranges) skip NaN points but not infinite
- * ones, so one such point would leave every method an empty image.
- */
-vtkIdType RemoveCellsWithNonFinitePoints(vtkPolyData* pd);
 
 /// A cell that names a point the file does not have (a damaged or hand-written file) is an error:
 /// every later step would read out of bounds.
