@@ -3,7 +3,7 @@
 
 #include "Memory.h"
 
-#include <vtkCellArray.h>
+#include <vtkSceneVisModelReader.h>
 #include <vtkXMLPolyDataReader.h>
 #include <vtkXMLPolyDataWriter.h>
 
@@ -26,8 +26,9 @@ namespace tool
 namespace
 {
 /// Peak resident memory of `render` per byte of the loaded polydata (GetActualMemorySize), the
-/// largest of its paths as measured on the 48.6M-triangle engine grid (BENCHMARKS.md, "Memory").
-constexpr double kPeakPerPolyDataByte = 3.0;
+/// largest of its paths as measured on the 48.6M-triangle engine grid with a margin (BENCHMARKS.md,
+/// "Memory and page faults": 2.22 for one mesh chunked, 1.74 drawn whole, 1.44 as parts).
+constexpr double kPeakPerPolyDataByte = 2.5;
 /// Bytes of a loaded polydata per point (float coordinates, normals) and per polygon (a triangle's
 /// offsets and connectivity, RGBA colour, one id array) when only a file's header is known.
 constexpr double kBytesPerPoint = 24.0;
@@ -137,26 +138,9 @@ vtkSmartPointer<vtkPolyData> LoadModelIsolated(
 
 void CheckPointIds(vtkPolyData* pd, const std::string& path)
 {
-  const vtkIdType points = pd->GetNumberOfPoints();
-  vtkIdType cell = 0;
-  for (vtkCellArray* cells : { pd->GetVerts(), pd->GetLines(), pd->GetPolys(), pd->GetStrips() })
-  {
-    vtkIdType npts = 0;
-    const vtkIdType* pts = nullptr;
-    const vtkIdType count = cells ? cells->GetNumberOfCells() : 0;
-    for (vtkIdType c = 0; c < count; ++c, ++cell)
-    {
-      cells->GetCellAtId(c, npts, pts);
-      for (vtkIdType k = 0; k < npts; ++k)
-      {
-        if (pts[k] < 0 || pts[k] >= points)
-        {
-          throw std::runtime_error("cannot use '" + path + "': cell " + std::to_string(cell) +
-            " uses point " + std::to_string(pts[k]) + " of only " + std::to_string(points));
-        }
-      }
-    }
-  }
+  const std::string bad = vtkSceneVisModelReader::DescribeBadPointId(pd);
+  if (!bad.empty())
+    throw std::runtime_error("cannot use '" + path + "': " + bad);
 }
 
 void CheckFitsInMemory(const std::string& path)

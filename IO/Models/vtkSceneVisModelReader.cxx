@@ -432,31 +432,6 @@ vtkSmartPointer<vtkPolyData> ReadModel(const std::string& path, std::string* err
   return result;
 }
 
-/// A cell that names a point the polydata does not have: "" when there is none.
-std::string FindBadPointId(vtkPolyData* pd)
-{
-  const vtkIdType points = pd->GetNumberOfPoints();
-  vtkIdType cell = 0;
-  for (vtkCellArray* cells : { pd->GetVerts(), pd->GetLines(), pd->GetPolys(), pd->GetStrips() })
-  {
-    vtkIdType npts = 0;
-    const vtkIdType* pts = nullptr;
-    const vtkIdType count = cells ? cells->GetNumberOfCells() : 0;
-    for (vtkIdType c = 0; c < count; ++c, ++cell)
-    {
-      cells->GetCellAtId(c, npts, pts);
-      for (vtkIdType k = 0; k < npts; ++k)
-      {
-        if (pts[k] < 0 || pts[k] >= points)
-        {
-          return "cell " + std::to_string(cell) + " uses point " + std::to_string(pts[k]) +
-            " of only " + std::to_string(points);
-        }
-      }
-    }
-  }
-  return std::string();
-}
 
 bool IsFinite(const double p[3])
 {
@@ -481,6 +456,32 @@ bool vtkSceneVisModelReader::CanReadFile(const char* fileName)
 {
   const std::string ext = Extension(fileName ? fileName : "");
   return std::find(std::begin(kExtensions), std::end(kExtensions), ext) != std::end(kExtensions);
+}
+
+//------------------------------------------------------------------------------
+std::string vtkSceneVisModelReader::DescribeBadPointId(vtkPolyData* pd)
+{
+  const vtkIdType points = pd->GetNumberOfPoints();
+  vtkIdType cell = 0;
+  for (vtkCellArray* cells : { pd->GetVerts(), pd->GetLines(), pd->GetPolys(), pd->GetStrips() })
+  {
+    vtkIdType npts = 0;
+    const vtkIdType* pts = nullptr;
+    const vtkIdType count = cells ? cells->GetNumberOfCells() : 0;
+    for (vtkIdType c = 0; c < count; ++c, ++cell)
+    {
+      cells->GetCellAtId(c, npts, pts);
+      for (vtkIdType k = 0; k < npts; ++k)
+      {
+        if (pts[k] < 0 || pts[k] >= points)
+        {
+          return "cell " + std::to_string(cell) + " uses point " + std::to_string(pts[k]) +
+            " of only " + std::to_string(points);
+        }
+      }
+    }
+  }
+  return std::string();
 }
 
 //------------------------------------------------------------------------------
@@ -575,7 +576,7 @@ int vtkSceneVisModelReader::RequestData(
     }
     if (model)
     {
-      why = FindBadPointId(model);
+      why = DescribeBadPointId(model);
       if (!why.empty())
       {
         why = "cannot read '" + path + "': " + why;

@@ -98,6 +98,12 @@ public:
    */
   static vtkIdType RemoveCellsWithNonFinitePoints(vtkPolyData* polydata);
 
+  /**
+   * The first cell of @p polydata (verts, lines, polys, strips order) that names a point it does
+   * not have, as "cell C uses point P of only N"; empty when every id is valid.
+   */
+  static std::string DescribeBadPointId(vtkPolyData* polydata);
+
 protected:
   vtkSceneVisModelReader();
   ~vtkSceneVisModelReader() override;
