@@ -2,6 +2,7 @@
 #include "AutoPlan.h"
 #include "Commands.h"
 #include "CullSetup.h"
+#include "HugePages.h"
 #include "Memory.h"
 #include "MethodPipeline.h"
 #include "Progress.h"
@@ -215,6 +216,7 @@ int RunRender(const Options& options)
        << ", \"rss_after_load\": " << scene.rssAfterLoad << ", \"rss_end\": " << memory.current
        << ", \"polydata_bytes\": " << polydataBytes
        << ", \"cells_compacted_bytes\": " << scene.compactedBytes
+       << ", \"huge_page_malloc\": " << (HugePageMalloc() ? "true" : "false")
        << ", \"peak_over_polydata\": " << static_cast<double>(memory.peak) / polydataBytes
        << ", \"peak_bytes_per_triangle\": "
        << static_cast<double>(memory.peak) /

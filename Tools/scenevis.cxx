@@ -7,6 +7,7 @@
 // the exit-code contract.
 
 #include "Commands.h"
+#include "HugePages.h"
 #include "Options.h"
 
 #include <vtkAutoInit.h>
@@ -55,6 +56,7 @@ int main(int argc, char* argv[])
     std::cout << "scenevis " << SCENEVIS_VERSION << "\n";
     return EXIT_SUCCESS;
   }
+  scenevis::tool::RerunWithHugePages(argv);
   try
   {
     const scenevis::tool::Options options = scenevis::tool::ParseOptions(argc, argv);
