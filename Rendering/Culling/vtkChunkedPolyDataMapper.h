@@ -172,6 +172,7 @@ protected:
 
   void UpdateCameraShiftScale(vtkRenderer* ren, vtkActor* act) override;
   void BuildBufferObjects(vtkRenderer* ren, vtkActor* act) override;
+  void BuildIBO(vtkRenderer* ren, vtkActor* act, vtkPolyData* poly) override;
 
   int ChunkSize = 2048;
   bool FrustumCulling = true;
