@@ -50,7 +50,8 @@
  *
  * Limits: picking a surface reports cell ids of the copy (GetInputCellId() maps them back);
  * memory: the copy's triangle connectivity (32-bit ids below 2^31 points; the occlusion raster
- * reads it in place), 4 bytes per triangle naming its input cell, and one cell-data tuple per
+ * reads it in place, and it is uploaded as the index buffer in place, without VTK's temporary
+ * vector of the same indices), 4 bytes per triangle naming its input cell, and one cell-data tuple per
  * triangle are a second copy of the input's (inputs of 2^32 points or cells and more are drawn
  * whole, as VTK's 32-bit index buffers cannot address them).
  *
