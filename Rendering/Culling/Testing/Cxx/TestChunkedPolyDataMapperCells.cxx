@@ -434,6 +434,18 @@ int TestChunkedPolyDataMapperCells(int, char*[])
   ok &= Check(
     sameWires && chunkedMapper->GetCullingSkipped() && chunkedMapper->GetInputCellId(1000) == 1000,
     "wireframe: the input drawn as the plain mapper draws it, ids unmapped " + why);
+  // And a surface again: the copy's connectivity goes back into the triangle index buffer (which
+  // the wireframe's outline indices replaced), culling resumes.
+  for (vtkActor* a : { plain.GetPointer(), chunked.GetPointer() })
+  {
+    a->GetProperty()->SetRepresentationToSurface();
+  }
+  vtkSmartPointer<vtkImageData> plainSurface = renderWith(plainRenderer);
+  vtkSmartPointer<vtkImageData> chunkedSurface = renderWith(chunkedRenderer);
+  const bool sameSurface = st::ImagesIdentical(plainSurface, chunkedSurface, &why);
+  ok &= Check(sameSurface && !chunkedMapper->GetCullingSkipped() &&
+      chunkedMapper->GetNumberOfTrianglesDrawn() > 0,
+    "surface after wireframe: the copy drawn again, as the plain mapper draws the input " + why);
   ok &= SmallInputs(window);
   return vtkOutput.ExitCode(ok ? EXIT_SUCCESS : EXIT_FAILURE);
 }
