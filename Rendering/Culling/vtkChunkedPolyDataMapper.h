@@ -160,6 +160,12 @@ public:
   vtkIdType GetNumberOfVertexBufferBuilds() const;
   ///@}
 
+  /// Kibibytes held for the copy drawn (its polygons and cell data, the map to input cells),
+  /// beyond the input: 0 before the first render. The copy carries only the cell arrays the
+  /// mapper can draw with (the scalars its scalar mode selects, cell normals, ghost flags, the
+  /// arrays named by its selection settings); choosing another array to colour by copies it.
+  unsigned long GetCopyMemorySize() const;
+
   /// Input cell ids of the polygons and strips with a triangle drawn by the last render, each
   /// once (in chunk order of their first triangle drawn). Verts and lines are not listed.
   void GetDrawnCellIds(std::vector<vtkIdType>& cellIds) const;

@@ -29,6 +29,7 @@
 #include <vtkCamera.h>
 #include <vtkCellArray.h>
 #include <vtkCellData.h>
+#include <vtkIdTypeArray.h>
 #include <vtkImageData.h>
 #include <vtkNew.h>
 #include <vtkOpenGLIndexBufferObject.h>
@@ -446,6 +447,34 @@ int TestChunkedPolyDataMapperCells(int, char*[])
   ok &= Check(sameSurface && !chunkedMapper->GetCullingSkipped() &&
       chunkedMapper->GetNumberOfTrianglesDrawn() > 0,
     "surface after wireframe: the copy drawn again, as the plain mapper draws the input " + why);
+  // The copy carries only the cell arrays the mapper can draw with: a part array nobody colours
+  // by stays in the input (8 bytes per triangle not copied); colouring by it copies it, and the
+  // image is the plain mapper's.
+  vtkNew<vtkIdTypeArray> partIds;
+  partIds->SetName("Part");
+  partIds->SetNumberOfTuples(mesh->GetNumberOfCells());
+  for (vtkIdType c = 0; c < mesh->GetNumberOfCells(); ++c)
+  {
+    partIds->SetValue(c, c % 7);
+  }
+  mesh->GetCellData()->AddArray(partIds);
+  renderWith(chunkedRenderer);
+  const unsigned long lean = chunkedMapper->GetCopyMemorySize();
+  for (vtkPolyDataMapper* m : std::initializer_list<vtkPolyDataMapper*>{ plainMapper, chunkedMapper })
+  {
+    m->SetScalarModeToUseCellFieldData();
+    m->SelectColorArray("Part");
+    m->SetColorModeToMapScalars();
+    m->SetScalarRange(0.0, 6.0);
+  }
+  vtkSmartPointer<vtkImageData> plainParts = renderWith(plainRenderer);
+  vtkSmartPointer<vtkImageData> chunkedParts = renderWith(chunkedRenderer);
+  const unsigned long withParts = chunkedMapper->GetCopyMemorySize();
+  const bool sameParts = st::ImagesIdentical(plainParts, chunkedParts, &why);
+  ok &= Check(sameParts && withParts > lean && !chunkedMapper->GetCullingSkipped(),
+    "cell arrays: an array nobody draws is not copied (" + std::to_string(lean) + " kB), one "
+    "chosen to colour by is (" + std::to_string(withParts) + " kB) and drawn as the plain mapper "
+    "draws it " + why);
   ok &= SmallInputs(window);
   return vtkOutput.ExitCode(ok ? EXIT_SUCCESS : EXIT_FAILURE);
 }
