@@ -1218,5 +1218,6 @@ void vtkChunkedPolyDataMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "NumberOfTrianglesDrawn: " << this->GetNumberOfTrianglesDrawn() << "\n";
   os << indent << "NumberOfDrawCalls: " << this->GetNumberOfDrawCalls() << "\n";
   os << indent << "NumberOfPartitionBuilds: " << this->GetNumberOfPartitionBuilds() << "\n";
+  os << indent << "CopyMemorySize: " << this->GetCopyMemorySize() << " kB\n";
   os << indent << "NumberOfVertexBufferBuilds: " << this->GetNumberOfVertexBufferBuilds() << "\n";
 }
