@@ -56,7 +56,7 @@ int main(int argc, char* argv[])
     std::cout << "scenevis " << SCENEVIS_VERSION << "\n";
     return EXIT_SUCCESS;
   }
-  scenevis::tool::RerunWithHugePages(argv);
+  scenevis::tool::RerunWithHugePages(argc, argv);
   try
   {
     const scenevis::tool::Options options = scenevis::tool::ParseOptions(argc, argv);
