@@ -44,6 +44,7 @@ export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
 # gtest_discover_tests runs the test binary at build time, so the options above already apply.
 cmake --build "$build" -j"$jobs" --target scenevis_core_tests scenevis_fuzz_bsp_replay \
   scenevis_fuzz_occlusion_replay scenevis_split_parts_tests scenevis_instances_tests \
+  scenevis_huge_pages_tests \
   SceneVisFiltersSortingCxxTests SceneVisFiltersSortingRenderingCxxTests \
   SceneVisFiltersSourcesCxxTests SceneVisIOModelsCxxTests SceneVisRenderingCullingCxxTests \
   SceneVisRenderingPortalsCxxTests SceneVisRenderingTranslucencyCxxTests scenevis_soak_bench
@@ -55,10 +56,11 @@ echo "sanitize: asan build done in $(( $(date +%s) - start )) s ($build)"
 # Every VTK-level test of the modules too (they render with OSMesa, no X needed): LeakSanitizer
 # is the leak check of the filters, mappers, passes, cullers and the model reader (bad input
 # included: SceneVis::IOModelsCxx-TestSceneVisModelReaderBadInput); and the tool's own code paths
-# that take files and split them (Tool.SplitParts, Tool.Instances). Bench.SoakLeaks: 300 frames of
+# that take files and split them (Tool.SplitParts, Tool.Instances) or read the command line to
+# decide on huge pages (Tool.HugePages). Bench.SoakLeaks: 300 frames of
 # the soak's moving camera per culling mode on a 2 x 2 engine grid (Benchmarks/BenchSoak.cxx), the
 # leak check of a long run (skipped without the data cache).
-tests='^(Core\.|Fuzz\.|SceneVis::|Tool\.(SplitParts|Instances)\.|Bench\.SoakLeaks$)'
+tests='^(Core\.|Fuzz\.|SceneVis::|Tool\.(SplitParts|Instances|HugePages)\.|Bench\.SoakLeaks$)'
 unbuilt=$(cd "$build" && ctest -N -V -R "$tests" | awk '
   /Test command:/ { cmd = $0; sub(/^[0-9]+: Test command: */, "", cmd); empty = (cmd == "" || cmd ~ /^"/) }
   /^ *Test +#[0-9]+:/ { if (empty) { sub(/^ *Test +#[0-9]+: /, ""); print } }' | paste -sd'|' -)
