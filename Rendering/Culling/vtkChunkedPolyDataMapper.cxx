@@ -130,6 +130,7 @@ struct vtkChunkedPolyDataMapper::Internals
   // CellArraysToCopy), as of partition build number CopiedFrom.
   std::vector<vtkAbstractArray*> CopiedCellArrays;
   vtkIdType CopiedFrom = -1;
+  vtkMTimeType CopiedForMapperTime = 0; // the mapper's MTime when they were last chosen
   void CopyCellData(vtkPolyData* input, const std::vector<vtkAbstractArray*>& wanted);
   vtkCellArray* UploadedPolys = nullptr; // the copy's polygons in the triangle index buffer
   vtkMTimeType UploadedPolysTime = 0;    // ... as of this MTime
@@ -941,8 +942,12 @@ void vtkChunkedPolyDataMapper::UpdateCameraShiftScale(vtkRenderer* ren, vtkActor
   {
     in.Build(input, this->ChunkSize);
   }
-  if (in.Chunked)
+  // Which cell arrays the copy carries depends on the partition (the input) and on the mapper's
+  // colouring settings only: looked at again when either changed, not every frame.
+  if (in.Chunked &&
+    (in.CopiedFrom != in.PartitionBuilds || in.CopiedForMapperTime != this->GetMTime()))
   {
+    in.CopiedForMapperTime = this->GetMTime();
     const std::vector<vtkAbstractArray*> wanted = CellArraysToCopy(this, input);
     if (in.CopiedFrom != in.PartitionBuilds || wanted != in.CopiedCellArrays)
     {

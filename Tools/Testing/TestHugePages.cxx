@@ -32,8 +32,9 @@ struct SparseFile
   std::string path;
   explicit SparseFile(off_t bytes)
   {
-    char name[] = "/tmp/scenevis-huge-pages-XXXXXX";
-    const int fd = mkstemp(name);
+    const char* tmp = std::getenv("TMPDIR");
+    std::string name = std::string(tmp && *tmp ? tmp : "/tmp") + "/scenevis-huge-pages-XXXXXX";
+    const int fd = mkstemp(&name[0]);
     EXPECT_GE(fd, 0);
     EXPECT_EQ(ftruncate(fd, bytes), 0);
     close(fd);
