@@ -7,6 +7,8 @@
 //   DualDepthPeeling4/100  VTK's dual depth peeling, 4 / 100 peels (100: reference quality)
 //   BSPSortFilter          vtkBSPSortFilter + plain mapper + alpha blending: exact
 //   BSPSortedMapper        vtkBSPSortedPolyDataMapper + alpha blending: exact
+//   BSPSortedMapperFullUploads  the same sending the whole index buffer for every new order
+//                          (PartialIndexUploadsOff), against the default: changed ranges only
 //   BSPTranslucentPass     64 actors (one per sphere) with vtkBSPTranslucentPass: exact; the
 //                          actors differ only in colour, so they are drawn as one batch
 //   BSPTranslucentPassPerActor  the same with batching off (one helper per actor)
@@ -81,6 +83,7 @@ enum class Mode
   DualDepthPeeling100,
   BSPSortFilter,
   BSPSortedMapper,
+  BSPSortedMapperFullUploads, // the same with PartialIndexUploadsOff(): the whole index buffer
   BSPTranslucentPass,
   BSPTranslucentPassPerActor,
   // Why the mapper costs more than unsorted alpha: the same two without the RGBA cell colours
@@ -282,6 +285,9 @@ void Frame(benchmark::State& state, Mode mode, Scene scene)
       steps->SetTranslucentPass(bspPass);
       renderer->SetPass(steps);
       break;
+    case Mode::BSPSortedMapperFullUploads:
+      bspMapper->PartialIndexUploadsOff();
+      VTK_FALLTHROUGH;
     case Mode::BSPSortedMapper:
     case Mode::BSPSortedMapperPropertyColor:
       bspMapper->SetInputConnection(source->GetOutputPort());
@@ -323,7 +329,8 @@ void Frame(benchmark::State& state, Mode mode, Scene scene)
   const bool multiActor =
     mode == Mode::BSPTranslucentPass || mode == Mode::BSPTranslucentPassPerActor;
   const bool sortedMapper =
-    mode == Mode::BSPSortedMapper || mode == Mode::BSPSortedMapperPropertyColor;
+    mode == Mode::BSPSortedMapper || mode == Mode::BSPSortedMapperPropertyColor ||
+    mode == Mode::BSPSortedMapperFullUploads;
   if (mode == Mode::UnsortedAlphaPropertyColor || mode == Mode::BSPSortedMapperPropertyColor)
   {
     mapper->ScalarVisibilityOff();
@@ -342,12 +349,20 @@ void Frame(benchmark::State& state, Mode mode, Scene scene)
   // mapper also the index upload alone.
   double orderSeconds = 0.0;
   double uploadSeconds = 0.0;
+  // Indices sent to the GPU, and the uploads that sent only the changed ranges.
+  double indicesSent = 0.0;
+  const vtkIdType partialBefore = sortedMapper ? bspMapper->GetNumberOfPartialIndexUploads() : 0;
+  const vtkIdType uploadsBefore = sortedMapper ? bspMapper->GetNumberOfIndexUploads() : 0;
   for (auto _ : state)
   {
     camera->Azimuth(1.0);
     window->Render();
     orderSeconds += sortedMapper ? bspMapper->GetLastOrderTime() : bspPass->GetLastOrderTime();
     uploadSeconds += sortedMapper ? bspMapper->GetLastUploadTime() : 0.0;
+    if (sortedMapper && bspMapper->GetNumberOfIndexUploads() > uploadsBefore)
+    {
+      indicesSent += static_cast<double>(bspMapper->GetLastUploadIndexCount());
+    }
   }
   state.counters["triangles"] = static_cast<double>(triangles);
   if (sortedMapper || multiActor)
@@ -364,6 +379,17 @@ void Frame(benchmark::State& state, Mode mode, Scene scene)
     state.counters["fragments"] = static_cast<double>(bspMapper->GetNumberOfFragments());
     state.counters["vbo_builds"] = static_cast<double>(bspMapper->GetNumberOfVertexBufferBuilds());
     state.counters["ibo_uploads"] = static_cast<double>(bspMapper->GetNumberOfIndexUploads());
+    // Of the frames' uploads: the share that sent only changed ranges, and the indices sent per
+    // frame over the fragment triangles' indices.
+    const double frameUploads =
+      static_cast<double>(bspMapper->GetNumberOfIndexUploads() - uploadsBefore);
+    state.counters["partial_uploads"] = frameUploads > 0
+      ? static_cast<double>(bspMapper->GetNumberOfPartialIndexUploads() - partialBefore) /
+        frameUploads
+      : 0.0;
+    state.counters["sent_fraction"] = indicesSent /
+      std::max(1.0, static_cast<double>(state.iterations()) * 3.0 *
+          static_cast<double>(bspMapper->GetNumberOfFragmentTriangles()));
     state.counters["build_s"] = bspMapper->GetLastBuildTime();
   }
   if (multiActor)
@@ -514,6 +540,7 @@ SCENEVIS_FRAME(DualDepthPeeling4, Mode::DualDepthPeeling4, 5);
 SCENEVIS_FRAME(DualDepthPeeling100, Mode::DualDepthPeeling100, 3);
 SCENEVIS_FRAME(BSPSortFilter, Mode::BSPSortFilter, 10);
 SCENEVIS_FRAME(BSPSortedMapper, Mode::BSPSortedMapper, 10);
+SCENEVIS_FRAME(BSPSortedMapperFullUploads, Mode::BSPSortedMapperFullUploads, 10);
 SCENEVIS_FRAME(BSPTranslucentPass, Mode::BSPTranslucentPass, 10);
 SCENEVIS_FRAME(BSPTranslucentPassPerActor, Mode::BSPTranslucentPassPerActor, 5);
 

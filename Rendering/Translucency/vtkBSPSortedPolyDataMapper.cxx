@@ -121,6 +121,8 @@ struct vtkBSPSortedPolyDataMapper::Internals
 
   // Instrumentation.
   vtkIdType IndexUploads = 0;
+  vtkIdType PartialIndexUploads = 0;
+  std::size_t LastUploadIndices = 0; // indices sent to the GPU by the last upload
   vtkIdType OrderUpdates = 0;
   vtkIdType TreeBuilds = 0;
   vtkIdType VertexBufferBuilds = 0;
@@ -128,9 +130,87 @@ struct vtkBSPSortedPolyDataMapper::Internals
   double LastOrderTime = 0.0;
   double LastUploadTime = 0.0;
 
-  void Upload(vtkOpenGLIndexBufferObject* ibo, const std::vector<std::uint32_t>& order)
+  /// Index ranges [first, end) of the buffer rewritten by UploadChanges (scratch, kept).
+  std::vector<std::pair<std::size_t, std::size_t>> Runs;
+
+  /**
+   * The index buffer holds UploadedOrder and Scratch mirrors it: rewrite in Scratch only the
+   * fragments whose place in @p order changed, and send only those index ranges
+   * (glBufferSubData; ranges closer than a few kilobytes are sent as one). The incremental order
+   * moves few fragments per small camera step. Sends everything (glBufferData) when more than
+   * half changed. Returns false, with the mirror left to be rebuilt, when @p order does not lay
+   * out the same number of indices (another set of fragments).
+   */
+  bool UploadChanges(vtkOpenGLIndexBufferObject* ibo, const std::vector<std::uint32_t>& order)
+  {
+    constexpr std::size_t kGap = 1024; // indices: smaller gaps are sent along with their runs
+    this->Runs.clear();
+    std::size_t at = 0, dirty = 0;
+    unsigned int* mirror = this->Scratch.data();
+    for (std::size_t i = 0; i < order.size(); ++i)
+    {
+      const std::uint32_t f = order[i];
+      const std::size_t first = this->TriOffsets[f], count = this->TriOffsets[f + 1] - first;
+      if (at + count > this->Scratch.size())
+      {
+        return false;
+      }
+      if (f != this->UploadedOrder[i])
+      {
+        std::copy(this->TriIndices.data() + first, this->TriIndices.data() + first + count,
+          mirror + at);
+        if (!this->Runs.empty() && at <= this->Runs.back().second + kGap)
+        {
+          dirty += at + count - this->Runs.back().second;
+          this->Runs.back().second = at + count;
+        }
+        else
+        {
+          this->Runs.emplace_back(at, at + count);
+          dirty += count;
+        }
+      }
+      at += count;
+    }
+    if (at != this->Scratch.size())
+    {
+      return false;
+    }
+    if (dirty > this->Scratch.size() / 2)
+    {
+      ibo->Upload(this->Scratch, vtkOpenGLBufferObject::ElementArrayBuffer);
+      this->LastUploadIndices = this->Scratch.size();
+    }
+    else
+    {
+      // Bound as Upload() leaves it (the element array binding belongs to the mapper's VAO).
+      ibo->Bind();
+      for (const auto& run : this->Runs)
+      {
+        glBufferSubData(GL_ELEMENT_ARRAY_BUFFER,
+          static_cast<GLintptr>(run.first * sizeof(unsigned int)),
+          static_cast<GLsizeiptr>((run.second - run.first) * sizeof(unsigned int)),
+          mirror + run.first);
+      }
+      ++this->PartialIndexUploads;
+      this->LastUploadIndices = dirty;
+    }
+    return true;
+  }
+
+  void Upload(
+    vtkOpenGLIndexBufferObject* ibo, const std::vector<std::uint32_t>& order, bool partial)
   {
     const auto start = std::chrono::steady_clock::now();
+    if (partial && this->IBOHasOrder && order.size() == this->UploadedOrder.size() && ibo->GetHandle() &&
+      static_cast<std::size_t>(ibo->IndexCount) == this->Scratch.size() &&
+      this->UploadChanges(ibo, order))
+    {
+      this->UploadedOrder = order;
+      ++this->IndexUploads;
+      this->LastUploadTime = SecondsSince(start);
+      return;
+    }
     std::size_t total = 0;
     for (std::uint32_t f : order)
     {
@@ -149,6 +229,7 @@ struct vtkBSPSortedPolyDataMapper::Internals
       ibo->Upload(this->Scratch, vtkOpenGLBufferObject::ElementArrayBuffer);
     }
     ibo->IndexCount = total;
+    this->LastUploadIndices = total;
     this->UploadedOrder = order;
     this->IBOHasOrder = true;
     ++this->IndexUploads;
@@ -328,6 +409,18 @@ vtkBSPSortedPolyDataMapper::~vtkBSPSortedPolyDataMapper() = default;
 vtkIdType vtkBSPSortedPolyDataMapper::GetNumberOfIndexUploads() const
 {
   return this->Internal->IndexUploads;
+}
+
+//------------------------------------------------------------------------------
+vtkIdType vtkBSPSortedPolyDataMapper::GetNumberOfPartialIndexUploads() const
+{
+  return this->Internal->PartialIndexUploads;
+}
+
+//------------------------------------------------------------------------------
+vtkIdType vtkBSPSortedPolyDataMapper::GetLastUploadIndexCount() const
+{
+  return static_cast<vtkIdType>(this->Internal->LastUploadIndices);
 }
 
 vtkIdType vtkBSPSortedPolyDataMapper::GetNumberOfOrderUpdates() const
@@ -578,11 +671,11 @@ void vtkBSPSortedPolyDataMapper::RenderPieceStart(vtkRenderer* ren, vtkActor* ac
       const auto start = std::chrono::steady_clock::now();
       if (internal.PendingDirty)
       {
-        internal.Upload(ibo, internal.PendingOrder);
+        internal.Upload(ibo, internal.PendingOrder, this->PartialIndexUploads);
       }
       else
       {
-        internal.Upload(ibo, internal.UploadedOrder);
+        internal.Upload(ibo, internal.UploadedOrder, false);
       }
       internal.PendingDirty = false;
       internal.LastOrderTime = SecondsSince(start);
@@ -615,7 +708,7 @@ void vtkBSPSortedPolyDataMapper::RenderPieceStart(vtkRenderer* ren, vtkActor* ac
         }
         if (changed)
         {
-          internal.Upload(ibo, internal.Order->order());
+          internal.Upload(ibo, internal.Order->order(), this->PartialIndexUploads);
         }
         internal.LastOrderTime = SecondsSince(start);
       }
@@ -664,6 +757,10 @@ void vtkBSPSortedPolyDataMapper::PrintSelf(ostream& os, vtkIndent indent)
   this->Superclass::PrintSelf(os, indent);
   os << indent << "NumberOfFragments: " << this->GetNumberOfFragments() << "\n";
   os << indent << "NumberOfIndexUploads: " << this->GetNumberOfIndexUploads() << "\n";
+  os << indent << "PartialIndexUploads: " << this->PartialIndexUploads << "\n";
+  os << indent << "NumberOfPartialIndexUploads: " << this->GetNumberOfPartialIndexUploads()
+     << "\n";
+  os << indent << "LastUploadIndexCount: " << this->GetLastUploadIndexCount() << "\n";
   os << indent << "NumberOfOrderUpdates: " << this->GetNumberOfOrderUpdates() << "\n";
   os << indent << "NumberOfTreeBuilds: " << this->GetNumberOfTreeBuilds() << "\n";
   os << indent << "NumberOfVertexBufferBuilds: " << this->GetNumberOfVertexBufferBuilds() << "\n";

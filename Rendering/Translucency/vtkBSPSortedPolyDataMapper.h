@@ -86,6 +86,26 @@ public:
 
   ///@{
   /**
+   * Of the index uploads, those that sent only the ranges of the buffer whose fragments changed
+   * place (glBufferSubData; a small camera step moves few fragments), and the number of indices
+   * the last upload sent (all of them for a full upload).
+   */
+  vtkIdType GetNumberOfPartialIndexUploads() const;
+  vtkIdType GetLastUploadIndexCount() const;
+  ///@}
+
+  ///@{
+  /**
+   * Whether a new order sends only the changed index ranges (default on) or the whole index
+   * buffer every time (for measuring what the partial uploads save).
+   */
+  vtkSetMacro(PartialIndexUploads, bool);
+  vtkGetMacro(PartialIndexUploads, bool);
+  vtkBooleanMacro(PartialIndexUploads, bool);
+  ///@}
+
+  ///@{
+  /**
    * Size of the fragment geometry (0 before the first translucent render).
    */
   vtkIdType GetNumberOfFragments() const;
@@ -96,7 +116,7 @@ public:
   bool GetLastRenderDrewFragments() const;
 
   /// Seconds of the last tree build, of the last order update + index upload, and of the last
-  /// index upload alone (gathering the triangles in order + glBufferData).
+  /// index upload alone (gathering the triangles in order + glBufferData or glBufferSubData).
   double GetLastBuildTime() const;
   double GetLastOrderTime() const;
   double GetLastUploadTime() const;
@@ -130,6 +150,7 @@ private:
   vtkBSPSortedPolyDataMapper(const vtkBSPSortedPolyDataMapper&) = delete;
   void operator=(const vtkBSPSortedPolyDataMapper&) = delete;
 
+  bool PartialIndexUploads = true;
   struct Internals;
   std::unique_ptr<Internals> Internal;
 };

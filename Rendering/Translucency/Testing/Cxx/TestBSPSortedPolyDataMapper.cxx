@@ -3,6 +3,7 @@
 //  (a) same image as vtkBSPSortFilter + vtkPolyDataMapper (same exact order, near-identical);
 //  (b) within 0.5/255 mean error of dual depth peeling with 100 peels;
 //  (c) camera unchanged -> no re-sort, no index upload; camera moved -> no vertex buffer rebuild;
+//  (e) small camera steps send only the changed index ranges, and draw what a full upload draws;
 //  (d) an opaque actor builds no tree at all; one that turned translucent and then opaque again
 //      draws its input (not the split fragments) and keeps its tree.
 #include "vtkBSPSortFilter.h"
@@ -25,6 +26,7 @@
 #include <vtkRendererCollection.h>
 #include <vtkSphereSource.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <iostream>
 #include <string>
@@ -173,6 +175,46 @@ int TestBSPSortedPolyDataMapper(int, char*[])
   source->SetTriangleCount(10000);
   window->Render();
   ok &= Check(sortedMapper->GetNumberOfTreeBuilds() == 2, "tree rebuilt for a new input");
+
+  // (e) Small camera steps move few fragments: only the changed index ranges are sent, and the
+  // image is the one a new mapper (one full upload at that camera) draws, pixel for pixel.
+  vtkNew<vtkSphereSource> ball;
+  ball->SetThetaResolution(96);
+  ball->SetPhiResolution(64);
+  sortedMapper->SetInputConnection(ball->GetOutputPort());
+  sortedActor->GetProperty()->SetOpacity(0.5);
+  sortedRenderer->ResetCamera();
+  RenderWith(window, sortedRenderer);
+  const vtkIdType partials = sortedMapper->GetNumberOfPartialIndexUploads();
+  const vtkIdType allIndices = sortedMapper->GetLastUploadIndexCount();
+  vtkIdType largestSent = 0;
+  for (int step = 0; step < 6; ++step)
+  {
+    camera->Azimuth(0.5);
+    camera->Elevation(0.25);
+    camera->OrthogonalizeViewUp();
+    RenderWith(window, sortedRenderer);
+    largestSent = std::max(largestSent, sortedMapper->GetLastUploadIndexCount());
+  }
+  const vtkIdType partialSteps = sortedMapper->GetNumberOfPartialIndexUploads() - partials;
+  ok &= Check(partialSteps >= 3 && largestSent < allIndices,
+    "small steps: " + std::to_string(partialSteps) + " of 6 uploads partial, at most " +
+      std::to_string(largestSent) + " of " + std::to_string(allIndices) + " indices sent");
+  auto stepped = RenderWith(window, sortedRenderer);
+  vtkNew<vtkBSPSortedPolyDataMapper> freshMapper;
+  freshMapper->SetInputConnection(ball->GetOutputPort());
+  vtkNew<vtkActor> freshActor;
+  freshActor->SetMapper(freshMapper);
+  freshActor->GetProperty()->SetOpacity(0.5);
+  vtkNew<vtkRenderer> freshRenderer;
+  freshRenderer->AddActor(freshActor);
+  vtkNew<vtkOrderedTranslucentPass> freshPass;
+  freshRenderer->SetPass(freshPass);
+  freshRenderer->SetActiveCamera(camera);
+  auto fresh = RenderWith(window, freshRenderer);
+  const auto vsFresh = st::CompareImages(stepped, fresh);
+  ok &= Check(freshMapper->GetNumberOfPartialIndexUploads() == 0 && vsFresh.meanAbsError == 0.0,
+    "after partial uploads: the image of one full upload: " + vsFresh.Summary());
 
   // (d) An opaque actor is never sorted and builds no tree.
   vtkNew<vtkSphereSource> sphere;
