@@ -241,7 +241,7 @@ def convert(data, patch_level):
                 n = [(b[1] - a[1]) * (c[2] - a[2]) - (b[2] - a[2]) * (c[1] - a[1]),
                      (b[2] - a[2]) * (c[0] - a[0]) - (b[0] - a[0]) * (c[2] - a[2]),
                      (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0])]
-                along = sum(n[k] * face[20 + k] for k in range(3))
+                along = sum(n[k] * face[21 + k] for k in range(3))
                 winding_checked[0 if along >= 0 else 1] += 1
         elif kind == FACE_PATCH:
             width, height = size
