@@ -17,8 +17,11 @@ Needs the converted OpenArena maps (`bash scripts/fetch-data.sh --levels`). Per 
 Over-draw = parts kept / parts visible per camera; the table gives the median and the worst over
 the cameras, the frame-time ratio octree / occlusion likewise (per camera, then median and worst).
 
-    python3 scripts/level-occlusion-report.py [--tool PATH] [--levels a,b] [--render-cameras N]
-        [--repeat N] [--out-dir DIR]
+    python3 scripts/level-occlusion-report.py [--tool PATH] [--levels a,b] [--exact-cameras N]
+        [--render-cameras N] [--repeat N] [--with-none] [--steps exact,time] [--out-dir DIR]
+
+--with-none also times `--cull none` (the whole level as one actor: one draw call, no culling),
+the floor a culler of many actors competes with.
 
 Writes DIR/levels-occlusion.json (every number) and prints the Markdown table of BENCHMARKS.md.
 Times depend on the machine and its load: compare rows within one run.
@@ -112,6 +115,11 @@ def main():
         os.environ.get("SCENEVIS_BUILD_DIR", os.path.join(ROOT, "build")), "bin", "scenevis"))
     parser.add_argument("--levels", default="", help="comma-separated map names (default: all)")
     parser.add_argument("--render-cameras", type=int, default=12)
+    parser.add_argument("--with-none", action="store_true",
+                        help="also time --cull none: the whole level as one actor, one draw call")
+    parser.add_argument("--exact-cameras", type=int, default=0,
+                        help="at most this many cameras (evenly spaced) in the exact step "
+                        "(default 0: all)")
     parser.add_argument("--repeat", type=int, default=1)
     parser.add_argument("--out-dir", default=".")
     parser.add_argument("--steps", default="exact,time",
@@ -127,6 +135,7 @@ def main():
     if not levels:
         sys.exit("level-occlusion-report: no levels fetched (bash scripts/fetch-data.sh --levels)")
     results = {}
+    os.makedirs(args.out_dir, exist_ok=True)
     saved = os.path.join(args.out_dir, "levels-occlusion.json")
     if os.path.exists(saved):
         with open(saved) as f:
@@ -139,21 +148,29 @@ def main():
             level.update({"cameras": len(cameras), **level_info(scene)})
             results[name] = level
             if "exact" in steps:
+                exact_cameras = spread(cameras, args.exact_cameras)
+                subset = os.path.join(workdir, f"{name}-exact-cameras.json")
+                with open(subset, "w") as f:
+                    json.dump(exact_cameras, f)
+                level["exact_cameras"] = len(exact_cameras)
                 for mode in MODES:
-                    level[f"{mode}_exact"] = accuracy(args.tool, scene, cameras_path, mode)
+                    level[f"{mode}_exact"] = accuracy(args.tool, scene, subset, mode)
             if "time" not in steps:
                 print(f"level-occlusion-report: {name} done", file=sys.stderr)
+                with open(saved, "w") as f:
+                    json.dump(results, f, indent=1)
                 continue
             timed_cameras = spread(cameras, args.render_cameras)
             doubled = os.path.join(workdir, f"{name}-timed-cameras.json")
             json.dump(timed_cameras + timed_cameras, open(doubled, "w"))
             level["render_cameras"] = len(timed_cameras)
-            runs = {mode: [] for mode in MODES}
+            timed_modes = MODES + (("none",) if args.with_none else ())
+            runs = {mode: [] for mode in timed_modes}
             for _ in range(args.repeat):
-                for mode in MODES:
+                for mode in timed_modes:
                     runs[mode].append(frames(args.tool, scene, doubled, len(timed_cameras), mode,
                                              workdir))
-            for mode in MODES:
+            for mode in timed_modes:
                 best = []
                 for i in range(len(timed_cameras)):
                     best.append(min((r[i] for r in runs[mode]), key=lambda f: f["frame_ms"]))
@@ -170,13 +187,14 @@ def main():
 
     print("| level | triangles | surfaces | cameras | octree kept / visible (median, worst) | "
           "occlusion kept / visible (median, worst) | false negatives (parts, cells, pixels) | "
-          "octree frame ms | occlusion frame ms | ratio (median, worst) | occlusion cull ms |")
-    print("|---|---|---|---|---|---|---|---|---|---|---|")
+          "octree frame ms | occlusion frame ms | ratio (median, worst) | occlusion cull ms | one mesh ms |")
+    print("|---|---|---|---|---|---|---|---|---|---|---|---|")
     for name, level in results.items():
         if "occlusion_exact" not in level or "occlusion_frames" not in level:
             continue
         row = [name, f"{level.get('triangles', '?'):,}", f"{level.get('surfaces', '?'):,}",
-               f"{level['cameras']} ({level['render_cameras']} timed)"]
+               f"{level['cameras']} ({level.get('exact_cameras', level['cameras'])} exact, "
+               f"{level['render_cameras']} timed)"]
         for mode in MODES:
             exact = level[f"{mode}_exact"]
             ratios = [e["drawn_props"] / e["visible_props"] for e in exact if e["visible_props"]]
@@ -196,6 +214,8 @@ def main():
         med, worst = median_worst(ratio, min)
         row.append(f"**{med:.1f}×**, {worst:.1f}×")
         row.append(f"{statistics.median(f['cull_ms'] for f in level['occlusion_frames']):.1f}")
+        none = [f["frame_ms"] for f in level.get("none_frames", [])]
+        row.append(f"{statistics.median(none):.0f}" if none else "")
         print("| " + " | ".join(row) + " |")
 
 
