@@ -38,6 +38,7 @@ stderr and exit code 1; usage errors exit 2. Python 3 standard library only.
 """
 import json
 import math
+import os
 import struct
 import sys
 import zlib
@@ -317,7 +318,6 @@ def write_vtp(path, scene):
         out.write(header.encode("ascii"))
         out.write(payload)
         out.write(b"\n</AppendedData>\n</VTKFile>\n")
-    import os
     os.replace(path + ".tmp", path)
 
 
@@ -356,7 +356,6 @@ def main(argv):
     with open(cameras_path + ".tmp", "w") as f:
         json.dump(scene["cameras"], f, indent=1)
         f.write("\n")
-    import os
     os.replace(cameras_path + ".tmp", cameras_path)
     skipped = ", ".join(f"{count} {reason}" for reason, count in sorted(scene["skipped"].items()))
     print(f"q3bsp-to-vtp: {source}: {len(scene['part_ids'])} triangles, {scene['surfaces']} "
