@@ -11,6 +11,7 @@
 # QUIET_STDERR=ON: stderr must be empty too (no progress bar when stderr is not a terminal).
 # DATA_KEY=key: the command needs that key of the fetched real data (scripts/fetch-data.sh); when
 # the data cache's manifest lacks it, prints "SKIPPED: ..." (the test's SKIP_REGULAR_EXPRESSION).
+# With DATA_KEY, an argument DATA:other-key of COMMAND becomes that key's path (skipped likewise).
 # Usage: cmake -DCOMMAND=... -DCHECKS=... [-DJSON_FILE=...] [-DQUIET_STDERR=ON] [-DDATA_KEY=...]
 #        -P expect_json.cmake
 if(DATA_KEY)
@@ -27,6 +28,23 @@ if(DATA_KEY)
     message("SKIPPED: '${DATA_KEY}' is not fetched (bash scripts/fetch-data.sh)")
     return()
   endif()
+  # An argument DATA:key is the path of that key of the cache (e.g. a level's camera file).
+  set(resolved "")
+  foreach(arg IN LISTS COMMAND)
+    if(arg MATCHES "^DATA:(.+)$")
+      set(key "${CMAKE_MATCH_1}")
+      file(STRINGS "${manifest}" entry REGEX "^${key}=")
+      if(NOT entry)
+        message("SKIPPED: '${key}' is not fetched (bash scripts/fetch-data.sh)")
+        return()
+      endif()
+      string(REGEX REPLACE "^${key}=" "" path "${entry}")
+      get_filename_component(cache "${manifest}" DIRECTORY)
+      set(arg "${cache}/${path}")
+    endif()
+    list(APPEND resolved "${arg}")
+  endforeach()
+  set(COMMAND "${resolved}")
 endif()
 if(DEFINED JSON_FILE)
   file(REMOVE "${JSON_FILE}") # a stale report must not pass for a new one

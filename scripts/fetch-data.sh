@@ -14,20 +14,28 @@
 #   derived/                      files we generate from the above (bunny.ply: the npm bunny
 #                                 module is a decimated bunny, 1,839 points / 3,674 triangles;
 #                                 the full 69,451-triangle scan is bunny-stl)
+#   derived/levels/               with --levels: the OpenArena maps (bsp/<map>.bsp, taken from
+#                                 the package's pak6-patch085.pk3) converted by
+#                                 scripts/q3bsp-to-vtp.py: <map>.vtp (one PartId part per
+#                                 surface) and <map>-cameras.json (one camera per spawn point)
 #   manifest.txt                  key=relative/path, one per line, sorted by key
 #
 # Sources and licences: assimp-testmodels (Debian, assimp's test corpus, various licences, see
 # usr/share/doc/assimp-testmodels/copyright), stl-models@0.12.0 and bunny@1.0.1 (npm; the Stanford
 # bunny is from the Stanford 3D Scanning Repository), kicad-packages3d (Debian, CC-BY-SA 4.0 with
-# exception).
+# exception), openarena-085-data (Debian, GPL-2+, see usr/share/doc/openarena-085-data/copyright;
+# its pak6-patch085.pk3 holds the 12 maps of OpenArena 0.8.5; openarena-data's pak0.pk3 has none).
 #
-# Usage: scripts/fetch-data.sh [--kicad] [--dir DIR] [--help]
+# Usage: scripts/fetch-data.sh [--kicad] [--levels] [--dir DIR] [--help]
 #   --kicad    also fetch kicad-packages3d (379 MB download; only *.wrl files are kept)
+#   --levels   also fetch openarena-085-data (37 MB download) and convert its 12 Quake-3 maps
+#              (keys level-<map> and level-<map>-cameras; python3 needed)
 #   --dir DIR  cache directory (overrides SCENEVIS_DATA_DIR)
 set -euo pipefail
 
 DATA_DIR="${SCENEVIS_DATA_DIR:-$HOME/.cache/scenevis-data}"
 WITH_KICAD=0
+WITH_LEVELS=0
 
 usage()
 {
@@ -37,6 +45,7 @@ usage()
 while [ $# -gt 0 ]; do
   case "$1" in
     --kicad) WITH_KICAD=1 ;;
+    --levels) WITH_LEVELS=1 ;;
     --dir)
       [ $# -ge 2 ] || { echo "fetch-data: --dir needs an argument" >&2; exit 2; }
       DATA_DIR="$2"
@@ -160,11 +169,56 @@ derive_bunny_ply()
   ' "$DATA_DIR/npm/node_modules/bunny" "$out"
 }
 
+# Quake-3 levels: the maps' .bsp files out of the .pk3 (a zip), each converted into a .vtp and
+# a camera file. The stamp names the package and the converter's checksum, so a new converter
+# converts again.
+derive_levels()
+{
+  local pk3="$DATA_DIR/debian/openarena-085-data/usr/share/games/openarena/baseoa/pak6-patch085.pk3"
+  local out="$DATA_DIR/derived/levels"
+  local converter
+  converter="$(cd "$(dirname "$0")" && pwd)/q3bsp-to-vtp.py"
+  [ -f "$pk3" ] || die "openarena-085-data has no $pk3"
+  local want
+  want="$(cat "$DATA_DIR/debian/openarena-085-data/.scenevis-stamp") $(sha256sum "$converter" | cut -c1-16)"
+  if [ -f "$out/.scenevis-stamp" ] && [ "$(cat "$out/.scenevis-stamp")" = "$want" ]; then
+    log "levels: present ($(ls "$out"/*.vtp | wc -l) maps)"
+    return 0
+  fi
+  command -v python3 > /dev/null || die "'python3' not found (needed to convert the levels)"
+  log "levels: extracting the maps and converting them"
+  rm -rf "$out.tmp"
+  mkdir -p "$out.tmp/bsp"
+  python3 -c '
+import os, sys, zipfile
+with zipfile.ZipFile(sys.argv[1]) as pk3:
+    for entry in pk3.infolist():
+        if entry.filename.startswith("maps/") and entry.filename.endswith(".bsp"):
+            with open(os.path.join(sys.argv[2], os.path.basename(entry.filename)), "wb") as f:
+                f.write(pk3.read(entry))
+' "$pk3" "$out.tmp/bsp"
+  local bsp map
+  for bsp in "$out.tmp"/bsp/*.bsp; do
+    map="$(basename "$bsp" .bsp)"
+    python3 "$converter" "$bsp" "$out.tmp/$map.vtp" "$out.tmp/$map-cameras.json" \
+      > "$out.tmp/$map.log" || die "converting $map failed"
+    log "level $map: $(sed 's/^q3bsp-to-vtp: [^:]*: //' "$out.tmp/$map.log")"
+  done
+  echo "$want" > "$out.tmp/.scenevis-stamp"
+  rm -rf "$out"
+  mv "$out.tmp" "$out"
+}
+
 start=$(date +%s)
 command -v npm > /dev/null || die "'npm' not found (needed for stl-models and bunny)"
 fetch_deb assimp-testmodels 1
 if [ "$WITH_KICAD" = 1 ]; then
   fetch_deb kicad-packages3d 0 '*.wrl' './usr/share/doc/*'
+fi
+if [ "$WITH_LEVELS" = 1 ]; then
+  fetch_deb openarena-085-data 0 './usr/share/games/openarena/baseoa/pak6-patch085.pk3' \
+    './usr/share/doc/*'
+  derive_levels
 fi
 fetch_npm
 derive_bunny_ply
@@ -189,6 +243,15 @@ declare -A files=(
 )
 if [ -d "$DATA_DIR/debian/kicad-packages3d" ]; then
   files[kicad-wrl-dir]="debian/kicad-packages3d/usr/share/kicad/3dmodels"
+fi
+# The levels stay listed once converted, also in runs without --levels.
+if [ -f "$DATA_DIR/derived/levels/.scenevis-stamp" ]; then
+  files[levels-dir]="derived/levels"
+  for level in "$DATA_DIR"/derived/levels/*.vtp; do
+    map="$(basename "$level" .vtp)"
+    files[level-$map]="derived/levels/$map.vtp"
+    files[level-$map-cameras]="derived/levels/$map-cameras.json"
+  done
 fi
 
 manifest="$DATA_DIR/manifest.txt"

@@ -8,10 +8,11 @@ build=${SCENEVIS_BUILD_DIR:-$root/build}
 start=$(date +%s)
 bash "$root/scripts/install-deps.sh"
 bash "$root/scripts/build.sh"
-# Real third-party models (Debian's assimp-testmodels, npm's stl-models and bunny; ~120 MB in
+# Real third-party models (Debian's assimp-testmodels, npm's stl-models and bunny, and the
+# OpenArena levels: a 37 MB download converted once in ~10 s of CPU; ~215 MB in
 # ~/.cache/scenevis-data, not the 1.2 GB KiCad library): the reader and real-model tests use them.
 # Without them those tests are skipped, so a failed fetch is reported loudly, not hidden.
-if ! bash "$root/scripts/fetch-data.sh" > "$build.fetch-data.log" 2>&1; then
+if ! bash "$root/scripts/fetch-data.sh" --levels > "$build.fetch-data.log" 2>&1; then
   cat "$build.fetch-data.log" >&2
   echo "test: WARNING: fetching the real models failed; tests that need them will be SKIPPED" >&2
 fi
