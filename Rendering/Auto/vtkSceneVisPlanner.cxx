@@ -174,6 +174,13 @@ public:
   vtkNew<vtkCallbackCommand> DirtyCommand;
   std::unordered_map<vtkObject*, std::pair<vtkWeakPointer<vtkObject>, unsigned long>> Observed;
   bool SceneDirty = true;
+  /// Objects that fired ModifiedEvent since the last reading, and the actors depending on each
+  /// observed object (addresses only looked up, never followed: an actor may be gone).
+  std::unordered_set<vtkObject*> DirtyObjects;
+  std::unordered_map<vtkObject*, std::unordered_set<vtkActor*>> Dependents;
+  /// Sums over the counted entries.
+  vtkIdType SumPolygons = 0, SumTriangles = 0, SumTranslucent = 0;
+  std::size_t SumParts = 0;
   bool Busy = false; ///< inside Plan(): our own changes are not the application's
   vtkMTimeType PropsTime = 0;
   vtkMTimeType CameraTime = 0;
@@ -211,16 +218,31 @@ public:
 
   vtkInternals() { this->OrderedPass->SetTranslucentPass(this->SortedPass); }
 
-  static void OnModified(vtkObject*, unsigned long, void* clientData, void*)
+  static void OnModified(vtkObject* caller, unsigned long, void* clientData, void*)
   {
     auto* self = static_cast<vtkInternals*>(clientData);
     if (!self->Busy)
+    {
       self->SceneDirty = true;
+      self->DirtyObjects.insert(caller);
+    }
   }
 
-  void Observe(vtkObject* object)
+  /// Observes @p object for the actor @p dependent (its numbers are read again when it changes).
+  void Observe(vtkObject* object, vtkActor* dependent)
   {
-    if (!object || this->Observed.count(object))
+    if (!object)
+      return;
+    auto found = this->Observed.find(object);
+    if (found != this->Observed.end() && !found->second.first)
+    {
+      // A new object where a dead one was: observe it, and forget the dead one's dependents.
+      this->Observed.erase(found);
+      this->Dependents.erase(object);
+      found = this->Observed.end();
+    }
+    this->Dependents[object].insert(dependent);
+    if (found != this->Observed.end())
       return;
     const unsigned long tag = object->AddObserver(vtkCommand::ModifiedEvent, this->DirtyCommand);
     this->Observed.emplace(object, std::make_pair(vtkWeakPointer<vtkObject>(object), tag));
@@ -232,6 +254,8 @@ public:
       if (vtkObject* object = entry.second.first)
         object->RemoveObserver(entry.second.second);
     this->Observed.clear();
+    this->Dependents.clear();
+    this->DirtyObjects.clear();
   }
 
   vtkMapper* ApplicationMapper(vtkActor* actor)
@@ -248,8 +272,15 @@ public:
     return current;
   }
 
-  /// Reads the actors again; only those whose times changed are measured again.
+  /// Reads the actors again; only those whose times changed are measured again. O(actors).
   void Inspect(vtkRenderer* ren);
+  /// Reads again only the actors that depend on objects that changed, if the props are the same
+  /// and stayed visible; false when a full Inspect() is needed. O(changed actors).
+  bool Refresh();
+  /// Measures one actor (its mapper's pipeline brought up to date, as the cullers do).
+  void Read(ActorEntry& entry);
+  void Add(const ActorEntry& entry, int sign);
+  void UpdateFacts();
   /// Measures the view facts (ManyProps+ actors only).
   void MeasureView(vtkRenderer* ren);
   void Install(vtkRenderer* ren, const std::string& cull, const std::string& translucency);
@@ -260,111 +291,159 @@ public:
   void Adopt(const vtkScenePlanChoice& cull, const vtkScenePlanChoice& translucency);
 };
 
+void vtkSceneVisPlanner::vtkInternals::Read(ActorEntry& entry)
+{
+  vtkActor* actor = entry.Actor;
+  entry.Mapper = this->ApplicationMapper(actor);
+  entry.Input = nullptr;
+  entry.Counted = false;
+  entry.Polygons = entry.Triangles = entry.TranslucentPolygons = 0;
+  entry.Box = vtkScenePlanPartBox();
+  this->Observe(actor, actor);
+  this->Observe(entry.Mapper, actor);
+  if (!entry.Mapper || entry.Mapper->GetNumberOfInputConnections(0) == 0)
+  {
+    if (this->WarnedNoInput.insert(actor).second)
+      vtkWarningWithObjectMacro(this->Self, << "actor " << actor << " has "
+                                            << (entry.Mapper ? "a mapper without input"
+                                                             : "no mapper")
+                                            << ": left out of the plan");
+    entry.ActorTime = actor->GetMTime();
+    entry.MapperTime = entry.Mapper ? entry.Mapper->GetMTime() : 0;
+    return;
+  }
+  // GetBounds() brings the mapper's pipeline up to date (as the cullers do).
+  const double* bounds = actor->GetBounds();
+  entry.Input = entry.Mapper->GetInputDataObject(0, 0);
+  entry.ActorTime = actor->GetMTime();
+  entry.MapperTime = entry.Mapper->GetMTime();
+  entry.InputTime = entry.Input ? entry.Input->GetMTime() : 0;
+  this->Observe(actor->GetProperty(), actor);
+  this->Observe(actor->GetUserMatrix(), actor);
+  this->Observe(entry.Input, actor);
+  auto* pd = vtkPolyData::SafeDownCast(entry.Input);
+  if (!pd || !vtkPolyDataMapper::SafeDownCast(entry.Mapper))
+    return; // not a polydata mapper: not the planner's business
+  entry.Counted = true;
+  entry.Polygons = pd->GetNumberOfPolys() + pd->GetNumberOfStrips();
+  entry.Triangles = TrianglesOf(pd->GetPolys()) + TrianglesOf(pd->GetStrips());
+  entry.TranslucentPolygons = actor->GetProperty()->GetOpacity() < 1.0
+    ? entry.Polygons
+    : TranslucentByScalars(entry.Mapper, pd, entry.Polygons);
+  if (bounds)
+    std::copy(bounds, bounds + 6, entry.Box.Box);
+  if (bounds && std::any_of(bounds, bounds + 6, [](double v) { return std::isnan(v); }) &&
+    this->WarnedNaN.insert(actor).second)
+    vtkWarningWithObjectMacro(this->Self, << "actor " << actor
+                                          << " has NaN bounds: counted in view, covering "
+                                             "nothing");
+  entry.Box.Triangles = entry.Triangles;
+}
+
+void vtkSceneVisPlanner::vtkInternals::Add(const ActorEntry& entry, int sign)
+{
+  if (!entry.Counted)
+    return;
+  this->SumParts = sign > 0 ? this->SumParts + 1 : this->SumParts - 1;
+  this->SumPolygons += sign * entry.Polygons;
+  this->SumTriangles += sign * entry.Triangles;
+  this->SumTranslucent += sign * entry.TranslucentPolygons;
+  this->TranslucentActors += sign * (entry.TranslucentPolygons > 0 ? 1 : 0);
+}
+
+void vtkSceneVisPlanner::vtkInternals::UpdateFacts()
+{
+  vtkScenePlanFacts facts;
+  facts.parts = this->SumParts;
+  facts.polygons = this->SumPolygons;
+  facts.triangles = this->SumTriangles;
+  facts.translucentFraction = facts.polygons > 0
+    ? static_cast<double>(this->SumTranslucent) / static_cast<double>(facts.polygons)
+    : 0.0;
+  this->Facts = facts;
+  ++this->Self->InspectionCount;
+}
+
 void vtkSceneVisPlanner::vtkInternals::Inspect(vtkRenderer* ren)
 {
   std::vector<ActorEntry> entries;
   std::unordered_map<vtkProp*, std::size_t> entryOf;
   vtkPropCollection* props = ren->GetViewProps();
   entries.reserve(static_cast<std::size_t>(props->GetNumberOfItems()));
+  this->SumParts = 0;
+  this->SumPolygons = this->SumTriangles = this->SumTranslucent = 0;
+  this->TranslucentActors = 0;
   vtkCollectionSimpleIterator it;
   props->InitTraversal(it);
   while (vtkProp* prop = props->GetNextProp(it))
   {
-    if (!prop->GetVisibility())
-      continue;
     auto* actor = vtkActor::SafeDownCast(prop);
     if (!actor)
       continue;
+    this->Observe(actor, actor); // hidden ones too: showing one is a change
+    if (!actor->GetVisibility())
+      continue;
     ActorEntry entry;
     entry.Actor = actor;
-    entry.Mapper = this->ApplicationMapper(actor);
     const auto old = this->EntryOf.find(prop);
     const ActorEntry* previous = old == this->EntryOf.end() ? nullptr : &this->Entries[old->second];
-    if (!entry.Mapper || entry.Mapper->GetNumberOfInputConnections(0) == 0)
-    {
-      if (this->WarnedNoInput.insert(prop).second)
-        vtkWarningWithObjectMacro(this->Self, << "actor " << prop << " has "
-                                              << (entry.Mapper ? "a mapper without input"
-                                                               : "no mapper")
-                                              << ": left out of the plan");
-      this->Observe(actor);
-      this->Observe(entry.Mapper);
-      entryOf[prop] = entries.size();
-      entries.push_back(entry);
-      continue;
-    }
-    entry.ActorTime = actor->GetMTime();
-    entry.MapperTime = entry.Mapper->GetMTime();
-    entry.Input = entry.Mapper->GetInputDataObject(0, 0);
-    entry.InputTime = entry.Input ? entry.Input->GetMTime() : 0;
-    if (previous && previous->Mapper == entry.Mapper && previous->Input == entry.Input &&
-      previous->ActorTime == entry.ActorTime && previous->MapperTime == entry.MapperTime &&
-      previous->InputTime == entry.InputTime && previous->Counted)
-    {
-      entryOf[prop] = entries.size();
-      entries.push_back(*previous);
-      continue;
-    }
-    // Measure: GetBounds() brings the mapper's pipeline up to date (as the cullers do).
-    const double* bounds = actor->GetBounds();
-    entry.Input = entry.Mapper->GetInputDataObject(0, 0);
-    auto* pd = vtkPolyData::SafeDownCast(entry.Input);
-    entry.ActorTime = actor->GetMTime();
-    entry.MapperTime = entry.Mapper->GetMTime();
-    entry.InputTime = entry.Input ? entry.Input->GetMTime() : 0;
-    this->Observe(actor);
-    this->Observe(actor->GetProperty());
-    this->Observe(actor->GetUserMatrix());
-    this->Observe(entry.Mapper);
-    this->Observe(entry.Input);
-    if (!pd || !vtkPolyDataMapper::SafeDownCast(entry.Mapper))
-    {
-      // Not a polydata mapper: not the planner's business.
-      entryOf[prop] = entries.size();
-      entries.push_back(entry);
-      continue;
-    }
-    entry.Counted = true;
-    entry.Polygons = pd->GetNumberOfPolys() + pd->GetNumberOfStrips();
-    entry.Triangles = TrianglesOf(pd->GetPolys()) + TrianglesOf(pd->GetStrips());
-    entry.TranslucentPolygons = actor->GetProperty()->GetOpacity() < 1.0
-      ? entry.Polygons
-      : TranslucentByScalars(entry.Mapper, pd, entry.Polygons);
-    if (bounds)
-      std::copy(bounds, bounds + 6, entry.Box.Box);
-    if (bounds && std::any_of(bounds, bounds + 6, [](double v) { return std::isnan(v); }) &&
-      this->WarnedNaN.insert(prop).second)
-      vtkWarningWithObjectMacro(this->Self, << "actor " << prop
-                                            << " has NaN bounds: counted in view, covering "
-                                               "nothing");
-    entry.Box.Triangles = entry.Triangles;
+    vtkMapper* mapper = this->ApplicationMapper(actor);
+    vtkDataObject* input =
+      mapper && mapper->GetNumberOfInputConnections(0) > 0 ? mapper->GetInputDataObject(0, 0) : nullptr;
+    if (previous && previous->Counted && previous->Mapper == mapper && previous->Input == input &&
+      previous->ActorTime == actor->GetMTime() && previous->MapperTime == mapper->GetMTime() &&
+      previous->InputTime == (input ? input->GetMTime() : 0))
+      entry = *previous;
+    else
+      this->Read(entry);
     entryOf[prop] = entries.size();
     entries.push_back(entry);
+    this->Add(entry, +1);
   }
   // Objects of actors that left stay observed (harmless: one more reading when they change)
   // until the planner leaves the renderer.
   this->Entries.swap(entries);
   this->EntryOf.swap(entryOf);
+  this->DirtyObjects.clear();
+  this->UpdateFacts();
+}
 
-  vtkScenePlanFacts facts;
-  facts.parts = 0;
-  vtkIdType translucent = 0;
-  this->TranslucentActors = 0;
-  for (const ActorEntry& entry : this->Entries)
+bool vtkSceneVisPlanner::vtkInternals::Refresh()
+{
+  std::unordered_set<vtkActor*> dirty;
+  for (vtkObject* object : this->DirtyObjects)
   {
-    if (!entry.Counted)
-      continue;
-    ++facts.parts;
-    facts.polygons += entry.Polygons;
-    facts.triangles += entry.Triangles;
-    translucent += entry.TranslucentPolygons;
-    this->TranslucentActors += entry.TranslucentPolygons > 0 ? 1 : 0;
+    auto found = this->Dependents.find(object);
+    if (found != this->Dependents.end())
+      dirty.insert(found->second.begin(), found->second.end());
   }
-  facts.translucentFraction = facts.polygons > 0
-    ? static_cast<double>(translucent) / static_cast<double>(facts.polygons)
-    : 0.0;
-  this->Facts = facts;
-  ++this->Self->InspectionCount;
+  this->DirtyObjects.clear();
+  std::vector<std::size_t> changed;
+  for (vtkActor* actor : dirty)
+  {
+    auto found = this->EntryOf.find(actor);
+    if (found == this->EntryOf.end())
+    {
+      // Not counted: hidden (perhaps shown now) or gone. Only a hidden actor of the renderer
+      // matters, and only the full reading can tell.
+      if (this->Self->GetRenderer() &&
+        this->Self->GetRenderer()->GetViewProps()->IsItemPresent(actor))
+        return false;
+      continue;
+    }
+    if (!actor->GetVisibility())
+      return false;
+    changed.push_back(found->second);
+  }
+  for (const std::size_t index : changed)
+  {
+    ActorEntry& entry = this->Entries[index];
+    this->Add(entry, -1);
+    this->Read(entry);
+    this->Add(entry, +1);
+  }
+  this->UpdateFacts();
+  return true;
 }
 
 void vtkSceneVisPlanner::vtkInternals::MeasureView(vtkRenderer* ren)
@@ -675,10 +754,12 @@ void vtkSceneVisPlanner::Plan()
   in.Busy = true;
   // The scene: the prop collection and what the observed objects said.
   vtkPropCollection* props = ren->GetViewProps();
-  bool sceneChanged = in.SceneDirty || props->GetMTime() != in.PropsTime || !in.Planned;
+  const bool structure = props->GetMTime() != in.PropsTime || !in.Planned;
+  bool sceneChanged = structure || in.SceneDirty;
   if (sceneChanged)
   {
-    in.Inspect(ren);
+    if (structure || !in.Refresh())
+      in.Inspect(ren);
     in.SceneDirty = false;
     in.PropsTime = props->GetMTime();
     if (in.Facts.parts == 0)

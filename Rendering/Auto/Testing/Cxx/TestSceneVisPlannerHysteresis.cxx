@@ -6,8 +6,8 @@
 //      threshold, not every frame;
 //  (d) a camera held just past the threshold (within the margin): no change;
 //  (e) a camera that jumps between overview and close view every render: no change;
-//  (f) an actor added or moved: the scene is read again at the next render (the changed actor
-//      only), without a new plan when the decision stays.
+//  (f) an actor added, moved, hidden or shown: the scene is read again at the next render (a moved
+//      actor alone), without a new plan when the decision stays.
 #include "vtkSceneVisPlanner.h"
 
 #include "PlannerTesting.h"
@@ -195,5 +195,13 @@ int TestSceneVisPlannerHysteresis(int, char*[])
   window->Render();
   ok &= Check(planner->GetInspectionCount() == before + 2 && planner->GetPlanCount() == plansBefore,
     "an actor moved: read once, the plan stays (" + std::string(planner->GetCullMethod()) + ")");
+  grid.actors[5]->VisibilityOff();
+  window->Render();
+  const std::size_t hidden = planner->GetFacts().parts;
+  grid.actors[5]->VisibilityOn();
+  window->Render();
+  ok &= Check(hidden == 576 && planner->GetFacts().parts == 577,
+    "an actor hidden, then shown: " + std::to_string(hidden) + ", then " +
+      std::to_string(planner->GetFacts().parts) + " parts");
   return vtkOutput.ExitCode(ok ? EXIT_SUCCESS : EXIT_FAILURE);
 }

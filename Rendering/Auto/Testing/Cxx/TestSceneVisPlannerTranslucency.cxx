@@ -20,17 +20,15 @@
 #include "scenevis/testing/IdBuffer.h"
 #include "scenevis/testing/ImageCompare.h"
 #include "scenevis/testing/RenderWindow.h"
+#include "scenevis/testing/Scenes.h"
 #include "scenevis/testing/StrictVtkOutput.h"
 
 #include <vtkCamera.h>
-#include <vtkCubeSource.h>
 #include <vtkImageData.h>
 #include <vtkNew.h>
 #include <vtkRenderWindow.h>
 #include <vtkRenderer.h>
 #include <vtkRendererCollection.h>
-#include <vtkSphereSource.h>
-#include <vtkTriangleFilter.h>
 
 #include <cstdlib>
 #include <iostream>
@@ -47,18 +45,6 @@ vtkSmartPointer<vtkImageData> RenderWith(vtkRenderWindow* window, vtkRenderer* r
   window->AddRenderer(renderer);
   renderer->ResetCameraClippingRange();
   return st::CaptureImage(window);
-}
-
-vtkSmartPointer<vtkActor> MakeActor(vtkAlgorithm* source, double r, double g, double b, double a)
-{
-  auto mapper = vtkSmartPointer<vtkPolyDataMapper>::New();
-  mapper->SetInputConnection(source->GetOutputPort());
-  auto actor = vtkSmartPointer<vtkActor>::New();
-  actor->SetMapper(mapper);
-  actor->GetProperty()->SetColor(r, g, b);
-  actor->GetProperty()->SetOpacity(a);
-  actor->GetProperty()->SetSpecular(0.0);
-  return actor;
 }
 
 void SetView(vtkRenderer* renderer, double azimuth, double elevation)
@@ -103,30 +89,14 @@ int TestSceneVisPlannerTranslucency(int, char*[])
   vtkSmartPointer<vtkRenderWindow> window = st::MakeRenderWindow(300, 300);
 
   // --- (a) several translucent actors -------------------------------------------------------
-  vtkNew<vtkSphereSource> sphereA;
-  sphereA->SetCenter(-0.3, 0, 0);
-  sphereA->SetRadius(0.8);
-  sphereA->SetThetaResolution(24);
-  sphereA->SetPhiResolution(24);
-  vtkNew<vtkSphereSource> sphereB;
-  sphereB->SetCenter(0.35, 0.1, 0.1);
-  sphereB->SetRadius(0.7);
-  sphereB->SetThetaResolution(24);
-  sphereB->SetPhiResolution(24);
-  vtkNew<vtkCubeSource> slab;
-  slab->SetXLength(2.6);
-  slab->SetYLength(0.15);
-  slab->SetZLength(1.6);
-  vtkNew<vtkTriangleFilter> slabTriangles;
-  slabTriangles->SetInputConnection(slab->GetOutputPort());
-  auto red = MakeActor(sphereA, 1.0, 0.2, 0.1, 0.45);
-  auto blue = MakeActor(sphereB, 0.1, 0.4, 1.0, 0.35);
-  auto green = MakeActor(slabTriangles, 0.2, 1.0, 0.3, 0.5);
-  green->SetOrientation(0, 0, 20);
+  const st::InterpenetratingActors scene = st::MakeInterpenetratingActors();
+  vtkActor* red = scene.red;
+  vtkActor* blue = scene.blue;
+  vtkActor* green = scene.green;
 
   vtkNew<vtkRenderer> renderer;
   vtkSmartPointer<vtkRenderer> peelRenderer = PeelingRenderer(renderer->GetActiveCamera());
-  for (vtkActor* actor : { red.Get(), blue.Get(), green.Get() })
+  for (vtkActor* actor : { red, blue, green })
   {
     renderer->AddActor(actor);
     peelRenderer->AddActor(actor);
@@ -167,7 +137,7 @@ int TestSceneVisPlannerTranslucency(int, char*[])
     "camera moves do not re-plan a small scene: " + std::to_string(planner->GetPlanCount()));
 
   // --- (b) opaque, then translucent again ------------------------------------------------------
-  for (vtkActor* actor : { red.Get(), blue.Get(), green.Get() })
+  for (vtkActor* actor : { red, blue, green })
     actor->GetProperty()->SetOpacity(1.0);
   RenderWith(window, renderer);
   ok &= Check(std::string(planner->GetTranslucencyMethod()) == "none" &&
