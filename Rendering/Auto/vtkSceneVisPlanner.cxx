@@ -198,6 +198,9 @@ public:
   std::string CullReasonText = "not planned yet";
   std::string ReasonText = "not planned yet";
   std::string Pending; ///< a view-driven culling method waiting for SwitchFrames renders
+  /// The facts of the scene itself (not of the view) at the last decision: when they change the
+  /// plan follows at once, otherwise (the view, or props moved) only with hysteresis.
+  std::vector<double> SceneKey;
   int PendingFrames = 0;
   int TranslucentActors = 0;
 
@@ -644,6 +647,7 @@ void vtkSceneVisPlanner::vtkInternals::UndoAll(vtkRenderer* ren)
   this->Planned = false;
   this->Pending.clear();
   this->PendingFrames = 0;
+  this->SceneKey.clear();
   this->View.clear();
   this->Camera = nullptr;
 }
@@ -827,13 +831,18 @@ void vtkSceneVisPlanner::Plan()
       }
       return sort;
     };
-    if (sceneChanged)
+    const std::vector<double> sceneKey{ static_cast<double>(in.Facts.parts),
+      static_cast<double>(in.Facts.polygons), static_cast<double>(in.Facts.triangles),
+      in.Facts.translucentFraction, static_cast<double>(in.TranslucentActors) };
+    const bool immediate = !in.Planned || sceneKey != in.SceneKey ||
+      translucency(in.Cull).Method != in.Translucency.Method;
+    if (immediate)
     {
-      // New props or new numbers: the plan follows at once (translucency is correctness).
+      // Props added, removed, shown, hidden or made translucent: the plan follows at once
+      // (translucency is a matter of correctness).
+      in.SceneKey = sceneKey;
       const vtkScenePlanChoice sort = translucency(cull);
-      const bool changed = !in.Planned || cull.Method != in.Cull.Method ||
-        sort.Method != in.Translucency.Method;
-      if (changed)
+      if (!in.Planned || cull.Method != in.Cull.Method || sort.Method != in.Translucency.Method)
         in.Adopt(cull, sort);
       else
       {
@@ -842,40 +851,45 @@ void vtkSceneVisPlanner::Plan()
       }
       in.Install(ren, in.Cull.Method, in.Translucency.Method);
     }
-    else if (cull.Method == in.Cull.Method)
-    {
-      in.Pending.clear();
-      in.PendingFrames = 0;
-    }
     else
     {
-      // A view-driven change: clear of the thresholds by the margin, for SwitchFrames renders.
-      bool clear = true;
-      if (viewChanged)
+      if (sceneChanged) // props moved: keep the mappers in step (an input or a mapper changed)
+        in.Install(ren, in.Cull.Method, in.Translucency.Method);
+      if (cull.Method == in.Cull.Method)
       {
-        // The fraction in view is near 1 where it matters: its complement (the fraction out of
-        // view) is what is scaled, so that a full view stays clear of the threshold.
-        for (const double scale : { 1.0 - this->ViewMargin, 1.0 + this->ViewMargin })
-        {
-          vtkScenePlanFacts nudged = in.Facts;
-          nudged.inView = 1.0 - (1.0 - nudged.inView) * scale;
-          nudged.depthComplexity *= scale;
-          clear &= vtkScenePlanRule::ChooseCulling(nudged).Method == cull.Method;
-        }
-      }
-      if (!clear || cull.Method != in.Pending)
-      {
-        in.Pending = clear ? cull.Method : std::string();
-        in.PendingFrames = clear ? 1 : 0;
+        in.Pending.clear();
+        in.PendingFrames = 0;
       }
       else
       {
-        ++in.PendingFrames;
-      }
-      if (!in.Pending.empty() && in.PendingFrames >= this->SwitchFrames)
-      {
-        in.Adopt(cull, translucency(cull));
-        in.Install(ren, in.Cull.Method, in.Translucency.Method);
+        // A view-driven change: clear of the thresholds by the margin, for SwitchFrames renders.
+        bool clear = true;
+        if (viewChanged || sceneChanged)
+        {
+          // The fraction in view is near 1 where it matters: its complement (the fraction out of
+          // view) is what is scaled, so that a full view stays clear of the threshold.
+          for (const double scale : { 1.0 - this->ViewMargin, 1.0 + this->ViewMargin })
+          {
+            vtkScenePlanFacts nudged = in.Facts;
+            nudged.inView = 1.0 - (1.0 - nudged.inView) * scale;
+            nudged.depthComplexity *= scale;
+            clear &= vtkScenePlanRule::ChooseCulling(nudged).Method == cull.Method;
+          }
+        }
+        if (!clear || cull.Method != in.Pending)
+        {
+          in.Pending = clear ? cull.Method : std::string();
+          in.PendingFrames = clear ? 1 : 0;
+        }
+        else
+        {
+          ++in.PendingFrames;
+        }
+        if (!in.Pending.empty() && in.PendingFrames >= this->SwitchFrames)
+        {
+          in.Adopt(cull, translucency(cull));
+          in.Install(ren, in.Cull.Method, in.Translucency.Method);
+        }
       }
     }
   }

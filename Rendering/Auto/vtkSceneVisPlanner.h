@@ -50,13 +50,14 @@
  * mappers and mapper inputs, and compares the prop collection's MTime and the camera's view
  * (position, focal point, view up, angle, projection, viewport size; not the clipping range).
  * - The scene changed (props added, removed, shown, hidden or modified): the facts are read
- *   again (only the changed actors' numbers) and the plan follows at once: translucency is
- *   a matter of correctness, not speed.
- * - Only the view changed, with ManyProps+ actors: the view facts are measured again, and a
- *   different culling plan is adopted only when it is clear of the thresholds by ViewMargin (the
- *   rule gives it for the depth complexity and the fraction of the triangles out of view both
- *   scaled by 1 - ViewMargin and by 1 + ViewMargin) for SwitchFrames renders in a row
- *   (hysteresis: a camera flying into the scene flips once).
+ *   again, only for the actors whose observed objects changed (or all of them when the prop
+ *   collection changed). When the scene's own facts changed (parts, polygons, triangles,
+ *   translucency), the plan follows at once: translucency is a matter of correctness, not speed.
+ * - Only the view changed, or props only moved, with ManyProps+ actors: the view facts are
+ *   measured again, and a different culling plan is adopted only when it is clear of the
+ *   thresholds by ViewMargin (the rule gives it for the depth complexity and the fraction of the
+ *   triangles out of view both scaled by 1 - ViewMargin and by 1 + ViewMargin) for SwitchFrames
+ *   renders in a row (hysteresis: a camera flying into the scene flips once).
  * Data produced upstream of a mapper during a render is seen at the next render.
  *
  * The decision as data: GetCullMethod(), GetTranslucencyMethod(), GetReason() (with the facts
