@@ -8,15 +8,12 @@
 #include <vtkCellArray.h>
 #include <vtkCellData.h>
 #include <vtkDataArray.h>
-#include <vtkMatrix4x4.h>
 #include <vtkPoints.h>
 #include <vtkRenderer.h>
 #include <vtkUnsignedCharArray.h>
 
 #include <algorithm>
 #include <chrono>
-#include <iomanip>
-#include <sstream>
 #include <unordered_map>
 #include <unordered_set>
 
@@ -26,28 +23,8 @@ namespace tool
 {
 namespace
 {
-/// Above this many parts, culling whole props pays for its hierarchy (auto -> octree).
-constexpr std::size_t kManyProps = 100;
-/// Above this many triangles in one opaque mesh, culling chunks inside it pays (auto -> chunked):
-/// the 64 spheres at 1M triangles seen from inside the grid draw 10x faster chunked (19k of 1M
-/// triangles drawn), and a full view costs about the same either way.
-constexpr vtkIdType kHugeMesh = 500000;
-/// Prop culling draws one actor per part, which translucency then orders across actors
-/// (vtkBSPTranslucentPass); above this fraction of translucent polygons that sort interleaves
-/// the parts' fragments into thousands of draw calls (2CylinderEngine at opacity 0.4: 32k draw
-/// calls, 4.3 s a frame), so auto keeps one mesh with the BSP order instead.
-constexpr double kMaxTranslucentForActors = 0.25;
-/// Prop culling draws one actor per part, which costs VTK per-actor work every frame; when the
-/// first camera sees at least this fraction of the triangles, culling cannot pay for that (the
-/// cad demo in full view: 1.2-1.5x slower than one mesh; seen from close up: 1.4-1.7x faster).
-constexpr double kMinInViewForNoCulling = 0.9;
-
-/// Estimated depth complexity (the in-view parts' screen rectangles summed, over the viewport)
-/// from which auto prefers occlusion culling to frustum culling alone: most of what is in view
-/// is then hidden behind nearer parts (the 2CylinderEngine grid 4 x 4 seen down a row: 86 parts
-/// drawn per part seen with frustum culling, 2 with occlusion; BENCHMARKS.md). The value 4 is a
-/// first estimate, not yet calibrated over many scenes: the cad demo's views score 1.3-2.7.
-constexpr double kOcclusionDepthComplexity = 4.0;
+/// The rule's thresholds (vtkScenePlanRule documents why they are what they are).
+constexpr std::size_t kManyProps = vtkScenePlanRule::ManyProps;
 
 SceneFacts InspectScene(vtkPolyData* pd, vtkPolyData* portals, const Options& options)
 {
@@ -103,13 +80,7 @@ SceneFacts InspectInstances(const InstancedScene& scene)
   return facts;
 }
 
-/// A part's world box and triangles: what auto's view estimate (TrianglesInView) looks at.
-struct PartBox
-{
-  double box[6] = { VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX, VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX,
-    VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX };
-  vtkIdType triangles = 0;
-};
+using PartBox = vtkScenePlanPartBox;
 
 /// The bounding box and triangle count of each part (of @p partArray) of @p pd.
 std::vector<PartBox> PartBoxes(vtkPolyData* pd, const std::string& partArray)
@@ -129,15 +100,15 @@ std::vector<PartBox> PartBoxes(vtkPolyData* pd, const std::string& partArray)
     if (!part || id != partId) // runs of one part's cells: one lookup
       part = &parts[id];
     partId = id;
-    part->triangles += std::max<vtkIdType>(npts - 2, 0);
+    part->Triangles += std::max<vtkIdType>(npts - 2, 0);
     for (vtkIdType k = 0; k < npts; ++k)
     {
       double p[3];
       points->GetPoint(pts[k], p);
       for (int a = 0; a < 3; ++a)
       {
-        part->box[2 * a] = std::min(part->box[2 * a], p[a]);
-        part->box[2 * a + 1] = std::max(part->box[2 * a + 1], p[a]);
+        part->Box[2 * a] = std::min(part->Box[2 * a], p[a]);
+        part->Box[2 * a + 1] = std::max(part->Box[2 * a + 1], p[a]);
       }
     }
   }
@@ -157,73 +128,10 @@ std::vector<PartBox> InstanceBoxes(const InstancedScene& scene)
   std::vector<PartBox> boxes(scene.instances.size());
   for (std::size_t i = 0; i < scene.instances.size(); ++i)
   {
-    InstanceBounds(scene, scene.instances[i], boxes[i].box);
-    boxes[i].triangles = trianglesOf[scene.instances[i].mesh];
+    InstanceBounds(scene, scene.instances[i], boxes[i].Box);
+    boxes[i].Triangles = trianglesOf[scene.instances[i].mesh];
   }
   return boxes;
-}
-
-/// The fraction of the triangles of @p parts whose bounding box meets the side planes of
-/// @p camera's frustum (near and far ignored: the clipping range follows the props);
-/// @p depthComplexity: the in-view parts' screen rectangles over the viewport.
-double TrianglesInView(const std::vector<PartBox>& parts, vtkCamera* camera, double aspect,
-  double* depthComplexity = nullptr)
-{
-  vtkIdType total = 0;
-  for (const PartBox& part : parts)
-    total += part.triangles;
-  if (total == 0)
-  {
-    return 1.0;
-  }
-  double planes[24]; // left, right, bottom, top, near, far: ax + by + cz + d >= 0 inside
-  camera->GetFrustumPlanes(aspect, planes);
-  vtkMatrix4x4* projection = camera->GetCompositeProjectionTransformMatrix(aspect, -1, 1);
-  double covered = 0.0;
-  vtkIdType inView = 0;
-  for (const PartBox& part : parts)
-  {
-    bool outside = false;
-    for (int k = 0; k < 4 && !outside; ++k)
-    {
-      const double* plane = planes + 4 * k;
-      double distance = plane[3];
-      for (int a = 0; a < 3; ++a)
-        distance += plane[a] * (plane[a] >= 0.0 ? part.box[2 * a + 1] : part.box[2 * a]);
-      outside = distance < 0.0;
-    }
-    inView += outside ? 0 : part.triangles;
-    if (!outside && depthComplexity)
-    {
-      // Screen rectangle in normalized device coordinates ([-1, 1]^2, area 4).
-      double x0 = 1.0, x1 = -1.0, y0 = 1.0, y1 = -1.0;
-      bool whole = false;
-      for (int k = 0; k < 8 && !whole; ++k)
-      {
-        const double p[4] = { part.box[k & 1], part.box[2 + ((k >> 1) & 1)],
-          part.box[4 + ((k >> 2) & 1)], 1.0 };
-        double q[4];
-        projection->MultiplyPoint(p, q);
-        if (!(q[3] > 0.0))
-        {
-          whole = true;
-          break;
-        }
-        x0 = std::min(x0, q[0] / q[3]);
-        x1 = std::max(x1, q[0] / q[3]);
-        y0 = std::min(y0, q[1] / q[3]);
-        y1 = std::max(y1, q[1] / q[3]);
-      }
-      covered += whole ? 4.0
-                       : std::max(0.0, std::min(x1, 1.0) - std::max(x0, -1.0)) *
-          std::max(0.0, std::min(y1, 1.0) - std::max(y0, -1.0));
-    }
-  }
-  if (depthComplexity)
-  {
-    *depthComplexity = covered / 4.0;
-  }
-  return static_cast<double>(inView) / static_cast<double>(total);
 }
 
 bool IsPropCulling(const std::string& mode)
@@ -242,63 +150,9 @@ CullPlan PlanCulling(
   const bool rooms = facts.rooms > 0 && facts.portals > 0;
   if (requested == "auto")
   {
-    const bool opaque = facts.translucentFraction == 0.0;
-    std::ostringstream why;
-    if (rooms)
-    {
-      plan.method = "portals";
-      why << facts.rooms << " rooms and " << facts.portals
-          << " portals: cells and portals skip the rooms the eye cannot see through them";
-    }
-    else if (facts.parts >= kManyProps && facts.translucentFraction <= kMaxTranslucentForActors &&
-      facts.inView < kMinInViewForNoCulling)
-    {
-      if (facts.depthComplexity >= kOcclusionDepthComplexity)
-      {
-        plan.method = "occlusion";
-        why << facts.parts << " parts (>= " << kManyProps
-            << ") and an estimated depth complexity of " << std::setprecision(3)
-            << facts.depthComplexity << " (>= " << kOcclusionDepthComplexity
-            << "): most of what is in view is hidden, so parts hidden behind nearer opaque ones "
-               "are culled too";
-      }
-      else
-      {
-        plan.method = "octree";
-        why << facts.parts << " parts (>= " << kManyProps
-            << "): one actor per part, culled by the BVH a whole subtree at a time";
-      }
-    }
-    else if (facts.triangles >= kHugeMesh && opaque)
-    {
-      plan.method = "chunked";
-      why << facts.triangles << " triangles (>= " << kHugeMesh << ") in " << facts.parts
-          << (facts.parts == 1 ? " part" : " parts")
-          << ", opaque: chunks of the one mesh are culled inside its buffers";
-    }
-    else
-    {
-      plan.method = "none";
-      if (facts.parts >= kManyProps && facts.inView >= kMinInViewForNoCulling)
-        why << facts.parts << " parts, but the first camera sees " << std::setprecision(3)
-            << 100.0 * facts.inView << " % of the triangles (>= " << 100.0 * kMinInViewForNoCulling
-            << " %): culling would draw nearly all of them as many actors";
-      else if (facts.parts >= kManyProps)
-        why << facts.parts << " parts but " << std::setprecision(3)
-            << 100.0 * facts.translucentFraction << " % translucent (> "
-            << 100.0 * kMaxTranslucentForActors
-            << " %): one mesh in BSP order draws faster than sorting that many actors' "
-               "fragments across actors";
-      else if (facts.triangles >= kHugeMesh)
-        why << facts.triangles << " triangles but translucent (" << std::setprecision(3)
-            << 100.0 * facts.translucentFraction
-            << " %): chunked drawing would break the sorted order, so everything is drawn";
-      else
-        why << facts.parts << (facts.parts == 1 ? " part" : " parts") << " (< " << kManyProps
-            << ") and " << facts.triangles << " triangles (< " << kHugeMesh << ")"
-            << (opaque ? ", opaque" : "") << ": drawing everything costs less than culling";
-    }
-    plan.reason = why.str() + " (" + facts.Summary() + ")";
+    const vtkScenePlanChoice choice = vtkScenePlanRule::ChooseCulling(facts);
+    plan.method = choice.Method;
+    plan.reason = choice.Reason + " (" + facts.Summary() + ")";
   }
   if ((plan.method == "portals" || plan.method == "pvs") && !rooms)
   {
@@ -335,43 +189,12 @@ std::string ChooseSort(const std::string& requested, bool translucent, const Cul
         "none, oit, multi-actor or peel:N with it");
     return requested;
   }
-  if (!translucent)
-  {
-    reason = "the scene is opaque: no sorting needed";
-    return "none";
-  }
-  if (cull.chunked)
-  {
-    reason = "translucent, but chunked drawing reorders the polygons: VTK's weighted OIT "
-             "(order independent, approximate)";
-    return "oit";
-  }
-  if (split)
-  {
-    reason = "translucent polygons in " + std::to_string(actors) +
-      " actors (prop culling): exact order across actors with vtkBSPTranslucentPass";
-    return "multi-actor";
-  }
-  // The mapper, not the filter: the same exact order, but only the index buffer changes per
-  // frame (scripts/culling-report.py, docs/auto-vs-fixed.csv: 1.1-1.3x faster frames).
-  reason = "the scene has translucent polygons: exact order with the BSP tree, rewritten in the "
-           "index buffer only (vtkBSPSortedPolyDataMapper)";
-  return "bsp-mapper";
+  const vtkScenePlanChoice choice =
+    vtkScenePlanRule::ChooseTranslucency(translucent, cull.chunked, split, actors);
+  reason = choice.Reason;
+  return choice.Method;
 }
 } // namespace
-
-std::string SceneFacts::Summary() const
-{
-  std::ostringstream text;
-  text << parts << (parts == 1 ? " part, " : " parts, ") << triangles << " triangles, "
-       << std::setprecision(3) << 100.0 * translucentFraction << " % translucent, " << rooms
-       << " rooms, " << portals << " portals";
-  if (inView >= 0.0)
-    text << ", " << 100.0 * inView << " % of the triangles in view";
-  if (depthComplexity >= 0.0)
-    text << ", estimated depth complexity " << depthComplexity;
-  return text.str();
-}
 
 std::set<long long> DistinctValues(
   vtkPolyData* pd, const char* name, const std::vector<vtkIdType>* cells)
@@ -418,7 +241,7 @@ ScenePlan PlanScene(const Options& options, const LoadedScene& scene, const std:
     const std::vector<PartBox> boxes = plan.instanced
       ? InstanceBoxes(*plan.instanced)
       : PartBoxes(scene.polydata, options.partArray);
-    plan.facts.inView = TrianglesInView(boxes, renderer->GetActiveCamera(),
+    plan.facts.inView = vtkScenePlanRule::MeasureView(boxes, renderer->GetActiveCamera(),
       static_cast<double>(options.width) / static_cast<double>(options.height),
       &plan.facts.depthComplexity);
   }

@@ -7,6 +7,7 @@
 #include "Instances.h"
 #include "Options.h"
 #include "SceneLoading.h"
+#include "vtkScenePlanRule.h"
 
 #include <vtkPolyData.h>
 #include <vtkSmartPointer.h>
@@ -23,25 +24,9 @@ namespace scenevis
 namespace tool
 {
 
-/// What auto mode decides on, and what the reports quote as the reason.
-struct SceneFacts
-{
-  vtkIdType polygons = 0;
-  vtkIdType triangles = 0;
-  std::size_t parts = 1;            ///< distinct PartId values (1 without the array)
-  double translucentFraction = 0.0; ///< of the polygons: RGBA alpha < 255
-  int rooms = 0;                    ///< distinct RoomId values >= 0
-  vtkIdType portals = 0;
-  /// Fraction of the triangles in parts whose bounds meet the first camera's view (the side
-  /// planes of its frustum); < 0 when not measured.
-  double inView = -1.0;
-  /// Sum of the screen rectangles of the parts in view over the viewport's area (a box reaching
-  /// the eye's plane counts as the whole viewport); < 0 when not measured.
-  double depthComplexity = -1.0;
-
-  /// The facts in one line, as the reports quote them.
-  std::string Summary() const;
-};
+/// What auto mode decides on, and what the reports quote as the reason: the library's facts, so
+/// that the command line and vtkSceneVisPlanner decide by one rule (vtkScenePlanRule).
+using SceneFacts = vtkScenePlanFacts;
 
 /// The distinct values of the one-component cell array @p name (all cells, or @p cells only).
 std::set<long long> DistinctValues(

@@ -47,15 +47,17 @@ cmake --build "$build" -j"$jobs" --target scenevis_core_tests scenevis_fuzz_bsp_
   scenevis_huge_pages_tests \
   SceneVisFiltersSortingCxxTests SceneVisFiltersSortingRenderingCxxTests \
   SceneVisFiltersSourcesCxxTests SceneVisIOModelsCxxTests SceneVisRenderingCullingCxxTests \
-  SceneVisRenderingPortalsCxxTests SceneVisRenderingTranslucencyCxxTests scenevis_soak_bench
+  SceneVisRenderingPortalsCxxTests SceneVisRenderingTranslucencyCxxTests \
+  SceneVisRenderingAutoCxxTests scenevis_soak_bench
 echo "sanitize: asan build done in $(( $(date +%s) - start )) s ($build)"
 
 # The VTK-level tests are named after their module (SceneVis::FiltersSortingCxx-TestX), rendering
 # ones included; those live in executables not built here (left to the main run) and are skipped:
 # ctest shows an empty command for them. Fuzz.BspCorpus replays Core/Fuzz/corpus and crashes.
 # Every VTK-level test of the modules too (they render with OSMesa, no X needed): LeakSanitizer
-# is the leak check of the filters, mappers, passes, cullers and the model reader (bad input
-# included: SceneVis::IOModelsCxx-TestSceneVisModelReaderBadInput); and the tool's own code paths
+# is the leak check of the filters, mappers, passes, cullers, the model reader and the auto planner
+# (bad input included: SceneVis::IOModelsCxx-TestSceneVisModelReaderBadInput,
+# SceneVis::RenderingAutoCxx-TestSceneVisPlannerBadInput); and the tool's own code paths
 # that take files and split them (Tool.SplitParts, Tool.Instances) or read the command line to
 # decide on huge pages (Tool.HugePages). Bench.SoakLeaks: 300 frames of
 # the soak's moving camera per culling mode on a 2 x 2 engine grid (Benchmarks/BenchSoak.cxx), the

@@ -1,6 +1,7 @@
 // Through the installed SceneVis package: sorts a sphere for a camera (SceneVis::FiltersSorting),
 // reads a VRML part whose material is USEd (SceneVis::IOModels), and renders it offscreen without X
-// through the OSMesa window (SceneVis::RenderingHeadless): the frame must show the part's green.
+// through the OSMesa window (SceneVis::RenderingHeadless) with the auto planner attached
+// (SceneVis::RenderingAuto): the frame must show the part's green.
 #include <vtkActor.h>
 #include <vtkBSPSortFilter.h>
 #include <vtkCamera.h>
@@ -12,6 +13,7 @@
 #include <vtkRenderer.h>
 #include <vtkSceneVisModelReader.h>
 #include <vtkSceneVisOSMesaRenderWindow.h>
+#include <vtkSceneVisPlanner.h>
 #include <vtkSphereSource.h>
 #include <vtkUnsignedCharArray.h>
 
@@ -85,8 +87,16 @@ int main()
   renderer->AddActor(actor);
   renderer->SetBackground(0, 0, 0);
   window->AddRenderer(renderer);
+  vtkSceneVisPlanner* planner = vtkSceneVisPlanner::Attach(renderer); // SceneVis::RenderingAuto
   renderer->ResetCamera();
   window->Render();
+  std::cout << "consumer: planned " << planner->GetPlanCount() << " time(s): culling "
+            << planner->GetCullMethod() << ", translucency " << planner->GetTranslucencyMethod()
+            << std::endl;
+  if (planner->GetPlanCount() != 1)
+  {
+    return EXIT_FAILURE;
+  }
   vtkNew<vtkUnsignedCharArray> pixels;
   vtkRenderWindow* base = window; // vtkOpenGLRenderWindow hides the array overload
   base->GetPixelData(0, 0, 63, 47, /*front=*/0, pixels);

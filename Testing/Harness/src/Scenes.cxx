@@ -9,6 +9,7 @@
 #include <vtkCamera.h>
 #include <vtkCellArray.h>
 #include <vtkCellData.h>
+#include <vtkCubeSource.h>
 #include <vtkIntArray.h>
 #include <vtkNew.h>
 #include <vtkPoints.h>
@@ -17,6 +18,7 @@
 #include <vtkProperty.h>
 #include <vtkRenderer.h>
 #include <vtkSphereSource.h>
+#include <vtkTriangleFilter.h>
 
 namespace scenevis
 {
@@ -125,6 +127,45 @@ vtkSmartPointer<vtkPolyData> MakePortalPolyData(const scenevis::scenes::Building
   pd->GetCellData()->AddArray(a);
   pd->GetCellData()->AddArray(c);
   return pd;
+}
+
+vtkSmartPointer<vtkActor> MakeTranslucentActor(
+  vtkAlgorithm* source, double r, double g, double b, double opacity)
+{
+  auto mapper = vtkSmartPointer<vtkPolyDataMapper>::New();
+  mapper->SetInputConnection(source->GetOutputPort());
+  auto actor = vtkSmartPointer<vtkActor>::New();
+  actor->SetMapper(mapper);
+  actor->GetProperty()->SetColor(r, g, b);
+  actor->GetProperty()->SetOpacity(opacity);
+  actor->GetProperty()->SetSpecular(0.0);
+  return actor;
+}
+
+InterpenetratingActors MakeInterpenetratingActors()
+{
+  InterpenetratingActors scene;
+  scene.sphereA = vtkSmartPointer<vtkSphereSource>::New();
+  scene.sphereA->SetCenter(-0.3, 0, 0);
+  scene.sphereA->SetRadius(0.8);
+  scene.sphereA->SetThetaResolution(24);
+  scene.sphereA->SetPhiResolution(24);
+  scene.sphereB = vtkSmartPointer<vtkSphereSource>::New();
+  scene.sphereB->SetCenter(0.35, 0.1, 0.1);
+  scene.sphereB->SetRadius(0.7);
+  scene.sphereB->SetThetaResolution(24);
+  scene.sphereB->SetPhiResolution(24);
+  scene.slab = vtkSmartPointer<vtkCubeSource>::New();
+  scene.slab->SetXLength(2.6);
+  scene.slab->SetYLength(0.15);
+  scene.slab->SetZLength(1.6);
+  scene.slabTriangles = vtkSmartPointer<vtkTriangleFilter>::New();
+  scene.slabTriangles->SetInputConnection(scene.slab->GetOutputPort());
+  scene.red = MakeTranslucentActor(scene.sphereA, 1.0, 0.2, 0.1, 0.45);
+  scene.blue = MakeTranslucentActor(scene.sphereB, 0.1, 0.4, 1.0, 0.35);
+  scene.green = MakeTranslucentActor(scene.slab, 0.2, 1.0, 0.3, 0.5);
+  scene.green->SetOrientation(0, 0, 20);
+  return scene;
 }
 
 } // namespace testing

@@ -72,18 +72,6 @@ void SetView(vtkRenderer* renderer, double azimuth, double elevation, bool paral
   renderer->ResetCamera();
 }
 
-vtkSmartPointer<vtkActor> MakeActor(
-  vtkAlgorithm* source, double r, double g, double b, double opacity)
-{
-  auto mapper = vtkSmartPointer<vtkPolyDataMapper>::New();
-  mapper->SetInputConnection(source->GetOutputPort());
-  auto actor = vtkSmartPointer<vtkActor>::New();
-  actor->SetMapper(mapper);
-  actor->GetProperty()->SetColor(r, g, b);
-  actor->GetProperty()->SetOpacity(opacity);
-  actor->GetProperty()->SetSpecular(0.0);
-  return actor;
-}
 } // namespace
 
 int TestBSPTranslucentPass(int, char*[])
@@ -93,31 +81,17 @@ int TestBSPTranslucentPass(int, char*[])
   vtkSmartPointer<vtkRenderWindow> window = st::MakeRenderWindow(320, 320);
 
   // --- 1. Interpenetrating actors ---------------------------------------------------------
-  vtkNew<vtkSphereSource> sphereA;
-  sphereA->SetCenter(-0.3, 0, 0);
-  sphereA->SetRadius(0.8);
-  sphereA->SetThetaResolution(24);
-  sphereA->SetPhiResolution(24);
-  vtkNew<vtkSphereSource> sphereB;
-  sphereB->SetCenter(0.35, 0.1, 0.1);
-  sphereB->SetRadius(0.7);
-  sphereB->SetThetaResolution(24);
-  sphereB->SetPhiResolution(24);
-  vtkNew<vtkCubeSource> slab;
-  slab->SetXLength(2.6);
-  slab->SetYLength(0.15);
-  slab->SetZLength(1.6);
-  vtkNew<vtkTriangleFilter> slabTriangles;
-  slabTriangles->SetInputConnection(slab->GetOutputPort());
-
-  auto red = MakeActor(sphereA, 1.0, 0.2, 0.1, 0.45);
-  auto blue = MakeActor(sphereB, 0.1, 0.4, 1.0, 0.35);
-  auto green = MakeActor(slab, 0.2, 1.0, 0.3, 0.5);
-  green->SetOrientation(0, 0, 20);
+  const st::InterpenetratingActors scene = st::MakeInterpenetratingActors();
+  vtkSphereSource* sphereA = scene.sphereA;
+  vtkSphereSource* sphereB = scene.sphereB;
+  vtkTriangleFilter* slabTriangles = scene.slabTriangles;
+  vtkActor* red = scene.red;
+  vtkActor* blue = scene.blue;
+  vtkActor* green = scene.green;
 
   vtkNew<vtkRenderer> sortedRenderer;
   vtkNew<vtkRenderer> peelRenderer;
-  for (vtkActor* actor : { red.Get(), blue.Get(), green.Get() })
+  for (vtkActor* actor : { red, blue, green })
   {
     sortedRenderer->AddActor(actor);
     peelRenderer->AddActor(actor);
@@ -263,11 +237,11 @@ int TestBSPTranslucentPass(int, char*[])
     elevation->SetInputConnection(sphereB->GetOutputPort());
     elevation->SetLowPoint(0, -0.6, 0);
     elevation->SetHighPoint(0, 0.8, 0);
-    auto plain = MakeActor(sphereA, 1.0, 0.2, 0.1, 0.45);
-    auto scalars = MakeActor(elevation, 1.0, 1.0, 1.0, 0.4);
+    auto plain = st::MakeTranslucentActor(sphereA, 1.0, 0.2, 0.1, 0.45);
+    auto scalars = st::MakeTranslucentActor(elevation, 1.0, 1.0, 1.0, 0.4);
     scalars->GetMapper()->ScalarVisibilityOn();
     scalars->GetMapper()->SetScalarRange(0.0, 1.0);
-    auto slabActor = MakeActor(slabTriangles, 0.2, 1.0, 0.3, 0.5);
+    auto slabActor = st::MakeTranslucentActor(slabTriangles, 0.2, 1.0, 0.3, 0.5);
     slabActor->SetOrientation(0, 0, -25);
     slabActor->SetPosition(0, 0.2, 0);
 

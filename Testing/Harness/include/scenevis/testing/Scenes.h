@@ -7,8 +7,13 @@
 
 #include <vtkSmartPointer.h>
 
+class vtkActor;
+class vtkAlgorithm;
+class vtkCubeSource;
 class vtkPolyData;
 class vtkRenderer;
+class vtkSphereSource;
+class vtkTriangleFilter;
 
 namespace scenevis
 {
@@ -60,6 +65,23 @@ vtkSmartPointer<vtkPolyData> AppendPolygons(vtkPolyData* a, vtkPolyData* b);
 /// The portals of @p building in vtkPortalCuller's format: one polygon per portal, integer cell
 /// arrays RoomA and RoomB.
 vtkSmartPointer<vtkPolyData> MakePortalPolyData(const scenevis::scenes::BuildingScene& building);
+
+/// An actor drawing @p source's output in colour (r, g, b) at @p opacity, without specular.
+vtkSmartPointer<vtkActor> MakeTranslucentActor(
+  vtkAlgorithm* source, double r, double g, double b, double opacity);
+
+/// Three interpenetrating translucent actors of different colours, the scene of the
+/// order-across-actors tests: a red sphere (opacity 0.45), a blue sphere (0.35) and a green slab
+/// (0.5, rotated 20 degrees about z) cutting both. The sources stay for more actors of the same
+/// shapes (slabTriangles: the slab as triangles).
+struct InterpenetratingActors
+{
+  vtkSmartPointer<vtkSphereSource> sphereA, sphereB;
+  vtkSmartPointer<vtkCubeSource> slab;
+  vtkSmartPointer<vtkTriangleFilter> slabTriangles;
+  vtkSmartPointer<vtkActor> red, blue, green;
+};
+InterpenetratingActors MakeInterpenetratingActors();
 
 } // namespace testing
 } // namespace scenevis

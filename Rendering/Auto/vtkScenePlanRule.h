@@ -1,0 +1,125 @@
+/**
+ * @class   vtkScenePlanRule
+ * @brief   The rule "only the effects a scene calls for": from the facts of a scene (parts,
+ *          triangles, translucency, rooms and portals, what the camera sees) to the culling and
+ *          translucency methods that pay for themselves, each with its reason.
+ *
+ * One rule for every user: vtkSceneVisPlanner applies it to a renderer's props every frame, and
+ * the scenevis command line (--cull auto, --sort auto) to the scenes it loads, so both decide
+ * alike and quote the same facts. The rule is a pure function of the facts (no VTK objects), so
+ * the planner can evaluate it on nudged facts for hysteresis and tests can call it directly.
+ *
+ * Culling methods (ChooseCulling):
+ * - "portals": rooms and portals exist (cells and portals);
+ * - "occlusion": ManyProps+ parts, at most MaxTranslucentForActors translucent, less than
+ *   MinInViewForNoCulling of the triangles in view and an estimated depth complexity of
+ *   OcclusionDepthComplexity or more (vtkOcclusionCuller);
+ * - "octree": the same with a lower depth complexity (vtkOctreeCuller);
+ * - "chunked": HugeMesh+ opaque triangles otherwise (vtkChunkedPolyDataMapper);
+ * - "none": small scenes, scenes in full view and translucent ones that would need many actors.
+ *
+ * Translucency methods (ChooseTranslucency): "none" (opaque), "oit" (translucent but chunked:
+ * only an order-independent method survives the chunks' reordering), "multi-actor" (translucent
+ * polygons in several actors: vtkBSPTranslucentPass), "bsp-mapper" (one translucent mesh:
+ * vtkBSPSortedPolyDataMapper).
+ *
+ * The thresholds and why they are what they are: see the constants below.
+ *
+ * @sa vtkSceneVisPlanner
+ */
+#ifndef vtkScenePlanRule_h
+#define vtkScenePlanRule_h
+
+#include "SceneVisRenderingAutoModule.h" // For export macro
+#include "vtkType.h"                     // For vtkIdType
+
+#include <cstddef> // For std::size_t
+#include <string>  // For std::string
+#include <vector>  // For std::vector
+
+class vtkCamera;
+
+/// What the rule decides on, and what reports quote as the reason. Plain data.
+struct SCENEVISRENDERINGAUTO_EXPORT vtkScenePlanFacts
+{
+  vtkIdType polygons = 0;
+  vtkIdType triangles = 0;
+  std::size_t parts = 1;            ///< actors (planner) / distinct PartId values (command line)
+  double translucentFraction = 0.0; ///< of the polygons: opacity < 1 or RGBA alpha < 255
+  int rooms = 0;                    ///< distinct RoomId values >= 0
+  vtkIdType portals = 0;
+  /// Fraction of the triangles in parts whose bounds meet the camera's view (the side planes of
+  /// its frustum); < 0 when not measured.
+  double inView = -1.0;
+  /// Sum of the screen rectangles of the parts in view over the viewport's area (a box reaching
+  /// the eye's plane counts as the whole viewport); < 0 when not measured.
+  double depthComplexity = -1.0;
+
+  /// The facts in one line, as the reports quote them.
+  std::string Summary() const;
+};
+
+/// A method chosen by the rule and why (the reason without the facts line).
+struct SCENEVISRENDERINGAUTO_EXPORT vtkScenePlanChoice
+{
+  std::string Method;
+  std::string Reason;
+};
+
+/// A part's world box and triangles: what the view estimate (MeasureView) looks at.
+struct SCENEVISRENDERINGAUTO_EXPORT vtkScenePlanPartBox
+{
+  double Box[6] = { VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX, VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX,
+    VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX };
+  vtkIdType Triangles = 0;
+};
+
+class SCENEVISRENDERINGAUTO_EXPORT vtkScenePlanRule
+{
+public:
+  /// From this many parts, culling whole props pays for its hierarchy (-> octree).
+  static constexpr std::size_t ManyProps = 100;
+  /// From this many triangles in one opaque mesh, culling chunks inside it pays (-> chunked):
+  /// the 64 spheres at 1M triangles seen from inside the grid draw 10x faster chunked (19k of 1M
+  /// triangles drawn), and a full view costs about the same either way.
+  static constexpr vtkIdType HugeMesh = 500000;
+  /// Prop culling draws one actor per part, which translucency then orders across actors
+  /// (vtkBSPTranslucentPass); above this fraction of translucent polygons that sort interleaves
+  /// the parts' fragments into thousands of draw calls (2CylinderEngine at opacity 0.4: 32k draw
+  /// calls, 4.3 s a frame), so one mesh in BSP order is kept instead.
+  static constexpr double MaxTranslucentForActors = 0.25;
+  /// Prop culling costs VTK per-actor work every frame; when the camera sees at least this
+  /// fraction of the triangles, culling cannot pay for that (the cad demo in full view: 1.2-1.5x
+  /// slower than one mesh; seen from close up: 1.4-1.7x faster).
+  static constexpr double MinInViewForNoCulling = 0.9;
+  /// Estimated depth complexity (the in-view parts' screen rectangles summed, over the viewport)
+  /// from which occlusion culling is preferred to frustum culling alone: most of what is in view
+  /// is then hidden behind nearer parts (the 2CylinderEngine grid 4 x 4 seen down a row: 86
+  /// parts drawn per part seen with frustum culling, 2 with occlusion; BENCHMARKS.md). The value
+  /// 4 is a first estimate, not yet calibrated over many scenes: the cad demo's views score
+  /// 1.3-2.7.
+  static constexpr double OcclusionDepthComplexity = 4.0;
+
+  /// The culling method for @p facts and why.
+  static vtkScenePlanChoice ChooseCulling(const vtkScenePlanFacts& facts);
+
+  /**
+   * The translucency method given the culling: prop culling (or a scene of several translucent
+   * actors) needs an order across actors; chunked drawing reorders the polygons chunk by chunk,
+   * which only order-independent methods survive. @p severalActors: the translucent polygons
+   * are drawn by more than one actor (@p actors of them).
+   */
+  static vtkScenePlanChoice ChooseTranslucency(
+    bool translucent, bool chunked, bool severalActors, std::size_t actors);
+
+  /**
+   * The fraction of the triangles of @p parts whose bounding box meets the side planes of
+   * @p camera's frustum (near and far ignored: the clipping range follows the props), and in
+   * @p depthComplexity (if not null) the in-view parts' screen rectangles over the viewport.
+   * Boxes with NaN or uninitialized coordinates count as in view and cover nothing.
+   */
+  static double MeasureView(const std::vector<vtkScenePlanPartBox>& parts, vtkCamera* camera,
+    double aspect, double* depthComplexity = nullptr);
+};
+
+#endif
