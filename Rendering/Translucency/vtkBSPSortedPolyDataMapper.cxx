@@ -31,6 +31,7 @@
 #include "scenevis/BspBuilder.h"
 #include "scenevis/BspTraversal.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdint>
@@ -107,6 +108,7 @@ struct vtkBSPSortedPolyDataMapper::Internals
 
   // Order in the index buffer.
   std::vector<std::uint32_t> UploadedOrder; // fragment ids as in the IBO (valid if IBOHasOrder)
+  std::vector<std::size_t> UploadedAt;      // where each of them starts in the IBO (indices)
   bool IBOHasOrder = false;
   std::vector<std::uint32_t> PendingOrder; // external order to upload
   bool PendingDirty = false;
@@ -147,30 +149,45 @@ struct vtkBSPSortedPolyDataMapper::Internals
     this->Runs.clear();
     std::size_t at = 0, dirty = 0;
     unsigned int* mirror = this->Scratch.data();
-    for (std::size_t i = 0; i < order.size(); ++i)
+    std::uint32_t* old = this->UploadedOrder.data();
+    const std::size_t n = order.size();
+    for (std::size_t i = 0; i < n;)
     {
+      if (order[i] == old[i] && at == this->UploadedAt[i])
+      {
+        // Where the buffer already holds this fragment: skip the whole stretch that is unchanged
+        // (a fast scan; the fragments before the next change start where they did).
+        const std::size_t next = static_cast<std::size_t>(
+          std::mismatch(order.begin() + static_cast<std::ptrdiff_t>(i), order.end(),
+            this->UploadedOrder.begin() + static_cast<std::ptrdiff_t>(i))
+            .first -
+          order.begin());
+        at = next < n ? this->UploadedAt[next] : this->Scratch.size();
+        i = next;
+        continue;
+      }
       const std::uint32_t f = order[i];
       const std::size_t first = this->TriOffsets[f], count = this->TriOffsets[f + 1] - first;
       if (at + count > this->Scratch.size())
       {
         return false;
       }
-      if (f != this->UploadedOrder[i])
+      std::copy(
+        this->TriIndices.data() + first, this->TriIndices.data() + first + count, mirror + at);
+      if (!this->Runs.empty() && at <= this->Runs.back().second + kGap)
       {
-        std::copy(this->TriIndices.data() + first, this->TriIndices.data() + first + count,
-          mirror + at);
-        if (!this->Runs.empty() && at <= this->Runs.back().second + kGap)
-        {
-          dirty += at + count - this->Runs.back().second;
-          this->Runs.back().second = at + count;
-        }
-        else
-        {
-          this->Runs.emplace_back(at, at + count);
-          dirty += count;
-        }
+        dirty += at + count - this->Runs.back().second;
+        this->Runs.back().second = at + count;
       }
+      else
+      {
+        this->Runs.emplace_back(at, at + count);
+        dirty += count;
+      }
+      old[i] = f;
+      this->UploadedAt[i] = at;
       at += count;
+      ++i;
     }
     if (at != this->Scratch.size())
     {
@@ -206,7 +223,6 @@ struct vtkBSPSortedPolyDataMapper::Internals
       static_cast<std::size_t>(ibo->IndexCount) == this->Scratch.size() &&
       this->UploadChanges(ibo, order))
     {
-      this->UploadedOrder = order;
       ++this->IndexUploads;
       this->LastUploadTime = SecondsSince(start);
       return;
@@ -217,9 +233,12 @@ struct vtkBSPSortedPolyDataMapper::Internals
       total += this->TriOffsets[f + 1] - this->TriOffsets[f];
     }
     this->Scratch.resize(total);
+    this->UploadedAt.resize(order.size());
     unsigned int* out = this->Scratch.data();
-    for (std::uint32_t f : order)
+    for (std::size_t i = 0; i < order.size(); ++i)
     {
+      const std::uint32_t f = order[i];
+      this->UploadedAt[i] = static_cast<std::size_t>(out - this->Scratch.data());
       const unsigned int* first = this->TriIndices.data() + this->TriOffsets[f];
       const unsigned int* last = this->TriIndices.data() + this->TriOffsets[f + 1];
       out = std::copy(first, last, out);
