@@ -75,7 +75,8 @@ double minDistance(const Winding& w, const glm::dvec4& plane)
 }
 
 /// Clips @p w in place to dot(plane, p) >= -slack (@p scratch is reused); false when < 3 points.
-bool chop(Winding& w, const glm::dvec4& plane, double slack, Winding& scratch)
+bool chop(Winding& w, const glm::dvec4& plane, double slack, Winding& scratch,
+  bool* changed = nullptr)
 {
   bool allIn = true;
   for (const auto& p : w)
@@ -90,19 +91,23 @@ bool chop(Winding& w, const glm::dvec4& plane, double slack, Winding& scratch)
   {
     return w.size() >= 3;
   }
+  if (changed)
+  {
+    *changed = true;
+  }
   geometry::clipPolygon(w, plane, slack, scratch);
   w.swap(scratch);
   return w.size() >= 3;
 }
 
 /**
- * Clips @p target by the planes through an edge of @p source and a vertex of @p pass that have
- * the source behind and the pass in front: a line through both continues in front (or, with
- * @p flip, behind: the planes through an edge of the pass and a vertex of the source). One plane
- * per edge (the first found) is enough to be conservative. False when nothing of target is left.
+ * Appends to @p out the planes through an edge of @p source and a vertex of @p pass that have
+ * the source behind and the pass in front, facing the pass: a line through both continues in
+ * front. With @p flip (called with the two swapped) they face away from the first argument.
+ * One plane per edge (the first found) is enough to be conservative.
  */
-bool clipToSeparators(const Winding& source, const Winding& pass, Winding& target, bool flip,
-  double on, double slack, Winding& scratch)
+void findSeparators(const Winding& source, const Winding& pass, bool flip, double on,
+  std::vector<glm::dvec4>& out)
 {
   const std::size_t ns = source.size();
   for (std::size_t i = 0; i < ns; ++i)
@@ -160,15 +165,30 @@ bool clipToSeparators(const Winding& source, const Winding& pass, Winding& targe
       {
         continue; // not separating
       }
-      if (flip)
-      {
-        plane = -plane;
-      }
-      if (!chop(target, plane, slack, scratch))
-      {
-        return false;
-      }
+      out.push_back(flip ? -plane : plane);
       break;
+    }
+  }
+}
+
+/// The separating planes of (source, pass) and of (pass, source), each facing beyond the pass.
+void separators(const Winding& source, const Winding& pass, double on,
+  std::vector<glm::dvec4>& out)
+{
+  out.clear();
+  findSeparators(source, pass, false, on, out);
+  findSeparators(pass, source, true, on, out);
+}
+
+/// Clips @p target by @p planes in turn; false when nothing is left.
+bool chopAll(Winding& target, const std::vector<glm::dvec4>& planes, double slack,
+  Winding& scratch)
+{
+  for (const glm::dvec4& plane : planes)
+  {
+    if (!chop(target, plane, slack, scratch))
+    {
+      return false;
     }
   }
   return true;
@@ -183,6 +203,10 @@ struct Level
   Winding pass;   ///< The portal passed, clipped (empty at the root: no pass yet).
   Winding source; ///< The source portal, clipped.
   std::vector<std::uint64_t> might;
+  /// Separating planes of (source, pass), computed once per level on first use: most next
+  /// portals leave the source unclipped, so the planes are the same for all of them.
+  std::vector<glm::dvec4> separators;
+  bool separatorsReady = false;
 };
 
 struct Shared
@@ -289,6 +313,7 @@ struct Shared
     root.pass.clear();
     root.source = src.winding;
     root.might.assign(this->mightOf(s), this->mightOf(s) + W);
+    root.separatorsReady = false;
     std::size_t depth = 0, steps = 0;
     bool ok = true;
     for (;;)
@@ -345,26 +370,46 @@ struct Shared
         continue;
       }
       N.source = L2.source;
-      if (!chop(N.source, -dp.plane, this->slack, scratch))
+      bool sourceClipped = false;
+      if (!chop(N.source, -dp.plane, this->slack, scratch, &sourceClipped))
       {
         continue;
       }
       if (depth > 0)
       {
-        if (!chop(N.pass, L2.plane, this->slack, scratch) ||
-          !clipToSeparators(N.source, L2.pass, N.pass, false, this->on, this->slack, scratch) ||
-          !clipToSeparators(L2.pass, N.source, N.pass, true, this->on, this->slack, scratch) ||
-          (this->clipSource && (
-          !clipToSeparators(N.pass, L2.pass, N.source, false, this->on, this->slack, scratch) ||
-          !clipToSeparators(L2.pass, N.pass, N.source, true, this->on, this->slack, scratch))))
+        if (!chop(N.pass, L2.plane, this->slack, scratch))
         {
           continue;
+        }
+        const std::vector<glm::dvec4>* planes = &L2.separators;
+        if (sourceClipped)
+        {
+          separators(N.source, L2.pass, this->on, N.separators); // N's own are made on entry
+          planes = &N.separators;
+        }
+        else if (!L2.separatorsReady)
+        {
+          separators(L2.source, L2.pass, this->on, L2.separators);
+          L2.separatorsReady = true;
+        }
+        if (!chopAll(N.pass, *planes, this->slack, scratch))
+        {
+          continue;
+        }
+        if (this->clipSource)
+        {
+          separators(N.pass, L2.pass, this->on, N.separators);
+          if (!chopAll(N.source, N.separators, this->slack, scratch))
+          {
+            continue;
+          }
         }
       }
       setBit(visS, p);
       N.node = dp.to;
       N.next = 0;
       N.plane = dp.plane;
+      N.separatorsReady = false;
       ++depth;
       if ((++steps & 1023u) == 0 && this->stop.load(std::memory_order_relaxed))
       {
