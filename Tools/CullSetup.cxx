@@ -270,7 +270,17 @@ void CullSetup::Describe(std::ostream& json) const
          << ", \"portals_traversed\": " << p->GetNumberOfPortalsTraversed()
          << ", \"frustum_only\": " << (p->GetFrustumOnly() ? "true" : "false")
          << ", \"fallback\": " << JsonString(p->GetFallbackReason())
-         << ", \"pvs_ms\": " << this->PvsMs << "}";
+         << ", \"pvs_ms\": " << this->PvsMs;
+    if (this->PvsMs > 0.0)
+    {
+      json << ", \"pvs\": {\"method\": "
+           << (p->GetPVSMethod() == vtkPortalCuller::PVS_SEPARATING_PLANES ? "\"separating-planes\""
+                                                                          : "\"portal-flow\"")
+           << ", \"average_rooms\": " << p->GetPVSAverageSetSize()
+           << ", \"degraded_portals\": " << p->GetPVSDegradedPortals()
+           << ", \"budget_exceeded\": " << (p->GetPVSBudgetExceeded() ? "true" : "false") << "}";
+    }
+    json << "}";
   }
   if (vtkChunkedPolyDataMapper* c = this->Pipeline.GetChunkedMapper())
   {

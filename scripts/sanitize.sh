@@ -54,6 +54,8 @@ echo "sanitize: asan build done in $(( $(date +%s) - start )) s ($build)"
 # The VTK-level tests are named after their module (SceneVis::FiltersSortingCxx-TestX), rendering
 # ones included; those live in executables not built here (left to the main run) and are skipped:
 # ctest shows an empty command for them. Fuzz.BspCorpus replays Core/Fuzz/corpus and crashes.
+# Core.PortalPvsFlow.* run the multi-threaded portal-flow PVS (worker threads sharing bit sets)
+# on the demo building and 40 random maze levels under ASan/UBSan, Fuzz* included.
 # Every VTK-level test of the modules too (they render with OSMesa, no X needed): LeakSanitizer
 # is the leak check of the filters, mappers, passes, cullers, the model reader and the auto planner
 # (bad input included: SceneVis::IOModelsCxx-TestSceneVisModelReaderBadInput,

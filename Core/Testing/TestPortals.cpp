@@ -809,6 +809,7 @@ TEST(PortalPvs, CorridorAndCornerAndFileRoundTrip)
   const PortalGraph g = PortalGraph::build(s.finish());
   std::vector<double> progress;
   PvsOptions options;
+  options.method = PvsMethod::SeparatingPlanes;
   options.progress = [&progress](double f)
   {
     progress.push_back(f);
@@ -843,4 +844,28 @@ TEST(PortalPvs, CorridorAndCornerAndFileRoundTrip)
   // Cancelled: empty.
   options.progress = [](double) { return false; };
   EXPECT_TRUE(PortalPvs::compute(g, options).empty());
+}
+
+TEST(PortalPvs, CorridorAndCornerWithPortalFlow)
+{
+  BoxRooms s = corridor();
+  const PortalGraph g = PortalGraph::build(s.finish());
+  for (const PvsMethod method : { PvsMethod::PortalFlow, PvsMethod::MightSee })
+  {
+    PvsOptions options;
+    options.method = method;
+    PvsStats stats;
+    const PortalPvs pvs = PortalPvs::compute(g, options, &stats);
+    ASSERT_FALSE(pvs.empty());
+    EXPECT_EQ(stats.directedPortals, 2 * g.portals().size());
+    EXPECT_TRUE(pvs.visible(0, 3));
+    EXPECT_TRUE(pvs.visible(3, 4));
+    EXPECT_TRUE(pvs.visible(5, 4));
+    if (method == PvsMethod::PortalFlow)
+    {
+      EXPECT_FALSE(pvs.visible(5, 0)) << "two corners";
+      EXPECT_EQ(pvs.visibleFrom(0), (std::vector<std::int32_t>{ 0, 1, 2, 3 }))
+        << "room 4 is behind a corner: no line passes the three doors and its door";
+    }
+  }
 }

@@ -2,6 +2,8 @@
 
 #include "scenevis/PortalGeometry.h"
 
+#include "PortalPvsInternal.h"
+
 #include <glm/geometric.hpp>
 
 #include <algorithm>
@@ -36,8 +38,9 @@ double maxDistance(const std::vector<glm::dvec3>& polygon, const glm::dvec4& pla
   return d;
 }
 
-/// Which side of portal p's plane node B is on: +1, -1, or 0 when it cannot be told.
-int orientation(const PortalGraph& g, const GraphPortal& p)
+} // namespace
+
+int portalOrientation(const PortalGraph& g, const GraphPortal& p)
 {
   if (!p.planar)
   {
@@ -87,6 +90,8 @@ int orientation(const PortalGraph& g, const GraphPortal& p)
   return vote;
 }
 
+namespace
+{
 /**
  * Planes through an edge of one polygon and a vertex of the other that have @p from on their
  * negative side and @p to on their positive side (both weakly).
@@ -140,7 +145,9 @@ void separatingPlanes(const std::vector<glm::dvec3>& from, const std::vector<glm
   consider(to, from);
 }
 
-void reachable(const PortalGraph& g, std::int32_t source, std::vector<char>& seen)
+} // namespace
+
+void reachableNodes(const PortalGraph& g, std::int32_t source, std::vector<char>& seen)
 {
   std::vector<std::int32_t> queue{ source };
   seen[static_cast<std::size_t>(source)] = 1;
@@ -159,19 +166,21 @@ void reachable(const PortalGraph& g, std::int32_t source, std::vector<char>& see
     }
   }
 }
-} // namespace
 
-PortalPvs PortalPvs::compute(const PortalGraph& g, const PvsOptions& options, PvsStats* statsOut)
+namespace
+{
+PortalPvs computeSeparatingPlanes(const PortalGraph& g, const PvsOptions& options, PvsStats* statsOut)
 {
   PvsStats stats;
-  PortalPvs pvs;
+  stats.method = PvsMethod::SeparatingPlanes;
+  std::vector<std::vector<std::int32_t>> sets;
   const auto nodes = static_cast<std::size_t>(g.nodeCount());
   const double tol = 10.0 * g.tolerance();
   const auto& portals = g.portals();
   std::vector<int> side(portals.size());
   for (std::size_t i = 0; i < portals.size(); ++i)
   {
-    side[i] = orientation(g, portals[i]);
+    side[i] = portalOrientation(g, portals[i]);
   }
 
   struct Frame
@@ -184,7 +193,7 @@ PortalPvs PortalPvs::compute(const PortalGraph& g, const PvsOptions& options, Pv
   std::vector<std::vector<Constraint>> levels;     // constraints added at each depth
   std::vector<char> seen(nodes);
   std::size_t totalSize = 0;
-  pvs.Sets.resize(nodes);
+  sets.resize(nodes);
   for (std::size_t s = 0; s < nodes; ++s)
   {
     std::fill(seen.begin(), seen.end(), 0);
@@ -278,9 +287,9 @@ PortalPvs PortalPvs::compute(const PortalGraph& g, const PvsOptions& options, Pv
     if (everything)
     {
       std::fill(seen.begin(), seen.end(), 0);
-      reachable(g, static_cast<std::int32_t>(s), seen);
+      reachableNodes(g, static_cast<std::int32_t>(s), seen);
     }
-    auto& set = pvs.Sets[s];
+    auto& set = sets[s];
     for (std::size_t n = 0; n < nodes; ++n)
     {
       if (seen[n])
@@ -299,8 +308,31 @@ PortalPvs PortalPvs::compute(const PortalGraph& g, const PvsOptions& options, Pv
       return PortalPvs();
     }
   }
-  pvs.Fingerprint = g.fingerprint();
   stats.averageSetSize = nodes ? static_cast<double>(totalSize) / double(nodes) : 0.0;
+  if (statsOut)
+  {
+    *statsOut = stats;
+  }
+  return PortalPvs::fromSets(g, std::move(sets));
+}
+} // namespace
+
+PortalPvs PortalPvs::fromSets(const PortalGraph& graph, std::vector<std::vector<std::int32_t>> sets)
+{
+  PortalPvs pvs;
+  pvs.Sets = std::move(sets);
+  pvs.Fingerprint = graph.fingerprint();
+  return pvs;
+}
+
+PortalPvs PortalPvs::compute(const PortalGraph& g, const PvsOptions& options, PvsStats* statsOut)
+{
+  if (options.method == PvsMethod::SeparatingPlanes)
+  {
+    return computeSeparatingPlanes(g, options, statsOut);
+  }
+  PvsStats stats;
+  PortalPvs pvs = computePortalFlow(g, options, stats);
   if (statsOut)
   {
     *statsOut = stats;

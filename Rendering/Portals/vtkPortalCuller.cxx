@@ -298,7 +298,7 @@ double vtkPortalCuller::Cull(
     {
       if (in.Pvs.empty() || in.Pvs.fingerprint() != in.Graph.fingerprint())
       {
-        in.Pvs = sp::PortalPvs::compute(in.Graph);
+        this->ComputePVSOfScene(false);
       }
       in.Traversal.runPvs(in.Graph, in.Pvs, view, options);
     }
@@ -578,14 +578,34 @@ bool vtkPortalCuller::ComputePVS(vtkRenderer* ren)
     vtkWarningMacro("ComputePVS: no usable scene (renderer and portals needed).");
     return false;
   }
-  sp::PvsOptions options;
-  options.progress = [this](double fraction)
-  {
-    this->InvokeEvent(vtkCommand::ProgressEvent, &fraction);
-    return true;
-  };
-  in.Pvs = sp::PortalPvs::compute(in.Graph, options);
   this->NumberOfRooms = in.Graph.roomCount();
+  return this->ComputePVSOfScene(true);
+}
+
+//------------------------------------------------------------------------------
+bool vtkPortalCuller::ComputePVSOfScene(bool progressEvents)
+{
+  vtkInternals& in = *this->Internals;
+  sp::PvsOptions options;
+  options.method = this->PVSMethod == PVS_SEPARATING_PLANES ? sp::PvsMethod::SeparatingPlanes
+                                                            : sp::PvsMethod::PortalFlow;
+  options.budgetSeconds = this->PVSBudgetSeconds;
+  if (progressEvents)
+  {
+    options.progress = [this](double fraction)
+    {
+      this->InvokeEvent(vtkCommand::ProgressEvent, &fraction);
+      return true;
+    };
+  }
+  sp::PvsStats stats;
+  const auto start = std::chrono::steady_clock::now();
+  in.Pvs = sp::PortalPvs::compute(in.Graph, options, &stats);
+  this->PVSComputeTime =
+    std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  this->PVSAverageSetSize = stats.averageSetSize;
+  this->PVSDegradedPortals = static_cast<vtkIdType>(stats.degradedPortals);
+  this->PVSBudgetExceeded = stats.budgetExceeded;
   return !in.Pvs.empty();
 }
 
@@ -631,6 +651,13 @@ void vtkPortalCuller::PrintSelf(ostream& os, vtkIndent indent)
   this->Superclass::PrintSelf(os, indent);
   const char* modes[] = { "off", "screen rectangles", "exact frustum", "pvs" };
   os << indent << "Mode: " << modes[this->Mode] << "\n";
+  os << indent << "PVSMethod: "
+     << (this->PVSMethod == PVS_SEPARATING_PLANES ? "separating planes" : "portal flow") << "\n";
+  os << indent << "PVSBudgetSeconds: " << this->PVSBudgetSeconds << "\n";
+  os << indent << "PVSComputeTime: " << this->PVSComputeTime << " ms\n";
+  os << indent << "PVSAverageSetSize: " << this->PVSAverageSetSize << "\n";
+  os << indent << "PVSDegradedPortals: " << this->PVSDegradedPortals
+     << (this->PVSBudgetExceeded ? " (budget exceeded)" : "") << "\n";
   os << indent << "OutsidePolicy: "
      << (this->OutsidePolicy == OUTSIDE_FRUSTUM_ONLY ? "frustum only" : "exterior portals") << "\n";
   os << indent << "RoomIdArrayName: " << (this->RoomIdArrayName ? this->RoomIdArrayName : "(none)")

@@ -127,6 +127,37 @@ public:
   bool LoadPVS(vtkRenderer* ren, const char* fileName);
   ///@}
 
+  enum PVSMethods
+  {
+    /// Might-see floods, then the clipped portal flow within them, on all cores (scales to
+    /// thousands of rooms; see scenevis/PortalPvs.h).
+    PVS_PORTAL_FLOW = 0,
+    /// The separating-plane walk of every portal sequence (exponential on big levels).
+    PVS_SEPARATING_PLANES
+  };
+  ///@{
+  /// How ComputePVS() (and MODE_PVS on first use) computes the sets. Default PVS_PORTAL_FLOW.
+  vtkSetClampMacro(PVSMethod, int, PVS_PORTAL_FLOW, PVS_SEPARATING_PLANES);
+  vtkGetMacro(PVSMethod, int);
+  ///@}
+
+  ///@{
+  /// Wall-clock budget of the portal flow in seconds (0, the default: none). Portals whose flow
+  /// is not done by then keep their conservative might-see sets; GetPVSDegradedPortals() says
+  /// how many.
+  vtkSetClampMacro(PVSBudgetSeconds, double, 0.0, VTK_DOUBLE_MAX);
+  vtkGetMacro(PVSBudgetSeconds, double);
+  ///@}
+
+  ///@{
+  /// The last computed PVS: milliseconds, mean rooms per set, directed portals that kept their
+  /// might-see set (budget), and whether the budget ran out.
+  vtkGetMacro(PVSComputeTime, double);
+  vtkGetMacro(PVSAverageSetSize, double);
+  vtkGetMacro(PVSDegradedPortals, vtkIdType);
+  vtkGetMacro(PVSBudgetExceeded, bool);
+  ///@}
+
   ///@{
   /// Statistics of the last Cull().
   vtkGetMacro(NumberOfRooms, int);
@@ -152,6 +183,12 @@ protected:
   ~vtkPortalCuller() override;
 
   int Mode = MODE_EXACT_FRUSTUM;
+  int PVSMethod = PVS_PORTAL_FLOW;
+  double PVSBudgetSeconds = 0.0;
+  double PVSComputeTime = 0.0;
+  double PVSAverageSetSize = 0.0;
+  vtkIdType PVSDegradedPortals = 0;
+  bool PVSBudgetExceeded = false;
   int OutsidePolicy = OUTSIDE_EXTERIOR_PORTALS;
   char* RoomIdArrayName = nullptr;
 
@@ -171,6 +208,8 @@ private:
 
   /// (Re)build props, room geometry and the portal graph if needed; whether culling can run.
   bool EnsureScene(vtkRenderer* ren);
+  /// Compute the PVS of the current graph with the PVS settings; progress events if asked.
+  bool ComputePVSOfScene(bool progressEvents);
 
   class vtkInternals;
   std::unique_ptr<vtkInternals> Internals;

@@ -237,5 +237,39 @@ struct BuildingScene : Scene
  */
 BuildingScene building(int floors = 3, int roomsX = 4, int roomsY = 3, std::uint64_t seed = 1);
 
+/// Parameters of maze(): a level of box rooms meant to make visibility precomputation hard.
+struct MazeConfig
+{
+  int roomsX = 8;
+  int roomsY = 8;
+  int floors = 2;
+  std::uint64_t seed = 1;
+  /// Openings per interior wall between rooms of one floor: 0, 1, 2 or 3 with these odds
+  /// (normalised). Each is a door, a window or a wide arch of random size.
+  double openings[4] = { 0.15, 0.45, 0.3, 0.1 };
+  /// Fraction of openings centred in their slot of the wall: walls of one row share their extent
+  /// across the row, so centred openings line up into long sight lines.
+  double aligned = 0.5;
+  double exteriorWindow = 0.5; ///< Chance of a window in each exterior wall of a room.
+  double stairHole = 0.12;     ///< Chance of a hole to the room above.
+  /// Halls per floor: rectangles of 2 x 2 to hallSize x hallSize rooms whose walls between each
+  /// other are open (one opening of 96 % of the wall): open areas cut into many cells, as in
+  /// game levels, where portal sequences multiply.
+  int hallsPerFloor = 0;
+  int hallSize = 6;
+};
+
+/**
+ * A maze level of floors x roomsX x roomsY box rooms (ids as building()) on a jittered grid:
+ * column and row widths 3-8 m, storey heights 2.6-4.5 m, zero-thickness walls in the cells'
+ * faces. Openings (each a rectangle strictly inside its face: doors, windows, arches up to 80 %
+ * of their slot) are decided per wall, several per wall in slots along it; exterior walls get
+ * windows to kOutside, slabs get holes to the room above. Rooms need not all be connected.
+ * Geometry: each room's six faces split around their openings (assigned to the room) and the
+ * facade (kOutside); parts "walls" and "facade". `rooms[r].bounds` is room r's cell, and every
+ * portal lies strictly inside a face shared by its two cells (tests walk segments through it).
+ */
+BuildingScene maze(const MazeConfig& config);
+
 } // namespace scenes
 } // namespace scenevis

@@ -183,6 +183,9 @@ int TestPortalCullerBadInput(int, char*[])
   ok &= Check(culler->GetNumberOfRoomsVisited() == 3 && culler->GetNumberOfPropsCulled() == 1 &&
       culler->GetNumberOfTrianglesDrawn() > 0 && !culler->GetFrustumOnly(),
     "statistics");
+  std::printf("statistics: rooms visited %d, props culled %d, triangles drawn %lld, frustum only %d\n",
+    culler->GetNumberOfRoomsVisited(), culler->GetNumberOfPropsCulled(),
+    static_cast<long long>(culler->GetNumberOfTrianglesDrawn()), culler->GetFrustumOnly() ? 1 : 0);
   // initialized: existing multipliers are kept (multiplied by 1).
   r0->SetRenderTimeMultiplier(0.25);
   drawn = Run(culler, ren, props, 1, &total);

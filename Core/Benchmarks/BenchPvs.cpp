@@ -1,0 +1,255 @@
+// PVS precompute at level scale: a maze level (scenes::maze(), ~1,700 rooms and ~5,800 portals
+// by default) through the portal-flow PVS and the separating-plane PVS (stopped after a time
+// limit), their set sizes, the rooms a sampling oracle proves visible that each PVS lost, and
+// the per-frame traversal cost (exact frustum narrowing and PVS lookup) for eyes in rooms.
+//
+//   build/bin/scenevis_pvs_bench                       # 24 x 24 rooms x 3 floors
+//   build/bin/scenevis_pvs_bench --rooms 6,6,2 --old-seconds 5 --segments 20000 --frames 20
+//
+// Options: --rooms X,Y,FLOORS  --halls N (open halls per floor, default 6)
+// --hall-size N (largest hall side in rooms, default 12)  --seed N  --threads N (0 = all cores)  --budget S (flow budget,
+// 0 = none)  --old-seconds S (limit of the separating-plane run, 0 skips it)  --segments N
+// (oracle samples)  --frames N (traversal views).
+#include "PortalSegmentOracle.h"
+
+#include "scenevis/PortalGraph.h"
+#include "scenevis/PortalPvs.h"
+#include "scenevis/PortalTraversal.h"
+#include "scenevis/Scenes.h"
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <ctime>
+#include <random>
+#include <string>
+#include <vector>
+
+using namespace scenevis;
+using namespace scenevis::portals;
+
+namespace
+{
+using Clock = std::chrono::steady_clock;
+double since(Clock::time_point t)
+{
+  return std::chrono::duration<double>(Clock::now() - t).count();
+}
+/// Processor time of the process (all threads) since @p c, in seconds: on a loaded machine the
+/// wall time says more about the other processes than about this one.
+double cpuSince(std::clock_t c)
+{
+  return static_cast<double>(std::clock() - c) / CLOCKS_PER_SEC;
+}
+
+std::size_t entries(const PortalPvs& pvs)
+{
+  std::size_t n = 0;
+  for (std::int32_t x = 0; x < pvs.nodeCount(); ++x)
+  {
+    n += pvs.visibleFrom(x).size();
+  }
+  return n;
+}
+
+/// Pairs (rooms) the oracle proved visible that @p pvs lacks.
+std::size_t lost(const testing_support::PortalSegmentOracle& oracle, const PortalPvs& pvs)
+{
+  std::size_t n = 0;
+  for (std::int32_t x = 0; x < pvs.nodeCount(); ++x)
+  {
+    for (std::int32_t y = 0; y < pvs.nodeCount(); ++y)
+    {
+      n += oracle.proven(x, y) && !pvs.visible(x, y) ? 1 : 0;
+    }
+  }
+  return n;
+}
+
+double median(std::vector<double> v)
+{
+  if (v.empty())
+  {
+    return 0.0;
+  }
+  std::sort(v.begin(), v.end());
+  return v[v.size() / 2];
+}
+} // namespace
+
+int main(int argc, char** argv)
+{
+  std::setvbuf(stdout, nullptr, _IOLBF, 0); // each result as it comes, also into a file
+  scenes::MazeConfig config;
+  config.roomsX = 24;
+  config.roomsY = 24;
+  config.floors = 3;
+  config.openings[0] = 0.05;
+  config.openings[1] = 0.25;
+  config.openings[2] = 0.4;
+  config.openings[3] = 0.3;
+  config.stairHole = 0.25;
+  config.hallsPerFloor = 6;
+  config.hallSize = 12;
+  int threads = 0;
+  double budget = 0.0, oldSeconds = 120.0;
+  std::size_t segments = 2'000'000, frames = 200;
+  for (int i = 1; i + 1 < argc; i += 2)
+  {
+    const std::string key = argv[i];
+    const char* value = argv[i + 1];
+    if (key == "--rooms" &&
+      std::sscanf(value, "%d,%d,%d", &config.roomsX, &config.roomsY, &config.floors) == 3)
+    {
+    }
+    else if (key == "--halls")
+    {
+      config.hallsPerFloor = std::atoi(value);
+    }
+    else if (key == "--hall-size")
+    {
+      config.hallSize = std::atoi(value);
+    }
+    else if (key == "--seed")
+    {
+      config.seed = std::strtoull(value, nullptr, 10);
+    }
+    else if (key == "--threads")
+    {
+      threads = std::atoi(value);
+    }
+    else if (key == "--budget")
+    {
+      budget = std::atof(value);
+    }
+    else if (key == "--old-seconds")
+    {
+      oldSeconds = std::atof(value);
+    }
+    else if (key == "--segments")
+    {
+      segments = std::strtoull(value, nullptr, 10);
+    }
+    else if (key == "--frames")
+    {
+      frames = std::strtoull(value, nullptr, 10);
+    }
+    else
+    {
+      std::fprintf(stderr, "scenevis_pvs_bench: unknown option or bad value: %s %s\n", argv[i],
+        value);
+      return 2;
+    }
+  }
+
+  auto t0 = Clock::now();
+  const scenes::BuildingScene level = scenes::maze(config);
+  PortalGraphReport report;
+  const PortalGraph graph = PortalGraph::build(cellSceneOf(level), &report);
+  std::printf("level: maze %dx%dx%d seed %llu: %d rooms, %zu portals, %zu polygons "
+              "(generated and graph built in %.2f s, %zu graph errors)\n",
+    config.roomsX, config.roomsY, config.floors, static_cast<unsigned long long>(config.seed),
+    graph.roomCount(), graph.portals().size(), level.mesh.polygonCount(), since(t0),
+    report.errors());
+
+  PvsOptions options;
+  options.threads = threads;
+  options.budgetSeconds = budget;
+  PvsStats stats;
+  t0 = Clock::now();
+  std::clock_t c0 = std::clock();
+  const PortalPvs flow = PortalPvs::compute(graph, options, &stats);
+  const double flowSeconds = since(t0);
+  std::printf("portal flow: %.2f s wall, %.2f s CPU, on %d threads (might-see %.2f s, flow %.2f s); %zu directed "
+              "portals, might-see %.1f and final %.1f portals each; %zu flow steps; %zu degraded "
+              "portals%s; PVS %.1f nodes per node (%zu entries)\n",
+    flowSeconds, cpuSince(c0), stats.threads, stats.mightSeeSeconds, stats.flowSeconds, stats.directedPortals,
+    stats.averageMightSee, stats.averagePortalVis, stats.flowSteps, stats.degradedPortals,
+    stats.budgetExceeded ? " (budget exceeded)" : "", stats.averageSetSize, entries(flow));
+  options.method = PvsMethod::MightSee;
+  t0 = Clock::now();
+  const PortalPvs might = PortalPvs::compute(graph, options, &stats);
+  std::printf("might-see only: %.2f s; PVS %.1f nodes per node\n", since(t0), stats.averageSetSize);
+
+  PortalPvs old;
+  if (oldSeconds > 0.0)
+  {
+    options = PvsOptions();
+    options.method = PvsMethod::SeparatingPlanes;
+    double done = 0.0;
+    t0 = Clock::now();
+    c0 = std::clock();
+    options.progress = [&](double f)
+    {
+      done = f;
+      return since(t0) < oldSeconds;
+    };
+    old = PortalPvs::compute(graph, options, &stats);
+    if (old.empty())
+    {
+      std::printf("separating planes: stopped after %.1f s wall, %.1f s CPU, with %.1f %% of the "
+                  "source rooms done (%zu sequences walked)\n",
+        since(t0), cpuSince(c0), 100.0 * done, stats.sequences);
+    }
+    else
+    {
+      std::printf("separating planes: %.2f s wall, %.2f s CPU; PVS %.1f nodes per node (%zu "
+                  "entries)\n",
+        since(t0), cpuSince(c0), stats.averageSetSize, entries(old));
+    }
+  }
+
+  t0 = Clock::now();
+  testing_support::PortalSegmentOracle oracle(level, graph);
+  oracle.sample(segments, 7);
+  std::printf("oracle: %zu segments (%zu through portals) in %.2f s prove %zu ordered pairs; "
+              "lost by portal flow %zu, by might-see %zu",
+    segments, oracle.crossingSegments(), since(t0), oracle.provenPairs(), lost(oracle, flow),
+    lost(oracle, might));
+  if (!old.empty())
+  {
+    std::printf(", by separating planes %zu", lost(oracle, old));
+  }
+  std::printf("\n");
+
+  // Per-frame traversal: eyes at 1.6 m in random rooms, random headings, 90 degrees.
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  std::vector<double> exactMs, pvsMs;
+  double exactRooms = 0.0, pvsRooms = 0.0;
+  PortalTraversal t;
+  TraversalOptions topt;
+  std::size_t views = 0;
+  for (std::size_t f = 0; f < frames; ++f)
+  {
+    const Box& cell = level.rooms[rng() % level.rooms.size()].bounds;
+    const glm::dvec3 eye(cell.lo.x + (0.1 + 0.8 * u(rng)) * (cell.hi.x - cell.lo.x),
+      cell.lo.y + (0.1 + 0.8 * u(rng)) * (cell.hi.y - cell.lo.y), cell.lo.z + 1.6);
+    const double yaw = u(rng) * 6.283185307;
+    PortalView view;
+    view.eye = eye;
+    view.clipFromWorld = glm::perspective(glm::radians(90.0), 1.0, 0.05, 1000.0) *
+      glm::lookAt(eye, eye + glm::dvec3(std::cos(yaw), std::sin(yaw), 0.0), glm::dvec3(0, 0, 1));
+    auto a = Clock::now();
+    t.run(graph, view, topt);
+    exactMs.push_back(1e3 * since(a));
+    exactRooms += static_cast<double>(t.visibleNodes().size());
+    a = Clock::now();
+    t.runPvs(graph, flow, view, topt);
+    pvsMs.push_back(1e3 * since(a));
+    pvsRooms += static_cast<double>(t.visibleNodes().size());
+    ++views;
+  }
+  if (views)
+  {
+    std::printf("traversal over %zu views (90 degrees): exact frustum narrowing median %.3f ms, "
+                "%.1f nodes; portal-flow PVS lookup median %.3f ms, %.1f nodes\n",
+      views, median(exactMs), exactRooms / double(views), median(pvsMs), pvsRooms / double(views));
+  }
+  return lost(oracle, flow) == 0 ? 0 : 1;
+}

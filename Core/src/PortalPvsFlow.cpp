@@ -1,0 +1,749 @@
+// PortalFlow and MightSee PVS methods (PortalPvs.h): might-see floods over directed portals, then
+// the clipped flow within them, multi-threaded, with bit sets and shared bounds.
+#include "scenevis/PortalGeometry.h"
+#include "scenevis/PortalPvs.h"
+
+#include "PortalPvsInternal.h"
+
+#include <glm/geometric.hpp>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <condition_variable>
+#include <limits>
+#include <mutex>
+#include <numeric>
+#include <thread>
+
+namespace scenevis
+{
+namespace portals
+{
+
+namespace
+{
+using Winding = std::vector<glm::dvec3>;
+using Clock = std::chrono::steady_clock;
+
+struct DirectedPortal
+{
+  std::int32_t from = 0;
+  std::int32_t to = 0;
+  glm::dvec4 plane{ 0.0 }; ///< Facing `to`; coordinates relative to the portals' centre.
+  Winding winding;         ///< The graph portal's hull, relative to the portals' centre.
+  glm::dvec3 centre{ 0.0 }; ///< Of a sphere around the winding (quick side tests).
+  double radius = 0.0;
+  bool usable = false;     ///< Planar with known sides: it may narrow the flow.
+};
+
+inline bool bit(const std::uint64_t* set, std::size_t i)
+{
+  return (set[i >> 6] >> (i & 63)) & 1u;
+}
+inline void setBit(std::uint64_t* set, std::size_t i)
+{
+  set[i >> 6] |= std::uint64_t(1) << (i & 63);
+}
+std::size_t popcount(const std::uint64_t* set, std::size_t words)
+{
+  std::size_t n = 0;
+  for (std::size_t w = 0; w < words; ++w)
+  {
+    n += static_cast<std::size_t>(__builtin_popcountll(set[w]));
+  }
+  return n;
+}
+
+double maxDistance(const Winding& w, const glm::dvec4& plane)
+{
+  double d = -std::numeric_limits<double>::infinity();
+  for (const auto& p : w)
+  {
+    d = std::max(d, geometry::planeDistance(plane, p));
+  }
+  return d;
+}
+double minDistance(const Winding& w, const glm::dvec4& plane)
+{
+  double d = std::numeric_limits<double>::infinity();
+  for (const auto& p : w)
+  {
+    d = std::min(d, geometry::planeDistance(plane, p));
+  }
+  return d;
+}
+
+/// Clips @p w in place to dot(plane, p) >= -slack (@p scratch is reused); false when < 3 points.
+bool chop(Winding& w, const glm::dvec4& plane, double slack, Winding& scratch,
+  bool* changed = nullptr)
+{
+  bool allIn = true;
+  for (const auto& p : w)
+  {
+    if (geometry::planeDistance(plane, p) < -slack)
+    {
+      allIn = false;
+      break;
+    }
+  }
+  if (allIn)
+  {
+    return w.size() >= 3;
+  }
+  if (changed)
+  {
+    *changed = true;
+  }
+  geometry::clipPolygon(w, plane, slack, scratch);
+  w.swap(scratch);
+  return w.size() >= 3;
+}
+
+/**
+ * Appends to @p out the planes through an edge of @p source and a vertex of @p pass that have
+ * the source behind and the pass in front, facing the pass: a line through both continues in
+ * front. With @p flip (called with the two swapped) they face away from the first argument.
+ * One plane per edge (the first found) is enough to be conservative.
+ */
+void findSeparators(const Winding& source, const Winding& pass, bool flip, double on,
+  std::vector<glm::dvec4>& out)
+{
+  const std::size_t ns = source.size();
+  for (std::size_t i = 0; i < ns; ++i)
+  {
+    const glm::dvec3& a = source[i];
+    const std::size_t l = (i + 1) % ns;
+    const glm::dvec3 v1 = source[l] - a;
+    const double len1 = glm::length(v1);
+    if (len1 == 0.0)
+    {
+      continue;
+    }
+    for (const glm::dvec3& pj : pass)
+    {
+      const glm::dvec3 v2 = pj - a;
+      glm::dvec3 n = glm::cross(v1, v2);
+      const double len = glm::length(n);
+      if (!(len > 1e-7 * len1 * glm::length(v2)))
+      {
+        continue; // the vertex is (nearly) on the edge's line: no well-defined plane
+      }
+      n /= len;
+      glm::dvec4 plane(n, -glm::dot(n, a));
+      double lo = 0.0, hi = 0.0;
+      for (std::size_t k = 0; k < ns; ++k)
+      {
+        if (k == i || k == l)
+        {
+          continue;
+        }
+        const double d = geometry::planeDistance(plane, source[k]);
+        lo = std::min(lo, d);
+        hi = std::max(hi, d);
+      }
+      if (hi > on && lo < -on)
+      {
+        continue; // numerically not convex
+      }
+      if (hi <= on && lo >= -on)
+      {
+        continue; // in the source's plane
+      }
+      if (hi > on)
+      {
+        plane = -plane; // the source behind
+      }
+      bool front = false, behind = false;
+      for (const glm::dvec3& q : pass)
+      {
+        const double d = geometry::planeDistance(plane, q);
+        behind = behind || d < -on;
+        front = front || d > on;
+      }
+      if (behind || !front)
+      {
+        continue; // not separating
+      }
+      out.push_back(flip ? -plane : plane);
+      break;
+    }
+  }
+}
+
+/// The separating planes of (source, pass) and of (pass, source), each facing beyond the pass.
+void separators(const Winding& source, const Winding& pass, double on,
+  std::vector<glm::dvec4>& out)
+{
+  out.clear();
+  findSeparators(source, pass, false, on, out);
+  findSeparators(pass, source, true, on, out);
+}
+
+/// Clips @p target by @p planes in turn; false when nothing is left.
+bool chopAll(Winding& target, const std::vector<glm::dvec4>& planes, double slack,
+  Winding& scratch)
+{
+  for (const glm::dvec4& plane : planes)
+  {
+    if (!chop(target, plane, slack, scratch))
+    {
+      return false;
+    }
+  }
+  return true;
+}
+
+/// One level of a flow: the node reached, the portal passed into it and the clipped polygons.
+struct Level
+{
+  std::int32_t node = 0;
+  std::uint32_t next = 0; ///< Position in the node's out-portal list.
+  glm::dvec4 plane{ 0.0 };
+  Winding pass;   ///< The portal passed, clipped (empty at the root: no pass yet).
+  Winding source; ///< The source portal, clipped.
+  std::vector<std::uint64_t> might;
+  /// Separating planes of (source, pass), computed once per level on first use: most next
+  /// portals leave the source unclipped, so the planes are the same for all of them.
+  std::vector<glm::dvec4> separators;
+  bool separatorsReady = false;
+};
+
+struct Shared
+{
+  std::vector<DirectedPortal> portals;
+  std::vector<std::uint32_t> outStart, outList; ///< Directed portals leaving each node (CSR).
+  std::vector<std::uint32_t> succStart;         ///< Per directed portal: into edgeOk.
+  std::vector<char> edgeOk; ///< Per (q, r in out(q.to)): a line may cross q then r.
+  std::size_t words = 0;
+  std::vector<std::uint64_t> mightSee, vis; ///< words per directed portal.
+  std::vector<std::atomic<unsigned char>> done;
+  double on = 0.0, slack = 0.0;
+  std::size_t maxSteps = 0;
+  bool clipSource = false;
+  std::atomic<bool> stop{ false }, budgetHit{ false };
+  std::atomic<std::size_t> totalSteps{ 0 }, degraded{ 0 };
+
+  const std::uint64_t* mightOf(std::size_t p) const { return &this->mightSee[p * this->words]; }
+  std::uint64_t* visOf(std::size_t p) { return &this->vis[p * this->words]; }
+
+  /// Whether a line crossing @p s forward may then cross @p r forward: r has a point in front
+  /// of s and s a point behind r (bounding spheres first, the vertices when they straddle).
+  bool frontOk(const DirectedPortal& s, const DirectedPortal& r) const
+  {
+    if (!s.usable || !r.usable)
+    {
+      return true;
+    }
+    const double rc = geometry::planeDistance(s.plane, r.centre);
+    if (rc + r.radius <= this->on)
+    {
+      return false;
+    }
+    if (rc - r.radius <= this->on && !(maxDistance(r.winding, s.plane) > this->on))
+    {
+      return false;
+    }
+    const double sc = geometry::planeDistance(r.plane, s.centre);
+    if (sc - s.radius >= -this->on)
+    {
+      return false;
+    }
+    return sc + s.radius < -this->on || minDistance(s.winding, r.plane) < -this->on;
+  }
+
+  /// The might-see set of @p s; @p rejected (words, zero on entry and on return) remembers the
+  /// portals s cannot see at all, so each is tested once.
+  void flood(std::size_t s, std::vector<std::uint32_t>& queue, std::vector<std::uint64_t>& rejected)
+  {
+    std::uint64_t* seen = &this->mightSee[s * this->words];
+    std::uint64_t* no = rejected.data();
+    const DirectedPortal& src = this->portals[s];
+    queue.clear();
+    const auto to = static_cast<std::size_t>(src.to);
+    for (std::uint32_t k = this->outStart[to]; k < this->outStart[to + 1]; ++k)
+    {
+      const std::uint32_t q = this->outList[k];
+      if ((q ^ 1u) != s && this->frontOk(src, this->portals[q]))
+      {
+        setBit(seen, q);
+        queue.push_back(q);
+      }
+    }
+    for (std::size_t head = 0; head < queue.size(); ++head)
+    {
+      const std::uint32_t q = queue[head];
+      const auto qto = static_cast<std::size_t>(this->portals[q].to);
+      std::uint32_t e = this->succStart[q];
+      for (std::uint32_t k = this->outStart[qto]; k < this->outStart[qto + 1]; ++k, ++e)
+      {
+        const std::uint32_t r = this->outList[k];
+        if (!this->edgeOk[e] || bit(seen, r) || bit(no, r))
+        {
+          continue;
+        }
+        if (this->frontOk(src, this->portals[r]))
+        {
+          setBit(seen, r);
+          queue.push_back(r);
+        }
+        else
+        {
+          setBit(no, r);
+        }
+      }
+    }
+    std::fill(rejected.begin(), rejected.end(), 0);
+  }
+
+  /// The flow from directed portal @p s; false when stopped (budget, cancel).
+  bool flow(std::size_t s, std::vector<Level>& levels, Winding& scratch)
+  {
+    const DirectedPortal& src = this->portals[s];
+    std::uint64_t* visS = this->visOf(s);
+    const std::size_t W = this->words;
+    if (levels.empty())
+    {
+      levels.emplace_back();
+    }
+    Level& root = levels[0];
+    root.node = src.to;
+    root.next = 0;
+    root.plane = src.plane;
+    root.pass.clear();
+    root.source = src.winding;
+    root.might.assign(this->mightOf(s), this->mightOf(s) + W);
+    root.separatorsReady = false;
+    std::size_t depth = 0, steps = 0;
+    bool ok = true;
+    for (;;)
+    {
+      Level& L = levels[depth];
+      const auto node = static_cast<std::size_t>(L.node);
+      if (this->outStart[node] + L.next >= this->outStart[node + 1])
+      {
+        if (depth == 0)
+        {
+          break;
+        }
+        --depth;
+        continue;
+      }
+      const std::uint32_t p = this->outList[this->outStart[node] + L.next++];
+      if (!bit(L.might.data(), p))
+      {
+        continue;
+      }
+      if (depth + 1 == levels.size())
+      {
+        levels.emplace_back(); // grows to the deepest flow once per thread, then reused
+      }
+      Level& L2 = levels[depth];
+      Level& N = levels[depth + 1];
+      const std::uint64_t* test = this->done[p].load(std::memory_order_acquire)
+        ? &this->vis[static_cast<std::size_t>(p) * W]
+        : this->mightOf(p);
+      N.might.resize(W);
+      std::uint64_t more = 0;
+      for (std::size_t w = 0; w < W; ++w)
+      {
+        N.might[w] = L2.might[w] & test[w];
+        more |= N.might[w] & ~visS[w];
+      }
+      if (!more && bit(visS, p))
+      {
+        continue; // nothing new behind p
+      }
+      const DirectedPortal& dp = this->portals[p];
+      if (!dp.usable)
+      {
+        setBit(visS, p); // no narrowing through it: everything it may lead to
+        for (std::size_t w = 0; w < W; ++w)
+        {
+          visS[w] |= N.might[w];
+        }
+        continue;
+      }
+      N.pass = dp.winding;
+      if (!chop(N.pass, src.plane, this->slack, scratch))
+      {
+        continue;
+      }
+      N.source = L2.source;
+      bool sourceClipped = false;
+      if (!chop(N.source, -dp.plane, this->slack, scratch, &sourceClipped))
+      {
+        continue;
+      }
+      if (depth > 0)
+      {
+        if (!chop(N.pass, L2.plane, this->slack, scratch))
+        {
+          continue;
+        }
+        const std::vector<glm::dvec4>* planes = &L2.separators;
+        if (sourceClipped)
+        {
+          separators(N.source, L2.pass, this->on, N.separators); // N's own are made on entry
+          planes = &N.separators;
+        }
+        else if (!L2.separatorsReady)
+        {
+          separators(L2.source, L2.pass, this->on, L2.separators);
+          L2.separatorsReady = true;
+        }
+        if (!chopAll(N.pass, *planes, this->slack, scratch))
+        {
+          continue;
+        }
+        if (this->clipSource)
+        {
+          separators(N.pass, L2.pass, this->on, N.separators);
+          if (!chopAll(N.source, N.separators, this->slack, scratch))
+          {
+            continue;
+          }
+        }
+      }
+      setBit(visS, p);
+      N.node = dp.to;
+      N.next = 0;
+      N.plane = dp.plane;
+      N.separatorsReady = false;
+      ++depth;
+      if ((++steps & 1023u) == 0 && this->stop.load(std::memory_order_relaxed))
+      {
+        ok = false;
+        break;
+      }
+      if (this->maxSteps && steps > this->maxSteps)
+      {
+        ok = false;
+        break;
+      }
+    }
+    this->totalSteps.fetch_add(steps, std::memory_order_relaxed);
+    return ok;
+  }
+};
+
+/// Runs @p work(i) for i in [0, count) on @p threads threads, calling @p tick about every 50 ms
+/// on this thread; tick returns false to ask the workers to stop (they check Shared::stop).
+template <class Work, class Tick>
+void runParallel(std::size_t count, int threads, Work work, Tick tick)
+{
+  std::atomic<std::size_t> next{ 0 }, finished{ 0 };
+  std::mutex m;
+  std::condition_variable cv;
+  auto worker = [&]()
+  {
+    for (;;)
+    {
+      const std::size_t i = next.fetch_add(1);
+      if (i >= count)
+      {
+        break;
+      }
+      work(i);
+      if (finished.fetch_add(1) + 1 == count)
+      {
+        std::lock_guard<std::mutex> lock(m);
+        cv.notify_all();
+      }
+    }
+  };
+  std::vector<std::thread> pool;
+  for (int t = 0; t < threads; ++t)
+  {
+    pool.emplace_back(worker);
+  }
+  {
+    std::unique_lock<std::mutex> lock(m);
+    while (finished.load() < count)
+    {
+      cv.wait_for(lock, std::chrono::milliseconds(50));
+      lock.unlock();
+      tick(finished.load());
+      lock.lock();
+    }
+  }
+  for (auto& t : pool)
+  {
+    t.join();
+  }
+}
+} // namespace
+
+PortalPvs computePortalFlow(const PortalGraph& g, const PvsOptions& options, PvsStats& stats)
+{
+  const auto start = Clock::now();
+  stats = PvsStats();
+  stats.method = options.method;
+  const auto nodes = static_cast<std::size_t>(g.nodeCount());
+  const auto& gp = g.portals();
+  Shared sh;
+  sh.on = 10.0 * g.tolerance();
+  sh.slack = 1000.0 * g.tolerance();
+  sh.maxSteps = options.maxFlowStepsPerPortal;
+  sh.clipSource = options.clipSourceBySeparators;
+  Box all;
+  for (const auto& p : gp)
+  {
+    all.extend(p.bounds);
+  }
+  const glm::dvec3 origin = all.empty() ? glm::dvec3(0.0) : all.center();
+
+  // Directed portals: 2i leads from nodeA to nodeB, 2i + 1 back.
+  const std::size_t D = 2 * gp.size();
+  sh.portals.resize(D);
+  for (std::size_t i = 0; i < gp.size(); ++i)
+  {
+    const GraphPortal& p = gp[i];
+    const int side = portalOrientation(g, p);
+    stats.unknownPortals += side == 0 ? 1 : 0;
+    Winding w;
+    for (const auto& q : p.hull)
+    {
+      w.push_back(q - origin);
+    }
+    const glm::dvec4 plane(glm::dvec3(p.plane), p.plane.w + glm::dot(glm::dvec3(p.plane), origin));
+    for (int k = 0; k < 2; ++k)
+    {
+      DirectedPortal& d = sh.portals[2 * i + static_cast<std::size_t>(k)];
+      d.from = k == 0 ? p.nodeA : p.nodeB;
+      d.to = k == 0 ? p.nodeB : p.nodeA;
+      d.usable = side != 0 && p.planar;
+      d.plane = (k == 0 ? 1.0 : -1.0) * static_cast<double>(side) * plane;
+      d.winding = w;
+      glm::dvec3 c(0.0);
+      for (const auto& q : w)
+      {
+        c += q;
+      }
+      d.centre = w.empty() ? c : c / static_cast<double>(w.size());
+      for (const auto& q : w)
+      {
+        d.radius = std::max(d.radius, glm::length(q - d.centre));
+      }
+      d.radius *= 1.0 + 1e-12;
+    }
+  }
+  sh.outStart.assign(nodes + 1, 0);
+  for (const auto& d : sh.portals)
+  {
+    ++sh.outStart[static_cast<std::size_t>(d.from) + 1];
+  }
+  std::partial_sum(sh.outStart.begin(), sh.outStart.end(), sh.outStart.begin());
+  sh.outList.resize(D);
+  {
+    std::vector<std::uint32_t> fill(sh.outStart.begin(), sh.outStart.end() - 1);
+    for (std::uint32_t d = 0; d < D; ++d)
+    {
+      sh.outList[fill[static_cast<std::size_t>(sh.portals[d].from)]++] = d;
+    }
+  }
+  sh.succStart.resize(D + 1, 0);
+  for (std::size_t q = 0; q < D; ++q)
+  {
+    const auto to = static_cast<std::size_t>(sh.portals[q].to);
+    sh.succStart[q + 1] = sh.succStart[q] + (sh.outStart[to + 1] - sh.outStart[to]);
+  }
+  sh.edgeOk.resize(sh.succStart[D]);
+  for (std::size_t q = 0; q < D; ++q)
+  {
+    const auto to = static_cast<std::size_t>(sh.portals[q].to);
+    std::uint32_t e = sh.succStart[q];
+    for (std::uint32_t k = sh.outStart[to]; k < sh.outStart[to + 1]; ++k, ++e)
+    {
+      const std::uint32_t r = sh.outList[k];
+      sh.edgeOk[e] = (r ^ 1u) != q && sh.frontOk(sh.portals[q], sh.portals[r]) ? 1 : 0;
+    }
+  }
+  sh.words = (D + 63) / 64;
+  sh.mightSee.assign(D * sh.words, 0);
+  sh.vis.assign(D * sh.words, 0);
+  sh.done = std::vector<std::atomic<unsigned char>>(D);
+  stats.directedPortals = D;
+  const int threads = options.threads > 0
+    ? options.threads
+    : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  stats.threads = threads;
+
+  bool cancelled = false;
+  double reported = 0.0;
+  auto report = [&](double fraction)
+  {
+    reported = std::min(1.0, std::max(reported, fraction)); // never backwards
+    if (!cancelled && options.progress && !options.progress(reported))
+    {
+      cancelled = true;
+      sh.stop = true;
+    }
+    return !cancelled;
+  };
+  const bool flow = options.method == PvsMethod::PortalFlow;
+  const double floodShare = flow ? 0.1 : 1.0;
+
+  // 1. Might-see floods.
+  runParallel(
+    D, threads,
+    [&](std::size_t i)
+    {
+      thread_local std::vector<std::uint32_t> queue; // reused by every flood of this thread
+      thread_local std::vector<std::uint64_t> rejected;
+      rejected.resize(sh.words);
+      if (!sh.stop.load(std::memory_order_relaxed))
+      {
+        sh.flood(i, queue, rejected);
+      }
+    },
+    [&](std::size_t finished)
+    { report(floodShare * double(finished) / double(std::max<std::size_t>(D, 1))); });
+  stats.mightSeeSeconds = std::chrono::duration<double>(Clock::now() - start).count();
+  std::size_t mightTotal = 0;
+  std::vector<std::size_t> mightCount(D);
+  for (std::size_t p = 0; p < D; ++p)
+  {
+    mightCount[p] = popcount(sh.mightOf(p), sh.words);
+    mightTotal += mightCount[p];
+  }
+  stats.averageMightSee = D ? double(mightTotal) / double(D) : 0.0;
+
+  // 2. Flows, fewest might-see first; unusable sources keep their might-see set.
+  const auto flowStart = Clock::now();
+  if (flow && !cancelled)
+  {
+    std::vector<std::uint32_t> order;
+    for (std::uint32_t p = 0; p < D; ++p)
+    {
+      if (sh.portals[p].usable)
+      {
+        order.push_back(p);
+      }
+      else
+      {
+        std::copy(sh.mightOf(p), sh.mightOf(p) + sh.words, sh.visOf(p));
+        sh.done[p].store(1, std::memory_order_release);
+      }
+    }
+    std::stable_sort(order.begin(), order.end(),
+      [&](std::uint32_t a, std::uint32_t b) { return mightCount[a] < mightCount[b]; });
+    const double total = std::max<double>(1.0, double(mightTotal));
+    std::atomic<std::size_t> weight{ 0 };
+    const double budget = options.budgetSeconds;
+    auto overBudget = [&]()
+    {
+      if (budget > 0.0 && std::chrono::duration<double>(Clock::now() - flowStart).count() > budget)
+      {
+        sh.budgetHit = true;
+        sh.stop = true;
+      }
+    };
+    runParallel(
+      order.size(), threads,
+      [&](std::size_t i)
+      {
+        thread_local std::vector<Level> levels; // grown once per thread, reused by every flow
+        thread_local Winding scratch;
+        const std::uint32_t s = order[i];
+        overBudget();
+        if (sh.stop.load(std::memory_order_relaxed) || !sh.flow(s, levels, scratch))
+        {
+          std::copy(sh.mightOf(s), sh.mightOf(s) + sh.words, sh.visOf(s));
+          sh.degraded.fetch_add(1);
+        }
+        sh.done[s].store(1, std::memory_order_release);
+        weight.fetch_add(mightCount[s], std::memory_order_relaxed);
+      },
+      [&](std::size_t)
+      {
+        overBudget();
+        report(floodShare + (1.0 - floodShare) * double(weight.load()) / total);
+      });
+    stats.budgetExceeded = sh.budgetHit.load();
+  }
+  else if (!cancelled)
+  {
+    sh.vis = sh.mightSee;
+  }
+  stats.flowSeconds = std::chrono::duration<double>(Clock::now() - flowStart).count();
+  if (cancelled || (options.progress && !report(1.0)))
+  {
+    stats.cancelled = true;
+    return PortalPvs();
+  }
+  stats.flowSteps = sh.totalSteps.load();
+  stats.degradedPortals = sh.degraded.load();
+  std::size_t visTotal = 0;
+  for (std::size_t p = 0; p < D; ++p)
+  {
+    visTotal += popcount(sh.visOf(p), sh.words);
+  }
+  stats.averagePortalVis = D ? double(visTotal) / double(D) : 0.0;
+
+  // 3. Node sets: the node, its neighbours and the nodes behind every portal its portals see;
+  // then only pairs seen both ways (a line from X to Y, reversed, goes from Y to X).
+  const std::size_t NW = (nodes + 63) / 64;
+  std::vector<std::uint64_t> raw(nodes * NW, 0);
+  for (std::size_t x = 0; x < nodes; ++x)
+  {
+    std::uint64_t* set = &raw[x * NW];
+    setBit(set, x);
+    for (std::uint32_t k = sh.outStart[x]; k < sh.outStart[x + 1]; ++k)
+    {
+      const std::uint32_t s = sh.outList[k];
+      setBit(set, static_cast<std::size_t>(sh.portals[s].to));
+      const std::uint64_t* v = sh.visOf(s);
+      for (std::size_t w = 0; w < sh.words; ++w)
+      {
+        for (std::uint64_t bits = v[w]; bits; bits &= bits - 1)
+        {
+          const std::size_t p = w * 64 + static_cast<std::size_t>(__builtin_ctzll(bits));
+          setBit(set, static_cast<std::size_t>(sh.portals[p].to));
+        }
+      }
+    }
+  }
+  std::vector<std::vector<std::int32_t>> sets(nodes);
+  std::vector<char> seen;
+  std::size_t totalSize = 0;
+  const auto& rooms = g.rooms();
+  for (std::size_t x = 0; x < nodes; ++x)
+  {
+    const std::uint64_t* set = &raw[x * NW];
+    bool leaky = false;
+    for (std::size_t y = 0; y < nodes && !leaky; ++y)
+    {
+      leaky = bit(set, y) && rooms[y].leaky;
+    }
+    if (leaky)
+    {
+      ++stats.leakySources;
+      seen.assign(nodes, 0);
+      reachableNodes(g, static_cast<std::int32_t>(x), seen);
+      for (std::size_t y = 0; y < nodes; ++y)
+      {
+        if (seen[y])
+        {
+          sets[x].push_back(static_cast<std::int32_t>(y));
+        }
+      }
+    }
+    else
+    {
+      for (std::size_t y = 0; y < nodes; ++y)
+      {
+        if (bit(set, y) && bit(&raw[y * NW], x))
+        {
+          sets[x].push_back(static_cast<std::int32_t>(y));
+        }
+      }
+    }
+    totalSize += sets[x].size();
+  }
+  stats.averageSetSize = nodes ? double(totalSize) / double(nodes) : 0.0;
+  return PortalPvs::fromSets(g, std::move(sets));
+}
+
+} // namespace portals
+} // namespace scenevis
