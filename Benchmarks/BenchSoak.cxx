@@ -306,7 +306,7 @@ struct SoakResult
   double rssWarm = 0, rssEnd = 0, peak = 0, seconds = 0;
   double heapWarm = 0, heapEnd = 0; ///< live heap bytes (HeapInUseBytes) after warm-up, at the end
   /// With 2+ passes: RSS and live heap at the end of the first pass (every camera seen once).
-  double rssPass1 = 0, heapPass1 = 0;
+  double rssPass1 = 0, heapPass1 = 0, peakPass1 = 0;
   double meanDrawn = 0; ///< props (actor modes) or triangles (chunked) drawn per frame
   std::string drawnUnit;
   double rssFrom = 0, growth = 0; ///< the verdict's reference RSS and the growth from it, in %
@@ -350,6 +350,7 @@ SoakResult Soak(const std::string& mode, vtkRenderer* renderer, const double bou
     {
       r.rssPass1 = ResidentBytes();
       r.heapPass1 = HeapInUseBytes();
+      r.peakPass1 = PeakResidentBytes();
     }
     if ((f + 1) % static_cast<std::size_t>(o.window) == 0 || f + 1 == total)
     {
@@ -434,6 +435,12 @@ void Report(SoakResult& r, const std::vector<Pose>& path, const Options& o)
                 "heap in use %.1f MiB; after pass %d: RSS %+.2f %%, heap in use %+.2f %%\n",
       path.size(), r.rssPass1 / kMiB, r.heapPass1 / kMiB, o.passes, growth,
       percent(r.heapPass1, r.heapEnd));
+    // Memory given back between frames and taken again (llvmpipe's per-frame scene data, malloc's
+    // moving mmap threshold) shows as RSS growth on the samples; the high-water mark says whether
+    // the later passes needed more than the first at any moment.
+    std::printf("  peak RSS (VmHWM) at the end of the first pass %.1f MiB, at the end %.1f MiB "
+                "(%+.2f %%)\n",
+      r.peakPass1 / kMiB, r.peak / kMiB, percent(r.peakPass1, r.peak));
   }
   const double lowest = *std::min_element(medians.begin(), medians.end());
   const double highest = *std::max_element(medians.begin(), medians.end());
