@@ -9,6 +9,9 @@ packages=(
   libosmesa6-dev xvfb xauth
   googletest libgtest-dev libgmock-dev libbenchmark-dev
   clang libclang-rt-14-dev  # libFuzzer for scripts/sanitize.sh (~45 MB download)
+  # Python wrapping (`import vtk, scenevis`) and its tests. Never python3-paraview: it conflicts
+  # with python3-vtk9 and would remove libvtk9-dev.
+  python3-vtk9 python3-dev python3-pytest python3-numpy
 )
 
 missing=()

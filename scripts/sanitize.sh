@@ -31,11 +31,14 @@ compiler=()
 if [ -n "${SCENEVIS_SANITIZE_CXX:-}" ]; then compiler=(-DCMAKE_CXX_COMPILER="$SCENEVIS_SANITIZE_CXX"); fi
 
 # --- 1. ASan + UBSan build of the non-rendering tests ----------------------------------------------
+# Without the Python wrapping: an instrumented extension module cannot load into an uninstrumented
+# python3 (the ASan runtime must come first); the Python tests run in the main build.
 mkdir -p "$build"
 cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo "${compiler[@]}" \
   -DSCENEVIS_SANITIZE=address,undefined -DSCENEVIS_WARNINGS_AS_ERRORS=$werror \
   -DSCENEVIS_BUILD_BENCHMARKS=OFF -DSCENEVIS_BUILD_SOAK_BENCH=ON -DSCENEVIS_BUILD_EXAMPLES=OFF \
-  -DSCENEVIS_BUILD_FUZZERS=ON >"$build.configure.log" 2>&1 || { cat "$build.configure.log"; exit 1; }
+  -DSCENEVIS_BUILD_FUZZERS=ON -DSCENEVIS_WRAP_PYTHON=OFF \
+  >"$build.configure.log" 2>&1 || { cat "$build.configure.log"; exit 1; }
 
 export ASAN_OPTIONS="detect_leaks=1:abort_on_error=0:strict_string_checks=1:detect_stack_use_after_return=1:check_initialization_order=1"
 export LSAN_OPTIONS="suppressions=$root/Testing/Sanitizers/lsan.supp:print_suppressions=0"
@@ -90,7 +93,7 @@ cmake -S "$root" -B "$fuzzbuild" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   -DCMAKE_C_COMPILER="$clangcc" -DCMAKE_CXX_COMPILER="$clangxx" \
   -DSCENEVIS_BUILD_FUZZERS=ON -DSCENEVIS_SANITIZE=address,undefined \
   -DBUILD_TESTING=OFF -DSCENEVIS_BUILD_BENCHMARKS=OFF -DSCENEVIS_BUILD_EXAMPLES=OFF \
-  >"$fuzzbuild.configure.log" 2>&1 || { cat "$fuzzbuild.configure.log"; exit 1; }
+  -DSCENEVIS_WRAP_PYTHON=OFF >"$fuzzbuild.configure.log" 2>&1 || { cat "$fuzzbuild.configure.log"; exit 1; }
 cmake --build "$fuzzbuild" -j"$jobs" --target scenevis_fuzz_bsp scenevis_fuzz_occlusion
 # New inputs go to a scratch directory; the committed seed corpus is only read.
 work=$(mktemp -d)

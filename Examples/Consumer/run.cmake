@@ -20,3 +20,24 @@ execute_process(COMMAND "${WORK_DIR}/build/consumer" WORKING_DIRECTORY "${WORK_D
 if(rc)
   message(FATAL_ERROR "the consumer failed: ${rc}")
 endif()
+
+# The installed Python package (when SceneVis was built with SCENEVIS_WRAP_PYTHON): importable
+# from <prefix>/<PYTHON_DESTINATION> next to vtk, and loading the installed libraries.
+if(PYTHON)
+  execute_process(COMMAND "${CMAKE_COMMAND}" -E env
+      "PYTHONPATH=${WORK_DIR}/prefix/${PYTHON_DESTINATION}"
+      "${PYTHON}" -c "import vtk, scenevis
+sphere = vtk.vtkSphereSource()
+s = scenevis.vtkBSPSortFilter()
+s.SetInputConnection(sphere.GetOutputPort())
+s.SetCamera(vtk.vtkCamera())
+s.Update()
+libs = {l.split()[-1] for l in open('/proc/self/maps') if 'libSceneVis' in l}
+assert libs and all(l.startswith('${WORK_DIR}/prefix/') for l in libs), libs
+assert scenevis.__file__.startswith('${WORK_DIR}/prefix/'), scenevis.__file__
+print('installed scenevis:', s.GetOutput().GetNumberOfCells(), 'cells sorted')"
+    RESULT_VARIABLE rc)
+  if(rc)
+    message(FATAL_ERROR "import vtk, scenevis from the installed package failed: ${rc}")
+  endif()
+endif()
