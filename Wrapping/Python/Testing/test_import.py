@@ -18,6 +18,8 @@ CLASSES = [
     "vtkPortalCuller",
     # SceneVis::IOModels
     "vtkSceneVisModelReader",
+    # SceneVis::RenderingAuto
+    "vtkSceneVisPlanner", "vtkScenePlanRule",
 ]
 
 
