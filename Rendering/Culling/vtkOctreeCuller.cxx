@@ -560,7 +560,14 @@ static bool RefreshSlot(Slot& slot, bool& warnedInvalid, vtkOctreeCuller* self)
         slot.DataTime = data ? data->GetMTime() : 0;
         if (vtkPolyData* pd = vtkPolyData::SafeDownCast(data))
         {
-          slot.Triangles = static_cast<std::uint32_t>(pd->GetNumberOfPolys() + pd->GetNumberOfStrips());
+          // Triangles OpenGL draws: n - 2 per polygon or strip of n points (read from the cell
+          // arrays' sizes, constant time).
+          const auto triangles = [](vtkCellArray* cells) {
+            return std::max<vtkIdType>(
+              0, cells->GetNumberOfConnectivityIds() - 2 * cells->GetNumberOfCells());
+          };
+          slot.Triangles = static_cast<std::uint32_t>(std::min<vtkIdType>(UINT32_MAX,
+            triangles(pd->GetPolys()) + triangles(pd->GetStrips())));
         }
       }
     }

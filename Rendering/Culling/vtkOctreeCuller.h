@@ -164,6 +164,7 @@ public:
   vtkGetMacro(NumberOfPropsCulledByDistance, vtkIdType);
   vtkGetMacro(NumberOfPropsCulledByNormalCone, vtkIdType);
   vtkGetMacro(NumberOfPropsDrawn, vtkIdType);
+  /// Triangles of the props kept, as OpenGL draws them (n - 2 per polygon or strip of n points).
   vtkGetMacro(NumberOfTrianglesDrawn, vtkIdType);
   /// Hierarchy rebuilds and prop refits since construction.
   vtkGetMacro(NumberOfRebuilds, vtkIdType);

@@ -44,8 +44,8 @@ def test_octree_culler_statistics(render_window):
                                             culler.GetNumberOfTrianglesDrawn()))
     assert drawn + culled == total
     assert 1 <= drawn < 10 and culler.GetNumberOfPropsCulledByFrustum() == culled
-    # "Triangles" are counted as the mapper inputs' polygons and strips: 6 quads per cube.
-    assert culler.GetNumberOfTrianglesDrawn() == 6 * drawn
+    # Triangles as OpenGL draws them: 6 quads, 12 triangles per cube.
+    assert culler.GetNumberOfTrianglesDrawn() == 12 * drawn
     assert culler.GetNumberOfRebuilds() == 1
 
     renderer.ResetCamera()                # the whole grid in view: nothing culled
