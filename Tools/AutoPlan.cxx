@@ -74,6 +74,7 @@ SceneFacts InspectInstances(const InstancedScene& scene)
     translucent += translucentOf[instance.mesh];
   }
   facts.parts = std::max<std::size_t>(1, scene.instances.size());
+  facts.fixedActors = true; // one actor per placement, never merged
   if (facts.polygons > 0)
     facts.translucentFraction =
       static_cast<double>(translucent) / static_cast<double>(facts.polygons);

@@ -82,8 +82,9 @@ render and cull:
                         where present); with those, --sort takes none, oit, multi-actor or
                         peel:N.
                         auto: rooms and portals -> portals; 100+ parts, at most 25 %
-                        translucent, under 90 % of the triangles in the first view -> octree,
-                        or occlusion when their screen rectangles cover the view 4+ times;
+                        translucent, under 90 % of the triangles in the first view (with
+                        --instances: 100+ placements, any view) -> octree, or occlusion when
+                        the opaque parts' screen rectangles cover the area they span 4+ times;
                         an opaque mesh of 500k+ triangles -> chunked; otherwise none. The
                         report says why, in numbers. A frame whose camera did not move
                         re-uses the last visible set and order

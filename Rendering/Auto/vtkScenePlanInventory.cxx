@@ -199,6 +199,7 @@ void vtkScenePlanInventory::UpdateFacts()
   facts.parts = this->SumParts;
   facts.polygons = this->SumPolygons;
   facts.triangles = this->SumTriangles;
+  facts.fixedActors = true; // the application's actors are drawn as they are
   facts.translucentFraction = facts.polygons > 0
     ? static_cast<double>(this->SumTranslucent) / static_cast<double>(facts.polygons)
     : 0.0;

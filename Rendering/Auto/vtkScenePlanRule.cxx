@@ -39,22 +39,31 @@ vtkScenePlanChoice vtkScenePlanRule::ChooseCulling(const vtkScenePlanFacts& fact
     why << facts.rooms << " rooms and " << facts.portals
         << " portals: cells and portals skip the rooms the eye cannot see through them";
   }
-  else if (facts.parts >= ManyProps && facts.translucentFraction <= MaxTranslucentForActors &&
-    facts.inView < MinInViewForNoCulling)
+  else if (facts.parts >= ManyProps &&
+    (facts.fixedActors ||
+      (facts.translucentFraction <= MaxTranslucentForActors &&
+        facts.inView < MinInViewForNoCulling)))
   {
-    if (facts.depthComplexity >= OcclusionDepthComplexity)
+    const double opaqueDepth = facts.depthComplexity * (1.0 - facts.translucentFraction);
+    if (opaqueDepth >= OcclusionDepthComplexity)
     {
       plan.Method = "occlusion";
-      why << facts.parts << " parts (>= " << ManyProps << ") and an estimated depth complexity of "
-          << std::setprecision(3) << facts.depthComplexity << " (>= " << OcclusionDepthComplexity
+      why << facts.parts << " parts (>= " << ManyProps
+          << ") and an estimated opaque depth complexity of " << std::setprecision(3) << opaqueDepth
+          << " (>= " << OcclusionDepthComplexity
           << "): most of what is in view is hidden, so parts hidden behind nearer opaque ones "
              "are culled too";
     }
     else
     {
       plan.Method = "octree";
-      why << facts.parts << " parts (>= " << ManyProps
-          << "): one actor per part, culled by the BVH a whole subtree at a time";
+      if (facts.fixedActors)
+        why << facts.parts << " actors (>= " << ManyProps
+            << "), drawn as they are: the BVH culls whole subtrees, and costs less per frame "
+               "than VTK's frustum coverage culler even when everything is in view";
+      else
+        why << facts.parts << " parts (>= " << ManyProps
+            << "): one actor per part, culled by the BVH a whole subtree at a time";
     }
   }
   else if (facts.triangles >= HugeMesh && opaque)
@@ -130,10 +139,12 @@ double vtkScenePlanRule::MeasureView(const std::vector<vtkScenePlanPartBox>& par
   camera->GetFrustumPlanes(aspect, planes);
   vtkMatrix4x4* projection = camera->GetCompositeProjectionTransformMatrix(aspect, -1, 1);
   double covered = 0.0;
+  double bounding[4] = { 1.0, -1.0, 1.0, -1.0 }; // of the in-view rectangles, x0 x1 y0 y1
   vtkIdType inView = 0;
   for (const vtkScenePlanPartBox& part : parts)
   {
-    const bool finite = std::all_of(part.Box, part.Box + 6, [](double v) { return !std::isnan(v); });
+    const bool finite =
+      std::all_of(part.Box, part.Box + 6, [](double v) { return !std::isnan(v); });
     bool outside = false;
     for (int k = 0; k < 4 && !outside && finite; ++k)
     {
@@ -165,14 +176,31 @@ double vtkScenePlanRule::MeasureView(const std::vector<vtkScenePlanPartBox>& par
         y0 = std::min(y0, q[1] / q[3]);
         y1 = std::max(y1, q[1] / q[3]);
       }
-      covered += whole ? 4.0
-                       : std::max(0.0, std::min(x1, 1.0) - std::max(x0, -1.0)) *
-          std::max(0.0, std::min(y1, 1.0) - std::max(y0, -1.0));
+      if (whole)
+      {
+        x0 = y0 = -1.0;
+        x1 = y1 = 1.0;
+      }
+      x0 = std::max(x0, -1.0);
+      y0 = std::max(y0, -1.0);
+      x1 = std::min(x1, 1.0);
+      y1 = std::min(y1, 1.0);
+      if (x1 > x0 && y1 > y0)
+      {
+        covered += (x1 - x0) * (y1 - y0);
+        bounding[0] = std::min(bounding[0], x0);
+        bounding[1] = std::max(bounding[1], x1);
+        bounding[2] = std::min(bounding[2], y0);
+        bounding[3] = std::max(bounding[3], y1);
+      }
     }
   }
   if (depthComplexity)
   {
-    *depthComplexity = covered / 4.0;
+    const double area = bounding[1] > bounding[0] && bounding[3] > bounding[2]
+      ? (bounding[1] - bounding[0]) * (bounding[3] - bounding[2])
+      : 0.0;
+    *depthComplexity = area > 0.0 ? covered / area : 0.0;
   }
   return static_cast<double>(inView) / static_cast<double>(total);
 }

@@ -11,12 +11,14 @@
  *
  * Culling methods (ChooseCulling):
  * - "portals": rooms and portals exist (cells and portals);
- * - "occlusion": ManyProps+ parts, at most MaxTranslucentForActors translucent, less than
- *   MinInViewForNoCulling of the triangles in view and an estimated depth complexity of
- *   OcclusionDepthComplexity or more (vtkOcclusionCuller);
- * - "octree": the same with a lower depth complexity (vtkOctreeCuller);
+ * - "occlusion": ManyProps+ parts, an estimated opaque depth complexity of
+ *   OcclusionDepthComplexity or more, and either fixed actors (facts.fixedActors) or at most
+ *   MaxTranslucentForActors translucent and less than MinInViewForNoCulling of the triangles in
+ *   view (vtkOcclusionCuller);
+ * - "octree": the same with a lower depth complexity (vtkOcclusionCuller without occlusion);
  * - "chunked": HugeMesh+ opaque triangles otherwise (vtkChunkedPolyDataMapper);
- * - "none": small scenes, scenes in full view and translucent ones that would need many actors.
+ * - "none": small scenes, and scenes whose parts may be drawn as one mesh instead (not fixed
+ *   actors) that are in full view or translucent.
  *
  * Translucency methods (ChooseTranslucency): "none" (opaque), "oit" (translucent but chunked:
  * only an order-independent method survives the chunks' reordering), "multi-actor" (translucent
@@ -51,9 +53,14 @@ struct SCENEVISRENDERINGAUTO_EXPORT vtkScenePlanFacts
   /// Fraction of the triangles in parts whose bounds meet the camera's view (the side planes of
   /// its frustum); < 0 when not measured.
   double inView = -1.0;
-  /// Sum of the screen rectangles of the parts in view over the viewport's area (a box reaching
-  /// the eye's plane counts as the whole viewport); < 0 when not measured.
+  /// Sum of the screen rectangles of the parts in view over the area they cover: the rectangle
+  /// bounding them, clipped to the viewport (a box reaching the eye's plane covers the whole
+  /// viewport): how many parts a covered pixel lies in, on average; < 0 when not measured.
   double depthComplexity = -1.0;
+  /// The parts are actors the application draws as they are (vtkSceneVisPlanner, instances of
+  /// the command line): drawing them as one mesh instead is not an option, so with ManyProps+
+  /// of them the choice is which culler, never whether (see ChooseCulling()).
+  bool fixedActors = false;
 
   /// The facts in one line, as the reports quote them.
   std::string Summary() const;
@@ -92,12 +99,17 @@ public:
   /// fraction of the triangles, culling cannot pay for that (the cad demo in full view: 1.2-1.5x
   /// slower than one mesh; seen from close up: 1.4-1.7x faster).
   static constexpr double MinInViewForNoCulling = 0.9;
-  /// Estimated depth complexity (the in-view parts' screen rectangles summed, over the viewport)
-  /// from which occlusion culling is preferred to frustum culling alone: most of what is in view
-  /// is then hidden behind nearer parts (the 2CylinderEngine grid 4 x 4 seen down a row: 86
-  /// parts drawn per part seen with frustum culling, 2 with occlusion; BENCHMARKS.md). The value
-  /// 4 is a first estimate, not yet calibrated over many scenes: the cad demo's views score
-  /// 1.3-2.7.
+  // With fixed actors (vtkSceneVisPlanner) there is no one mesh to fall back on, and culling
+  // pays at any fraction in view: the planner's "none" keeps VTK's vtkFrustumCoverageCuller,
+  // which costs more per frame than vtkOcclusionCuller's hierarchy (scenevis_planner_path_bench,
+  // 40 frames from an overview into the scene: a real level of 4,239 actors 1.19x, the cad demo
+  // 1.13x, the 2CylinderEngine 1.04x slower with VTK's culler than with the octree).
+  /// Estimated opaque depth complexity (facts.depthComplexity times the opaque fraction of the
+  /// polygons: translucent parts hide nothing) from which occlusion culling is preferred to
+  /// frustum culling alone: most of what is in view is then hidden behind nearer parts (the
+  /// 2CylinderEngine grid 4 x 4 seen down a row: 86 parts drawn per part seen with frustum
+  /// culling, 2 with occlusion; BENCHMARKS.md). The value 4 is a first estimate, not yet
+  /// calibrated over many scenes.
   static constexpr double OcclusionDepthComplexity = 4.0;
 
   /// The culling method for @p facts and why.
@@ -115,7 +127,8 @@ public:
   /**
    * The fraction of the triangles of @p parts whose bounding box meets the side planes of
    * @p camera's frustum (near and far ignored: the clipping range follows the props), and in
-   * @p depthComplexity (if not null) the in-view parts' screen rectangles over the viewport.
+   * @p depthComplexity (if not null) the in-view parts' screen rectangles summed over the area
+   * of the rectangle bounding them (clipped to the viewport; 0 when nothing is in view).
    * Boxes with NaN or uninitialized coordinates count as in view and cover nothing.
    */
   static double MeasureView(const std::vector<vtkScenePlanPartBox>& parts, vtkCamera* camera,

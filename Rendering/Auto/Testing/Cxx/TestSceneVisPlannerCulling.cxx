@@ -1,10 +1,12 @@
 // vtkSceneVisPlanner on an opaque scene of 1,728 box actors (24 x 24 x 3):
-//  (a) seen from far away, everything is in view: no culler (the rule: culling cannot pay);
-//  (b) seen from above a corner, close: a few % in view, low depth complexity: vtkOcclusionCuller with
-//      occlusion off ("octree") installed in place of vtkFrustumCoverageCuller;
+//  (a) seen from far away, everything in view, depth complexity below 4: vtkOcclusionCuller with
+//      occlusion off ("octree") installed in place of vtkFrustumCoverageCuller (the application's
+//      actors cannot be merged, and the octree costs less per frame than VTK's culler);
+//  (b) seen from above a corner, close: a few % in view, low depth complexity: the same, with
+//      the same plan (no new one);
 //  (c) seen along the rows from the side: depth complexity >= 4: occlusion culling on, the same
 //      culler and the same hierarchy (no rebuild);
-//  (b, c) what the cullers kept has 0 false negatives against the ID buffer's visible set, and
+//  (a, b, c) what the cullers kept has 0 false negatives against the ID buffer's visible set, and
 //      something was culled;
 //  (d) the decision as data: the reason quotes the facts line; PrintSelf works.
 #include "vtkSceneVisPlanner.h"
@@ -73,7 +75,7 @@ int TestSceneVisPlannerCulling(int, char*[])
     const char* expected;
   };
   const View views[] = {
-    { "overview", { 12, -60, 60 }, { 12, 12, 1 }, 30, "none" },
+    { "overview", { 12, -60, 60 }, { 12, 12, 1 }, 30, "octree" },
     { "close, above a corner", { 0.5, 0.5, 10 }, { 0.6, 0.6, 0 }, 30, "octree" },
     { "along the rows", { -3, 12, 1.2 }, { 30, 12.3, 1.2 }, 40, "occlusion" },
     { "close, above another corner", { 23.4, 23.4, 10 }, { 23.3, 23.3, 0 }, 30, "octree" },
@@ -96,15 +98,10 @@ int TestSceneVisPlannerCulling(int, char*[])
     std::cout << tag << planner->GetReason() << "\n";
     ok &= Check(std::string(planner->GetCullMethod()) == view.expected,
       tag + "culling " + planner->GetCullMethod() + " (expected " + view.expected + ")");
-    ok &= Check(std::string(planner->GetTranslucencyMethod()) == "none", tag + "opaque: no sorting");
+    ok &=
+      Check(std::string(planner->GetTranslucencyMethod()) == "none", tag + "opaque: no sorting");
     ok &= Check(renderer->GetPass() == nullptr, tag + "no render pass");
     auto* culler = vtkOcclusionCuller::SafeDownCast(planner->GetCuller());
-    if (std::string(view.expected) == "none")
-    {
-      ok &= Check(culler == nullptr && CountCoverageCullers(renderer) == 1,
-        tag + "no culler of the planner's; VTK's frustum coverage culler in place");
-      continue;
-    }
     ok &= Check(culler && renderer->GetCullers()->IsItemPresent(culler) &&
         CountCoverageCullers(renderer) == 0,
       tag + "vtkOcclusionCuller installed instead of vtkFrustumCoverageCuller");
@@ -131,10 +128,12 @@ int TestSceneVisPlannerCulling(int, char*[])
     ok &= Check(check.conservative && !visible.empty(),
       tag + std::to_string(visible.size()) + " actors visible, " + std::to_string(drawn.size()) +
         " of " + std::to_string(grid.actors.size()) + " drawn: " + check.Summary());
-    ok &= Check(drawn.size() < grid.actors.size(), tag + "something was culled");
+    if (std::string(view.name) != "overview")
+      ok &= Check(drawn.size() < grid.actors.size(), tag + "something was culled");
   }
-  ok &= Check(planner->GetPlanCount() == 4,
-    "one plan per view: " + std::to_string(planner->GetPlanCount()));
+  ok &= Check(planner->GetPlanCount() == 3,
+    "one plan per change of method (octree, occlusion, octree): " +
+      std::to_string(planner->GetPlanCount()));
   const std::string reason = planner->GetCullReason();
   ok &= Check(reason.find("1728 parts") != std::string::npos &&
       reason.find("% of the triangles in view") != std::string::npos &&
@@ -146,7 +145,8 @@ int TestSceneVisPlannerCulling(int, char*[])
 
   // Detaching gives the renderer its own culler back.
   planner->SetRenderer(nullptr); // the renderer owned it: gone now
-  ok &= Check(CountCoverageCullers(renderer) == 1 && renderer->GetCullers()->GetNumberOfItems() == 2,
-    "detached: vtkFrustumCoverageCuller back, the planner's culler gone (and the recorder)");
+  ok &=
+    Check(CountCoverageCullers(renderer) == 1 && renderer->GetCullers()->GetNumberOfItems() == 2,
+      "detached: vtkFrustumCoverageCuller back, the planner's culler gone (and the recorder)");
   return vtkOutput.ExitCode(ok ? EXIT_SUCCESS : EXIT_FAILURE);
 }

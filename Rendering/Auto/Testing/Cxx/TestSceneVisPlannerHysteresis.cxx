@@ -1,12 +1,13 @@
 // When vtkSceneVisPlanner plans, and that it installs nothing a scene does not call for:
 //  (a) a small opaque scene: nothing installed (VTK's culler, no pass, the application's mappers);
 //  (b) nothing changed for 20 renders: no reading of the scene, no view measurement, no plan;
-//  (c) a camera that flies from an overview of 576 box actors into a close view: the culling plan
-//      changes once (none -> octree), SwitchFrames renders after the view is clear of the
-//      threshold, not every frame;
+//  (c) a camera that flies from an overview of 576 box actors down to a view along their rows: the
+//      culling plan changes once (octree -> occlusion, as the depth complexity passes 4),
+//      SwitchFrames renders after the view is clear of the threshold, not every frame;
 //  (d) a camera held just past the threshold (within the margin): no change;
-//  (e) a camera that jumps between overview and close view every render, with an actor moving
-//      every render (props that only move go through the same hysteresis): no change;
+//  (e) a camera that jumps between overview and the view along the rows every render, with an
+//      actor moving every render (props that only move go through the same hysteresis): no
+//      change;
 //  (f) an actor added, moved, hidden or shown: the scene is read again at the next render (a moved
 //      actor alone), without a new plan when the decision stays.
 #include "vtkSceneVisPlanner.h"
@@ -24,6 +25,7 @@
 #include <vtkRenderer.h>
 #include <vtkSphereSource.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <iostream>
 #include <string>
@@ -41,11 +43,12 @@ void Place(vtkCamera* camera, const double eye[3], const double focal[3])
   camera->OrthogonalizeViewUp();
 }
 
-/// The camera at @p t of the flight from the overview (t = 0) into the close view (t = 1).
+/// The camera at @p t of the flight from the overview (t = 0) down to a view along the rows
+/// (t = 1).
 void Fly(vtkRenderer* renderer, double t)
 {
-  const double from[3] = { 12, -30, 40 }, to[3] = { 5, 5, 6 };
-  const double focalFrom[3] = { 12, 12, 0 }, focalTo[3] = { 5.5, 6, 0 };
+  const double from[3] = { 12, -30, 40 }, to[3] = { -3, 12, 1.2 };
+  const double focalFrom[3] = { 12, 12, 0 }, focalTo[3] = { 30, 12.3, 0.4 };
   double eye[3], focal[3];
   for (int a = 0; a < 3; ++a)
   {
@@ -100,8 +103,8 @@ int TestSceneVisPlannerHysteresis(int, char*[])
   Fly(renderer, 0.0);
   window->Render();
   std::cout << "overview: " << planner->GetReason() << "\n";
-  ok &= Check(std::string(planner->GetCullMethod()) == "none",
-    "overview: everything in view, no culling");
+  ok &= Check(std::string(planner->GetCullMethod()) == "octree",
+    "overview: everything in view, low depth complexity: the octree (the application's actors)");
   const int inspections = planner->GetInspectionCount();
   const int measurements = planner->GetViewMeasurementCount();
   for (int i = 0; i < 20; ++i)
@@ -112,26 +115,31 @@ int TestSceneVisPlannerHysteresis(int, char*[])
   ok &= Check(planner->GetInspectionCount() == inspections &&
       planner->GetViewMeasurementCount() == measurements && planner->GetPlanCount() == 1,
     "nothing changed for 20 renders: " + std::to_string(planner->GetInspectionCount()) +
-      " reading(s), " + std::to_string(planner->GetViewMeasurementCount()) +
-      " measurement(s), " + std::to_string(planner->GetPlanCount()) + " plan(s); last Plan() " +
+      " reading(s), " + std::to_string(planner->GetViewMeasurementCount()) + " measurement(s), " +
+      std::to_string(planner->GetPlanCount()) + " plan(s); last Plan() " +
       std::to_string(planner->GetLastPlanTime()) + " ms");
 
-  // --- (c) the flight ------------------------------------------------------------------------------
+  // --- (c) the flight
+  // ------------------------------------------------------------------------------
   const int frames = 120;
   int changes = 0, changedAt = -1, clearAt = -1;
   double heldT = -1.0; // a point of the flight just past the threshold, within the margin
+  double lastDepth = 0.0;
+  bool rising = true;
   std::string method = planner->GetCullMethod();
-  for (int f = 0; f <= frames; ++f)
+  for (int f = 0; f <= frames + 10; ++f) // the camera arrives, then stays for 10 renders
   {
-    const double t = static_cast<double>(f) / frames;
+    const double t = std::min(1.0, static_cast<double>(f) / frames);
     Fly(renderer, t);
     window->Render();
-    const double inView = planner->GetFacts().inView;
-    // Clear of the 90 % threshold: the fraction out of view exceeds 10 % by the margin.
-    const double out = (1.0 - inView) * (1.0 - planner->GetViewMargin());
-    if (clearAt < 0 && out > 0.1)
+    const double depth = planner->GetFacts().depthComplexity;
+    rising &= depth >= lastDepth - 0.05; // the flight is built so (the checks below rely on it)
+    lastDepth = depth;
+    // Clear of the threshold 4: the depth complexity less the margin still reaches it.
+    const double lowered = depth * (1.0 - planner->GetViewMargin());
+    if (clearAt < 0 && lowered >= 4.0)
       clearAt = f;
-    if (heldT < 0.0 && inView < 0.9 && out <= 0.1)
+    if (heldT < 0.0 && depth >= 4.0 && lowered < 4.0)
       heldT = t;
     if (planner->GetCullMethod() != method)
     {
@@ -141,20 +149,24 @@ int TestSceneVisPlannerHysteresis(int, char*[])
       std::cout << "frame " << f << ": " << planner->GetReason() << "\n";
     }
   }
-  ok &= Check(changes == 1 && method == "octree" && planner->GetPlanCount() == 2,
+  ok &= Check(
+    rising, "the depth complexity rises along the flight (to " + std::to_string(lastDepth) + ")");
+  ok &= Check(changes == 1 && method == "occlusion" && planner->GetPlanCount() == 2,
     "flight: the culling plan changed " + std::to_string(changes) + " time(s), to " + method);
   ok &= Check(clearAt >= 0 && changedAt == clearAt + planner->GetSwitchFrames() - 1,
     "it changed at frame " + std::to_string(changedAt) + ", " +
       std::to_string(planner->GetSwitchFrames()) + " renders from frame " +
       std::to_string(clearAt) + " (the first clear of the threshold by the margin)");
 
-  // --- (d) held within the margin ------------------------------------------------------------------
+  // --- (d) held within the margin
+  // ------------------------------------------------------------------
   Fly(renderer, 0.0);
   for (int i = 0; i < 10; ++i)
     window->Render();
-  ok &= Check(std::string(planner->GetCullMethod()) == "none", "back to the overview: none");
+  ok &= Check(std::string(planner->GetCullMethod()) == "octree", "back to the overview: octree");
   const int plans = planner->GetPlanCount();
-  ok &= Check(heldT > 0.0, "the flight passes the margin's band (t = " + std::to_string(heldT) + ")");
+  ok &=
+    Check(heldT > 0.0, "the flight passes the margin's band (t = " + std::to_string(heldT) + ")");
   if (heldT > 0.0)
   {
     for (int i = 0; i < 20; ++i)
@@ -162,12 +174,14 @@ int TestSceneVisPlannerHysteresis(int, char*[])
       Fly(renderer, heldT + (i % 2) * 1e-4); // a camera that still moves a little
       window->Render();
     }
-    ok &= Check(planner->GetPlanCount() == plans && std::string(planner->GetCullMethod()) == "none",
-      "20 renders with " + std::to_string(100.0 * planner->GetFacts().inView) +
-        " % in view (past 90 %, within the margin): no change");
+    ok &= Check(
+      planner->GetPlanCount() == plans && std::string(planner->GetCullMethod()) == "octree",
+      "20 renders at a depth complexity of " + std::to_string(planner->GetFacts().depthComplexity) +
+        " (past 4, within the margin): no change");
   }
 
-  // --- (e) jumping between the views ---------------------------------------------------------------
+  // --- (e) jumping between the views
+  // ---------------------------------------------------------------
   for (int i = 0; i < 30; ++i)
   {
     Fly(renderer, (i % 2) ? 1.0 : 0.0);
@@ -175,7 +189,7 @@ int TestSceneVisPlannerHysteresis(int, char*[])
     window->Render();
   }
   ok &= Check(planner->GetPlanCount() == plans,
-    "30 renders jumping between overview and close view, an actor moving: no change");
+    "30 renders jumping between overview and the view along the rows, an actor moving: no change");
 
   // --- (f) scene changes -----------------------------------------------------------------------
   for (int i = 0; i < 10; ++i)

@@ -1,0 +1,365 @@
+// Auto against fixed along a camera path (issue 18's target: the planner's frames <= 1.1x the
+// best fixed exact choice over a path that goes from an overview into the scene).
+//
+// Per scene, one window per method, each with its own actors (one actor per part, as an
+// application that splits its model would have them: plain mappers, cell colours), the same
+// camera path for all. The frames are interleaved (frame i of every method, then frame i + 1), so
+// a load change on this shared machine hits every method alike. A method's time is the sum of its
+// frames' Render() wall times (OSMesa: the render is finished when Render() returns), the
+// planner's Plan() (the renderer's StartEvent) included.
+//
+// The fixed choices are what an application can install on the same actors: culling none (VTK's
+// vtkFrustumCoverageCuller), octree or occlusion (vtkOcclusionCuller with and without occlusion);
+// translucency, in scenes with translucent cells, the exact multi-actor order
+// (vtkOrderedTranslucentPass + vtkBSPTranslucentPass). All are exact; "best fixed" is the fastest
+// of them on this path.
+//
+// The path: frame 0 is the overview (the scene's bounds fitted in a three-quarter view), the last
+// frame is "inside": the first camera of the scene's camera file (real levels), or an eye at 15 %
+// of the diagonal from the scene's centre (demos, models); eye and focal point move linearly, the
+// clipping range is reset to the props every frame.
+//
+// Run: build/bin/scenevis_planner_path_bench [--frames N] [--size WxH] [--scene NAME]...
+//   NAME: cad, cad-opaque, spheres, engine (data cache key engine-glb), level-MAP (data cache).
+//   --smoke: one small scene, 4 frames (CI).
+#include "vtkSceneVisPlanner.h"
+
+#include "../Tools/CameraFile.h"
+#include "../Tools/SplitParts.h"
+#include "scenevis/testing/Models.h"
+#include "scenevis/testing/RenderWindow.h"
+#include "vtkBSPTranslucentPass.h"
+#include "vtkDemoSceneSource.h"
+#include "vtkOcclusionCuller.h"
+#include "vtkOrderedTranslucentPass.h"
+
+#include <vtkActor.h>
+#include <vtkCamera.h>
+#include <vtkCellData.h>
+#include <vtkCullerCollection.h>
+#include <vtkDataArray.h>
+#include <vtkMath.h>
+#include <vtkNew.h>
+#include <vtkPolyData.h>
+#include <vtkPolyDataMapper.h>
+#include <vtkProperty.h>
+#include <vtkRenderWindow.h>
+#include <vtkRenderer.h>
+#include <vtkSmartPointer.h>
+#include <vtkUnsignedCharArray.h>
+#include <vtkXMLPolyDataReader.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <iostream>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace
+{
+struct Options
+{
+  int frames = 40;
+  int width = 640;
+  int height = 480;
+  std::vector<std::string> scenes;
+  bool smoke = false;
+};
+
+struct PathScene
+{
+  std::string name;
+  std::vector<vtkSmartPointer<vtkPolyData>> parts;
+  bool translucent = false;
+  bool hasInside = false;
+  scenevis::tool::CameraSpec inside;
+};
+
+bool HasTranslucentCells(vtkPolyData* pd)
+{
+  auto* colors = vtkUnsignedCharArray::SafeDownCast(pd->GetCellData()->GetArray("Colors"));
+  if (!colors || colors->GetNumberOfComponents() != 4)
+    return false;
+  for (vtkIdType t = 0; t < colors->GetNumberOfTuples(); ++t)
+    if (colors->GetTypedComponent(t, 3) < 255)
+      return true;
+  return false;
+}
+
+void MakeOpaque(vtkPolyData* pd)
+{
+  if (auto* colors = vtkUnsignedCharArray::SafeDownCast(pd->GetCellData()->GetArray("Colors")))
+    if (colors->GetNumberOfComponents() == 4)
+      for (vtkIdType t = 0; t < colors->GetNumberOfTuples(); ++t)
+        colors->SetTypedComponent(t, 3, 255);
+}
+
+/// The scene @p name, split into parts by its PartId array; empty parts when it cannot be had.
+PathScene LoadScene(const std::string& name, std::string& error)
+{
+  PathScene scene;
+  scene.name = name;
+  vtkSmartPointer<vtkPolyData> pd;
+  if (name == "cad" || name == "cad-opaque" || name == "spheres")
+  {
+    vtkNew<vtkDemoSceneSource> source;
+    source->SetSceneByName(name == "spheres" ? "spheres" : "cad");
+    source->Update();
+    pd = source->GetOutput();
+    if (name == "cad-opaque")
+      MakeOpaque(pd);
+  }
+  else
+  {
+    const std::string key = name == "engine" ? "engine-glb" : name;
+    const std::string path = scenevis::testing::DataFile(key);
+    if (path.empty())
+    {
+      error = "not in the data cache (bash scripts/fetch-data.sh" +
+        std::string(name.rfind("level-", 0) == 0 ? " --levels" : "") + "): " + key;
+      return scene;
+    }
+    pd = scenevis::testing::LoadModel(path, &error);
+    if (!pd)
+      return scene;
+    const std::string cameras = scenevis::testing::DataFile(key + "-cameras");
+    if (!cameras.empty())
+    {
+      scenevis::tool::CameraSpec defaults;
+      defaults.up[0] = 0;
+      defaults.up[1] = 0;
+      defaults.up[2] = 1;
+      scene.inside = scenevis::tool::ReadCameraFile(cameras, defaults).front();
+      scene.hasInside = true;
+    }
+  }
+  scene.translucent = HasTranslucentCells(pd);
+  scene.parts = scenevis::tool::SplitByKeys(pd, { "PartId" });
+  return scene;
+}
+
+/// One way of drawing the scene: its window, renderer, actors and what is installed.
+struct Method
+{
+  std::string name;
+  vtkSmartPointer<vtkRenderWindow> window;
+  vtkNew<vtkRenderer> renderer;
+  std::vector<vtkSmartPointer<vtkActor>> actors;
+  vtkSmartPointer<vtkSceneVisPlanner> planner;
+  vtkNew<vtkOcclusionCuller> culler;
+  vtkNew<vtkOrderedTranslucentPass> ordered;
+  vtkNew<vtkBSPTranslucentPass> sorted;
+  std::vector<double> frameMs;
+  std::map<std::string, int> planFrames; ///< the planner's choices and on how many frames
+
+  Method(const std::string& methodName, const PathScene& scene, const Options& options)
+    : name(methodName)
+    , window(scenevis::testing::MakeRenderWindow(options.width, options.height))
+  {
+    this->window->AddRenderer(this->renderer);
+    vtkNew<vtkProperty> property; // shared: the colours are cell scalars
+    for (const auto& part : scene.parts)
+    {
+      vtkNew<vtkPolyDataMapper> mapper;
+      mapper->SetInputData(part);
+      mapper->SetScalarModeToUseCellData();
+      mapper->SetColorModeToDirectScalars();
+      auto actor = vtkSmartPointer<vtkActor>::New();
+      actor->SetMapper(mapper);
+      actor->SetProperty(property);
+      this->renderer->GetViewProps()->AddItem(actor); // each actor is new: no O(n^2) scan
+      actor->AddConsumer(this->renderer);
+      this->actors.push_back(actor);
+    }
+    if (methodName == "planner")
+    {
+      this->planner = vtkSceneVisPlanner::Attach(this->renderer);
+      return;
+    }
+    const std::string cull = methodName.substr(methodName.find("+ ") + 2);
+    if (cull == "octree" || cull == "occlusion")
+    {
+      this->renderer->GetCullers()->RemoveAllItems();
+      this->culler->SetOcclusionCulling(cull == "occlusion");
+      this->renderer->AddCuller(this->culler);
+    }
+    if (methodName.rfind("multi-actor", 0) == 0)
+    {
+      this->ordered->SetTranslucentPass(this->sorted);
+      this->renderer->SetPass(this->ordered);
+    }
+  }
+
+  void Render(vtkCamera* path)
+  {
+    vtkCamera* camera = this->renderer->GetActiveCamera();
+    camera->DeepCopy(path);
+    this->renderer->ResetCameraClippingRange();
+    const auto start = std::chrono::steady_clock::now();
+    this->window->Render();
+    this->frameMs.push_back(
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+    if (this->planner)
+      ++this->planFrames[std::string(this->planner->GetCullMethod()) + " + " +
+        this->planner->GetTranslucencyMethod()];
+  }
+
+  double Total() const
+  {
+    double sum = 0.0;
+    for (const double ms : this->frameMs)
+      sum += ms;
+    return sum;
+  }
+};
+
+/// The path's camera at @p t in [0, 1] for a scene with @p bounds.
+void PathCamera(const PathScene& scene, const double bounds[6], double t, vtkCamera* camera)
+{
+  const double center[3] = { (bounds[0] + bounds[1]) / 2, (bounds[2] + bounds[3]) / 2,
+    (bounds[4] + bounds[5]) / 2 };
+  const double diagonal = std::sqrt((bounds[1] - bounds[0]) * (bounds[1] - bounds[0]) +
+    (bounds[3] - bounds[2]) * (bounds[3] - bounds[2]) +
+    (bounds[5] - bounds[4]) * (bounds[5] - bounds[4]));
+  const double up[3] = { 0, 0, 1 };
+  // Overview: three-quarter view from above, far enough for the bounding sphere at 30 degrees.
+  const double distance = diagonal / 2 / std::sin(vtkMath::RadiansFromDegrees(15.0));
+  double dir[3] = { -1, -1, 0.8 };
+  vtkMath::Normalize(dir);
+  const double eye0[3] = { center[0] - dir[0] * distance, center[1] - dir[1] * distance,
+    center[2] + dir[2] * distance };
+  double eye1[3], focal1[3];
+  double angle1 = 30.0;
+  if (scene.hasInside)
+  {
+    std::copy(scene.inside.eye, scene.inside.eye + 3, eye1);
+    std::copy(scene.inside.focal, scene.inside.focal + 3, focal1);
+    if (scene.inside.viewAngle > 0)
+      angle1 = scene.inside.viewAngle;
+  }
+  else
+  {
+    const double r = 0.15 * diagonal;
+    for (int k = 0; k < 3; ++k)
+      eye1[k] = center[k] + (k == 2 ? 0.3 : -0.7) * r;
+    std::copy(center, center + 3, focal1);
+  }
+  double eye[3], focal[3];
+  for (int k = 0; k < 3; ++k)
+  {
+    eye[k] = (1 - t) * eye0[k] + t * eye1[k];
+    focal[k] = (1 - t) * center[k] + t * focal1[k];
+  }
+  camera->SetPosition(eye);
+  camera->SetFocalPoint(focal);
+  camera->SetViewUp(up);
+  camera->SetViewAngle((1 - t) * 30.0 + t * angle1);
+  camera->OrthogonalizeViewUp();
+}
+
+bool ParseOptions(int argc, char** argv, Options& options)
+{
+  for (int i = 1; i < argc; ++i)
+  {
+    const std::string arg = argv[i];
+    const bool hasValue = i + 1 < argc;
+    if (arg == "--frames" && hasValue)
+      options.frames = std::max(2, std::atoi(argv[++i]));
+    else if (arg == "--size" && hasValue &&
+      std::sscanf(argv[++i], "%dx%d", &options.width, &options.height) == 2 && options.width > 0 &&
+      options.height > 0)
+      continue;
+    else if (arg == "--scene" && hasValue)
+      options.scenes.emplace_back(argv[++i]);
+    else if (arg == "--smoke")
+      options.smoke = true;
+    else
+    {
+      std::cerr << "usage: scenevis_planner_path_bench [--frames N] [--size WxH] [--scene NAME]... "
+                   "[--smoke]\n";
+      return false;
+    }
+  }
+  if (options.smoke)
+  {
+    options.frames = 4;
+    options.width = 160;
+    options.height = 120;
+    if (options.scenes.empty())
+      options.scenes = { "cad" };
+  }
+  if (options.scenes.empty())
+    options.scenes = { "cad", "cad-opaque", "spheres", "engine", "level-ctf_inyard" };
+  return true;
+}
+} // namespace
+
+int main(int argc, char** argv)
+{
+  Options options;
+  if (!ParseOptions(argc, argv, options))
+    return 2;
+  std::printf("%-18s %-26s %10s %9s  %s\n", "scene", "method", "total ms", "/ best", "plan");
+  bool ok = true;
+  for (const std::string& name : options.scenes)
+  {
+    std::string error;
+    const PathScene scene = LoadScene(name, error);
+    if (scene.parts.empty())
+    {
+      std::printf("%-18s skipped: %s\n", name.c_str(), error.c_str());
+      continue;
+    }
+    std::vector<std::string> names{ "planner" };
+    for (const char* cull : { "none", "octree", "occlusion" })
+      names.push_back(std::string(scene.translucent ? "multi-actor" : "opaque") + " + " + cull);
+    std::vector<std::unique_ptr<Method>> methods;
+    for (const auto& methodName : names)
+      methods.push_back(std::make_unique<Method>(methodName, scene, options));
+    double bounds[6];
+    methods.front()->renderer->ComputeVisiblePropBounds(bounds);
+    vtkNew<vtkCamera> path;
+    // A warm-up frame per method at the overview (buffers uploaded, trees built), not timed.
+    PathCamera(scene, bounds, 0.0, path);
+    for (auto& method : methods)
+    {
+      method->Render(path);
+      method->frameMs.clear();
+      method->planFrames.clear();
+    }
+    for (int f = 0; f < options.frames; ++f)
+    {
+      PathCamera(scene, bounds, static_cast<double>(f) / (options.frames - 1), path);
+      for (auto& method : methods)
+        method->Render(path);
+    }
+    double best = 0.0;
+    std::string bestName;
+    for (std::size_t m = 1; m < methods.size(); ++m)
+      if (bestName.empty() || methods[m]->Total() < best)
+      {
+        best = methods[m]->Total();
+        bestName = methods[m]->name;
+      }
+    for (const auto& method : methods)
+    {
+      std::string plan;
+      for (const auto& choice : method->planFrames)
+        plan += (plan.empty() ? "" : ", ") + choice.first + " (" + std::to_string(choice.second) +
+          " frames)";
+      std::printf("%-18s %-26s %10.1f %9.2f  %s\n", name.c_str(), method->name.c_str(),
+        method->Total(), method->Total() / best, plan.c_str());
+    }
+    std::printf("%-18s planner / best fixed (%s) = %.2f over %d frames, %zu parts%s\n",
+      name.c_str(), bestName.c_str(), methods.front()->Total() / best, options.frames,
+      scene.parts.size(), scene.translucent ? ", translucent" : ", opaque");
+    ok = ok && !methods.front()->frameMs.empty();
+  }
+  return ok ? 0 : 1;
+}
