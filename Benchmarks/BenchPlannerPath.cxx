@@ -11,8 +11,9 @@
 // The fixed choices are what an application can install on the same actors: culling none (VTK's
 // vtkFrustumCoverageCuller), octree or occlusion (vtkOcclusionCuller with and without occlusion);
 // translucency, in scenes with translucent cells, the exact multi-actor order
-// (vtkOrderedTranslucentPass + vtkBSPTranslucentPass). All are exact; "best fixed" is the fastest
-// of them on this path.
+// (vtkOrderedTranslucentPass + vtkBSPTranslucentPass), and for a one-actor scene the BSP mapper
+// (vtkBSPSortedPolyDataMapper + vtkOrderedTranslucentPass). All are exact; "best fixed" is the
+// fastest of them on this path. Not here: portals (the planner does not know rooms yet).
 //
 // The path: frame 0 is the overview (the scene's bounds fitted in a three-quarter view), the last
 // frame is "inside": the first camera of the scene's camera file (real levels), or an eye at 15 %
@@ -20,7 +21,8 @@
 // clipping range is reset to the props every frame.
 //
 // Run: build/bin/scenevis_planner_path_bench [--frames N] [--size WxH] [--scene NAME]...
-//   NAME: cad, cad-opaque, spheres, engine (data cache key engine-glb), level-MAP (data cache).
+//   NAME: cad, cad-opaque, spheres, cyclic-quads (demos), engine (engine-glb), bunny (bunny-stl,
+//   opacity 0.4), level-MAP (the data cache).
 //   --smoke: one small scene, 4 frames (CI).
 #include "vtkSceneVisPlanner.h"
 
@@ -28,6 +30,7 @@
 #include "../Tools/SplitParts.h"
 #include "scenevis/testing/Models.h"
 #include "scenevis/testing/RenderWindow.h"
+#include "vtkBSPSortedPolyDataMapper.h"
 #include "vtkBSPTranslucentPass.h"
 #include "vtkDemoSceneSource.h"
 #include "vtkOcclusionCuller.h"
@@ -77,6 +80,7 @@ struct PathScene
   std::string name;
   std::vector<vtkSmartPointer<vtkPolyData>> parts;
   bool translucent = false;
+  double opacity = 1.0; ///< given to every actor (models without colours of their own)
   bool hasInside = false;
   scenevis::tool::CameraSpec inside;
 };
@@ -106,10 +110,10 @@ PathScene LoadScene(const std::string& name, std::string& error)
   PathScene scene;
   scene.name = name;
   vtkSmartPointer<vtkPolyData> pd;
-  if (name == "cad" || name == "cad-opaque" || name == "spheres")
+  if (name == "cad" || name == "cad-opaque" || name == "spheres" || name == "cyclic-quads")
   {
     vtkNew<vtkDemoSceneSource> source;
-    source->SetSceneByName(name == "spheres" ? "spheres" : "cad");
+    source->SetSceneByName(name == "cad-opaque" ? "cad" : name.c_str());
     source->Update();
     pd = source->GetOutput();
     if (name == "cad-opaque")
@@ -117,7 +121,7 @@ PathScene LoadScene(const std::string& name, std::string& error)
   }
   else
   {
-    const std::string key = name == "engine" ? "engine-glb" : name;
+    const std::string key = name == "engine" ? "engine-glb" : name == "bunny" ? "bunny-stl" : name;
     const std::string path = scenevis::testing::DataFile(key);
     if (path.empty())
     {
@@ -139,7 +143,9 @@ PathScene LoadScene(const std::string& name, std::string& error)
       scene.hasInside = true;
     }
   }
-  scene.translucent = HasTranslucentCells(pd);
+  if (name == "bunny")
+    scene.opacity = 0.4; // as the command line's models at --opacity 0.4
+  scene.translucent = scene.opacity < 1.0 || HasTranslucentCells(pd);
   scene.parts = scenevis::tool::SplitByKeys(pd, { "PartId" });
   return scene;
 }
@@ -164,6 +170,7 @@ struct Method
   {
     this->window->AddRenderer(this->renderer);
     vtkNew<vtkProperty> property; // shared: the colours are cell scalars
+    property->SetOpacity(scene.opacity);
     for (const auto& part : scene.parts)
     {
       vtkNew<vtkPolyDataMapper> mapper;
@@ -192,6 +199,17 @@ struct Method
     if (methodName.rfind("multi-actor", 0) == 0)
     {
       this->ordered->SetTranslucentPass(this->sorted);
+      this->renderer->SetPass(this->ordered);
+    }
+    else if (methodName.rfind("bsp-mapper", 0) == 0)
+    {
+      // The BSP order rewritten into each actor's index buffer, blended in that order.
+      for (const auto& actor : this->actors)
+      {
+        vtkNew<vtkBSPSortedPolyDataMapper> mapper;
+        static_cast<vtkPolyDataMapper*>(mapper)->vtkPolyDataMapper::ShallowCopy(actor->GetMapper());
+        actor->SetMapper(mapper);
+      }
       this->renderer->SetPass(this->ordered);
     }
   }
@@ -295,7 +313,8 @@ bool ParseOptions(int argc, char** argv, Options& options)
       options.scenes = { "cad" };
   }
   if (options.scenes.empty())
-    options.scenes = { "cad", "cad-opaque", "spheres", "engine", "level-ctf_inyard" };
+    options.scenes = { "cad", "cad-opaque", "spheres", "cyclic-quads", "engine", "bunny",
+      "level-ctf_inyard" };
   return true;
 }
 } // namespace
@@ -319,6 +338,8 @@ int main(int argc, char** argv)
     std::vector<std::string> names{ "planner" };
     for (const char* cull : { "none", "octree", "occlusion" })
       names.push_back(std::string(scene.translucent ? "multi-actor" : "opaque") + " + " + cull);
+    if (scene.translucent && scene.parts.size() == 1)
+      names.emplace_back("bsp-mapper + none");
     std::vector<std::unique_ptr<Method>> methods;
     for (const auto& methodName : names)
       methods.push_back(std::make_unique<Method>(methodName, scene, options));
