@@ -8,7 +8,9 @@
 #include "vtkFrustumCoverageCuller.h"
 #include "vtkOcclusionCuller.h"
 #include "vtkOrderedTranslucentPass.h"
+#include "vtkPolyData.h"
 #include "vtkPolyDataMapper.h"
+#include "vtkPortalCuller.h"
 #include "vtkRenderer.h"
 
 #include <cstring>
@@ -31,7 +33,18 @@ bool vtkScenePlanInstaller::IsPlainPolyDataMapper(vtkMapper* mapper)
 
 vtkCuller* vtkScenePlanInstaller::GetCuller() const
 {
-  return this->CullerInstalled ? this->Culler.Get() : nullptr;
+  return this->Installed;
+}
+
+void vtkScenePlanInstaller::SetPortals(vtkPolyData* portals, const char* roomIdArrayName)
+{
+  this->Portals = portals;
+  this->RoomIdArrayName = roomIdArrayName ? roomIdArrayName : "RoomId";
+  if (this->PortalCuller)
+  {
+    this->PortalCuller->SetPortals(portals);
+    this->PortalCuller->SetRoomIdArrayName(this->RoomIdArrayName.c_str());
+  }
 }
 
 int vtkScenePlanInstaller::GetNumberOfSwappedMappers() const
@@ -58,40 +71,61 @@ vtkMapper* vtkScenePlanInstaller::ApplicationMapper(vtkActor* actor)
 
 void vtkScenePlanInstaller::InstallCuller(vtkRenderer* ren, const std::string& cull)
 {
-  vtkCullerCollection* cullers = ren->GetCullers();
-  const bool wanted = cull == "octree" || cull == "occlusion";
-  if (wanted)
+  if (cull == "octree" || cull == "occlusion")
   {
     if (!this->Culler)
       this->Culler = vtkSmartPointer<vtkOcclusionCuller>::New();
     // One culler for both: switching keeps its hierarchy.
     this->Culler->SetOcclusionCulling(cull == "occlusion");
-    if (!this->CullerInstalled || !cullers->IsItemPresent(this->Culler))
-    {
-      // Our culler does what vtkFrustumCoverageCuller does, for a fraction of the cost.
-      vtkCollectionSimpleIterator it;
-      cullers->InitTraversal(it);
-      std::vector<vtkCuller*> coverage;
-      while (vtkCuller* culler = cullers->GetNextCuller(it))
-        if (vtkFrustumCoverageCuller::SafeDownCast(culler))
-          coverage.push_back(culler);
-      for (vtkCuller* culler : coverage)
-      {
-        this->RemovedCullers.emplace_back(culler);
-        cullers->RemoveItem(culler);
-      }
-      ren->AddCuller(this->Culler);
-      this->CullerInstalled = true;
-    }
+    this->PlaceCuller(ren, this->Culler);
   }
-  else if (this->CullerInstalled)
+  else if (cull == "portals" && this->Portals)
   {
-    ren->RemoveCuller(this->Culler);
+    if (!this->PortalCuller)
+    {
+      this->PortalCuller = vtkSmartPointer<vtkPortalCuller>::New();
+      this->PortalCuller->SetPortals(this->Portals);
+      this->PortalCuller->SetRoomIdArrayName(this->RoomIdArrayName.c_str());
+    }
+    this->PlaceCuller(ren, this->PortalCuller);
+  }
+  else
+  {
+    this->PlaceCuller(ren, nullptr);
+  }
+}
+
+void vtkScenePlanInstaller::PlaceCuller(vtkRenderer* ren, vtkCuller* wanted)
+{
+  vtkCullerCollection* cullers = ren->GetCullers();
+  if (this->Installed && this->Installed != wanted)
+  {
+    ren->RemoveCuller(this->Installed);
+    this->Installed = nullptr;
+  }
+  if (!wanted)
+  {
     for (const auto& culler : this->RemovedCullers)
       ren->AddCuller(culler);
     this->RemovedCullers.clear();
-    this->CullerInstalled = false;
+    return;
   }
+  if (this->Installed == wanted && cullers->IsItemPresent(wanted))
+    return;
+  // Our cullers do what vtkFrustumCoverageCuller does, for a fraction of the cost.
+  vtkCollectionSimpleIterator it;
+  cullers->InitTraversal(it);
+  std::vector<vtkCuller*> coverage;
+  while (vtkCuller* culler = cullers->GetNextCuller(it))
+    if (vtkFrustumCoverageCuller::SafeDownCast(culler))
+      coverage.push_back(culler);
+  for (vtkCuller* culler : coverage)
+  {
+    this->RemovedCullers.emplace_back(culler);
+    cullers->RemoveItem(culler);
+  }
+  ren->AddCuller(wanted);
+  this->Installed = wanted;
 }
 
 void vtkScenePlanInstaller::InstallPass(vtkRenderer* ren, vtkRenderPass* pass)
@@ -217,9 +251,10 @@ void vtkScenePlanInstaller::Uninstall(vtkRenderer* ren)
     if (this->InstalledPass && ren->GetPass() == this->InstalledPass)
       ren->SetPass(nullptr);
   }
-  // The culler's hierarchy is of this renderer's props: a next renderer gets a new one.
+  // The cullers' hierarchies are of this renderer's props: a next renderer gets new ones.
   this->Culler = nullptr;
-  this->CullerInstalled = false;
+  this->PortalCuller = nullptr;
+  this->Installed = nullptr;
   this->RemovedCullers.clear();
   this->InstalledPass = nullptr;
   for (auto& entry : this->Swaps)

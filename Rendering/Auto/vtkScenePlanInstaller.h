@@ -5,7 +5,8 @@
  *
  * Private to the RenderingAuto module (not a vtkObject, not wrapped). What it installs is kept
  * for re-use: one vtkOcclusionCuller for "octree" and "occlusion" (switching keeps its
- * hierarchy), one BSP-sorted or chunked mapper per actor (their trees and chunks). It replaces
+ * hierarchy), one vtkPortalCuller for "portals" (its room graph and PVS), one BSP-sorted or
+ * chunked mapper per actor (their trees and chunks). It replaces
  * only what it knows: VTK's vtkFrustumCoverageCuller (our culler does its work), no pass or its
  * own pass (a renderer with a pass of the application's keeps it, with one warning), plain
  * vtkOpenGLPolyDataMapper mappers (an application's own mapper class is left alone). A mapper the
@@ -36,6 +37,8 @@ class vtkMapper;
 class vtkObject;
 class vtkOcclusionCuller;
 class vtkOrderedTranslucentPass;
+class vtkPolyData;
+class vtkPortalCuller;
 class vtkRenderPass;
 class vtkRenderer;
 
@@ -48,14 +51,16 @@ public:
   vtkScenePlanInstaller(const vtkScenePlanInstaller&) = delete;
   vtkScenePlanInstaller& operator=(const vtkScenePlanInstaller&) = delete;
 
-  /// Installs the culling method @p cull ("octree", "occlusion", "chunked", "none", ...) and the
-  /// translucency method @p translucency ("multi-actor", "bsp-mapper", ...) for the actors of
+  /// Installs the culling method @p cull ("octree", "occlusion", "portals", "chunked", "none") and
+  /// the translucency method @p translucency ("multi-actor", "bsp-mapper", ...) for the actors of
   /// @p inventory: the BSP mapper on translucent actors, chunks in opaque ones of at least
   /// @p chunkedMinimumTriangles triangles. Entries whose mapper it changed get their ActorTime
   /// updated (the change is its own, not the application's). Swapped actors that left the
   /// inventory get their own mapper back.
   void Install(vtkRenderer* ren, const std::string& cull, const std::string& translucency,
     vtkScenePlanInventory& inventory, vtkIdType chunkedMinimumTriangles);
+  /// The portals and room array name the portal culler gets ("portals" culling).
+  void SetPortals(vtkPolyData* portals, const char* roomIdArrayName);
   /// Takes everything out of @p ren (may be null: a renderer being deleted is not touched) and
   /// gives the actors their own mappers back.
   void Uninstall(vtkRenderer* ren);
@@ -85,12 +90,17 @@ private:
   };
 
   void InstallCuller(vtkRenderer* ren, const std::string& cull);
+  /// Puts @p wanted (or none) in place of VTK's coverage culler and of the other culler of ours.
+  void PlaceCuller(vtkRenderer* ren, vtkCuller* wanted);
   void InstallPass(vtkRenderer* ren, vtkRenderPass* pass);
   void SwapMapper(vtkActor* actor, bool sorted, bool chunked);
 
   vtkObject* Owner;
   vtkSmartPointer<vtkOcclusionCuller> Culler;
-  bool CullerInstalled = false;
+  vtkSmartPointer<vtkPortalCuller> PortalCuller;
+  vtkCuller* Installed = nullptr; ///< Culler, PortalCuller or nullptr
+  vtkSmartPointer<vtkPolyData> Portals;
+  std::string RoomIdArrayName = "RoomId";
   std::vector<vtkSmartPointer<vtkCuller>> RemovedCullers;
   vtkSmartPointer<vtkOrderedTranslucentPass> OrderedPass; ///< with vtkBSPTranslucentPass
   vtkSmartPointer<vtkBSPTranslucentPass> SortedPass;

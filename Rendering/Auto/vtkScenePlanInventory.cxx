@@ -3,7 +3,9 @@
 #include "vtkAbstractMapper.h"
 #include "vtkActor.h"
 #include "vtkCellArray.h"
+#include "vtkCellData.h"
 #include "vtkCommand.h"
+#include "vtkDataArray.h"
 #include "vtkMapper.h"
 #include "vtkMatrix4x4.h"
 #include "vtkPolyData.h"
@@ -134,6 +136,27 @@ void vtkScenePlanInventory::Clear()
   this->ViewMeasurements = 0;
 }
 
+void vtkScenePlanInventory::SetPortals(vtkPolyData* portals)
+{
+  this->Rooms = 0;
+  this->Portals = 0;
+  vtkDataArray* a = portals ? portals->GetCellData()->GetArray("RoomA") : nullptr;
+  vtkDataArray* b = portals ? portals->GetCellData()->GetArray("RoomB") : nullptr;
+  if (a && b && a->GetNumberOfComponents() == 1 && b->GetNumberOfComponents() == 1)
+  {
+    std::unordered_set<long long> rooms;
+    const vtkIdType n = std::min(a->GetNumberOfTuples(), b->GetNumberOfTuples());
+    for (vtkIdType c = 0; c < n; ++c)
+      for (const double room : { a->GetTuple1(c), b->GetTuple1(c) })
+        if (room >= 0 && room < 2147483647.0)
+          rooms.insert(static_cast<long long>(room));
+    this->Rooms = static_cast<int>(rooms.size());
+    this->Portals = n;
+  }
+  this->Facts.rooms = this->Rooms;
+  this->Facts.portals = this->Portals;
+}
+
 void vtkScenePlanInventory::Read(vtkScenePlanActorEntry& entry)
 {
   vtkActor* actor = entry.Actor;
@@ -200,6 +223,8 @@ void vtkScenePlanInventory::UpdateFacts()
   facts.polygons = this->SumPolygons;
   facts.triangles = this->SumTriangles;
   facts.fixedActors = true; // the application's actors are drawn as they are
+  facts.rooms = this->Rooms;
+  facts.portals = this->Portals;
   facts.translucentFraction = facts.polygons > 0
     ? static_cast<double>(this->SumTranslucent) / static_cast<double>(facts.polygons)
     : 0.0;

@@ -36,6 +36,7 @@ class vtkActor;
 class vtkDataObject;
 class vtkMapper;
 class vtkObject;
+class vtkPolyData;
 class vtkProp;
 class vtkRenderer;
 
@@ -75,6 +76,9 @@ public:
   void MeasureView(vtkRenderer* ren);
   /// Forgets everything and stops observing.
   void Clear();
+  /// Counts the rooms (distinct RoomA and RoomB values >= 0) and the portals (cells with both
+  /// arrays) of @p portals (may be null) into the facts.
+  void SetPortals(vtkPolyData* portals);
 
   /// Whether an observed object changed since the last reading.
   bool IsDirty() const { return this->Dirty; }
@@ -122,6 +126,8 @@ private:
   std::vector<vtkScenePlanActorEntry> Entries;
   std::unordered_map<vtkProp*, std::size_t> EntryOf;
   vtkScenePlanFacts Facts;
+  int Rooms = 0;
+  vtkIdType Portals = 0;
   int Inspections = 0;
   int ViewMeasurements = 0;
   std::unordered_set<vtkProp*> WarnedNoInput, WarnedNaN;

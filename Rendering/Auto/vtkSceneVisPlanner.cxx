@@ -4,7 +4,9 @@
 #include "vtkBSPSortedPolyDataMapper.h"
 #include "vtkCamera.h"
 #include "vtkCommand.h"
+#include "vtkCuller.h"
 #include "vtkObjectFactory.h"
+#include "vtkPolyData.h"
 #include "vtkPropCollection.h"
 #include "vtkRenderPass.h"
 #include "vtkRenderer.h"
@@ -81,6 +83,10 @@ public:
   vtkWeakPointer<vtkSceneVisPlannerStart> StartCommand;
   vtkScenePlanInventory Inventory;
   vtkScenePlanInstaller Installer;
+  vtkSmartPointer<vtkPolyData> Portals;
+  std::string RoomIdArrayName = "RoomId";
+  bool PortalsChanged = false;
+  vtkMTimeType PortalsTime = 0;
 
   // --- change detection ---
   vtkMTimeType PropsTime = 0;
@@ -256,7 +262,16 @@ void vtkSceneVisPlanner::Plan()
   // The scene: the prop collection and what the observed objects said.
   vtkPropCollection* props = ren->GetViewProps();
   const bool structure = props->GetMTime() != in.PropsTime || !in.Planned;
-  bool sceneChanged = structure || in.Inventory.IsDirty();
+  const bool portalsChanged =
+    in.PortalsChanged || (in.Portals && in.Portals->GetMTime() != in.PortalsTime) || !in.Planned;
+  if (portalsChanged)
+  {
+    in.Inventory.SetPortals(in.Portals);
+    in.Installer.SetPortals(in.Portals, in.RoomIdArrayName.c_str());
+    in.PortalsChanged = false;
+    in.PortalsTime = in.Portals ? in.Portals->GetMTime() : 0;
+  }
+  bool sceneChanged = structure || portalsChanged || in.Inventory.IsDirty();
   if (sceneChanged)
   {
     if (structure || !in.Inventory.Refresh(ren))
@@ -313,7 +328,8 @@ void vtkSceneVisPlanner::Plan()
     const vtkScenePlanChoice cull = vtkScenePlanRule::ChooseCulling(facts);
     const std::vector<double> sceneKey{ static_cast<double>(facts.parts),
       static_cast<double>(facts.polygons), static_cast<double>(facts.triangles),
-      facts.translucentFraction, static_cast<double>(in.Inventory.GetTranslucentActors()) };
+      facts.translucentFraction, static_cast<double>(in.Inventory.GetTranslucentActors()),
+      static_cast<double>(facts.rooms), static_cast<double>(facts.portals) };
     const bool immediate = !in.Planned || sceneKey != in.SceneKey ||
       in.ChooseTranslucency(in.Cull).Method != in.Translucency.Method;
     if (immediate)
@@ -378,6 +394,35 @@ void vtkSceneVisPlanner::Plan()
     std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }
 
+void vtkSceneVisPlanner::SetPortals(vtkPolyData* portals)
+{
+  if (this->Internals->Portals == portals)
+    return;
+  this->Internals->Portals = portals;
+  this->Internals->PortalsChanged = true;
+  this->Modified();
+}
+
+vtkPolyData* vtkSceneVisPlanner::GetPortals()
+{
+  return this->Internals->Portals;
+}
+
+void vtkSceneVisPlanner::SetRoomIdArrayName(const char* name)
+{
+  const std::string value = name ? name : "RoomId";
+  if (value == this->Internals->RoomIdArrayName)
+    return;
+  this->Internals->RoomIdArrayName = value;
+  this->Internals->PortalsChanged = true;
+  this->Modified();
+}
+
+const char* vtkSceneVisPlanner::GetRoomIdArrayName() const
+{
+  return this->Internals->RoomIdArrayName.c_str();
+}
+
 const char* vtkSceneVisPlanner::GetCullMethod() const
 {
   return this->Internals->Cull.Method.c_str();
@@ -431,8 +476,10 @@ void vtkSceneVisPlanner::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "ViewMargin: " << this->ViewMargin << "\n";
   os << indent << "ChunkedMinimumTriangles: " << this->ChunkedMinimumTriangles << "\n";
   vtkRenderPass* pass = in.Installer.GetPass();
-  os << indent << "Culler: " << (in.Installer.GetCuller() ? "vtkOcclusionCuller" : "(none)")
-     << "\n";
+  vtkCuller* culler = in.Installer.GetCuller();
+  os << indent << "Culler: " << (culler ? culler->GetClassName() : "(none)") << "\n";
+  os << indent << "Portals: " << static_cast<void*>(in.Portals.Get()) << " (room array "
+     << in.RoomIdArrayName << ")\n";
   os << indent << "Pass: " << (pass ? pass->GetClassName() : "(none)") << "\n";
   os << indent << "SwappedMappers: " << in.Installer.GetNumberOfSwappedMappers() << "\n";
   os << indent << "ObservedObjects: " << in.Inventory.GetNumberOfObservedObjects() << "\n";

@@ -23,8 +23,10 @@
  * colours with directly: cell scalars counted per cell, point scalars by the fraction of
  * translucent points; a lookup table that is not opaque makes all of the actor translucent) and,
  * with vtkScenePlanRule::ManyProps+ actors, how much of the triangles the camera sees and the
- * estimated depth complexity (the in-view actors' screen rectangles over the viewport). Other
- * props (volumes, 2D actors, assemblies) are left alone and not counted.
+ * estimated depth complexity (the in-view actors' screen rectangles over the area they span);
+ * the rooms and portals of the portals given with SetPortals(). Other props (volumes, 2D actors,
+ * assemblies) are left alone and not counted. The actors are the application's: with ManyProps+
+ * of them the planner always culls (facts.fixedActors, see vtkScenePlanRule).
  *
  * What it decides: vtkScenePlanRule, the same rule as the scenevis command line (--cull auto,
  * --sort auto), so both quote the same facts and reasons. What it installs:
@@ -32,6 +34,9 @@
  *   (switching between the two keeps its hierarchy); it replaces the renderer's
  *   vtkFrustumCoverageCullers, which come back when culling is no longer planned. Other cullers
  *   the application added are left in place.
+ * - culling "portals" (portals set, naming rooms): one vtkPortalCuller with those portals and
+ *   RoomIdArrayName, in place of the coverage cullers likewise; the actors' rooms are read by it
+ *   (field or cell data of that name, see vtkPortalCuller).
  * - culling "chunked": the opaque actors holding at least ChunkedMinimumTriangles draw through a
  *   vtkChunkedPolyDataMapper (a shallow copy of their mapper: same input and colouring).
  * - culling "none": nothing; the renderer keeps its default culler.
@@ -81,6 +86,7 @@
 #include <memory> // For std::unique_ptr
 
 class vtkCuller;
+class vtkPolyData;
 class vtkRenderer;
 
 class SCENEVISRENDERINGAUTO_EXPORT vtkSceneVisPlanner : public vtkObject
@@ -113,8 +119,21 @@ public:
 
   ///@{
   /**
-   * The plan in force: "none", "octree", "occlusion" or "chunked"; "none", "multi-actor",
-   * "bsp-mapper" or "oit" (the rule's names, as in scenevis --cull / --sort).
+   * The scene's portals, in vtkPortalCuller's format (one polygon per portal, integer cell
+   * arrays RoomA and RoomB), and the name of the actors' room array (default "RoomId"). With
+   * portals that name rooms the plan is "portals" (cells and portals). A change (or a new
+   * MTime of the portals) is a change of the scene: planned for at the next render.
+   */
+  void SetPortals(vtkPolyData* portals);
+  vtkPolyData* GetPortals();
+  void SetRoomIdArrayName(const char* name);
+  const char* GetRoomIdArrayName() const;
+  ///@}
+
+  ///@{
+  /**
+   * The plan in force: "none", "octree", "occlusion", "portals" or "chunked"; "none",
+   * "multi-actor", "bsp-mapper" or "oit" (the rule's names, as in scenevis --cull / --sort).
    */
   const char* GetCullMethod() const;
   const char* GetTranslucencyMethod() const;
@@ -144,7 +163,7 @@ public:
   vtkGetMacro(ViewMeasurementCount, int);
   ///@}
 
-  /// The culler the planner installed (a vtkOcclusionCuller), or nullptr.
+  /// The culler the planner installed (a vtkOcclusionCuller or vtkPortalCuller), or nullptr.
   vtkCuller* GetCuller() const;
 
   ///@{

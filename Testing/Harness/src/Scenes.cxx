@@ -129,6 +129,32 @@ vtkSmartPointer<vtkPolyData> MakePortalPolyData(const scenevis::scenes::Building
   return pd;
 }
 
+vtkSmartPointer<vtkPolyData> MakeRoomPolyData(
+  const scenevis::scenes::BuildingScene& building, int room, int outsideNode)
+{
+  vtkNew<vtkPoints> points;
+  vtkNew<vtkCellArray> polys;
+  vtkNew<vtkIntArray> node;
+  node->SetName("RoomNode");
+  for (std::size_t i = 0; i < building.mesh.polygonCount(); ++i)
+  {
+    if (room >= -1 && building.room[i] != room)
+      continue;
+    polys->InsertNextCell(static_cast<vtkIdType>(building.mesh.polygonSize(i)));
+    for (std::uint32_t k = 0; k < building.mesh.polygonSize(i); ++k)
+    {
+      const glm::dvec3& p = building.mesh.points[building.mesh.polygon(i)[k]];
+      polys->InsertCellPoint(points->InsertNextPoint(p.x, p.y, p.z));
+    }
+    node->InsertNextValue(building.room[i] < 0 ? outsideNode : building.room[i]);
+  }
+  auto pd = vtkSmartPointer<vtkPolyData>::New();
+  pd->SetPoints(points);
+  pd->SetPolys(polys);
+  pd->GetCellData()->AddArray(node);
+  return pd;
+}
+
 vtkSmartPointer<vtkActor> MakeTranslucentActor(
   vtkAlgorithm* source, double r, double g, double b, double opacity)
 {

@@ -52,35 +52,6 @@ namespace
 namespace st = scenevis::testing;
 namespace scenes = scenevis::scenes;
 
-/// Polygons of @p b whose room is @p room (all rooms when @p room < -1), with cell data "RoomNode"
-/// (room, or @p outsideNode for the outside).
-vtkSmartPointer<vtkPolyData> RoomPolyData(const scenes::BuildingScene& b, int room, int outsideNode)
-{
-  vtkNew<vtkPoints> points;
-  vtkNew<vtkCellArray> polys;
-  vtkNew<vtkIntArray> node;
-  node->SetName("RoomNode");
-  for (std::size_t i = 0; i < b.mesh.polygonCount(); ++i)
-  {
-    if (room >= -1 && b.room[i] != room)
-    {
-      continue;
-    }
-    polys->InsertNextCell(static_cast<vtkIdType>(b.mesh.polygonSize(i)));
-    for (std::uint32_t k = 0; k < b.mesh.polygonSize(i); ++k)
-    {
-      const glm::dvec3& p = b.mesh.points[b.mesh.polygon(i)[k]];
-      polys->InsertCellPoint(points->InsertNextPoint(p.x, p.y, p.z));
-    }
-    node->InsertNextValue(b.room[i] < 0 ? outsideNode : b.room[i]);
-  }
-  vtkNew<vtkPolyData> pd;
-  pd->SetPoints(points);
-  pd->SetPolys(polys);
-  pd->GetCellData()->AddArray(node);
-  return pd;
-}
-
 struct ModeResult
 {
   const char* name;
@@ -143,7 +114,7 @@ int TestPortalCullerAccuracy(int, char*[])
   std::vector<vtkProp*> props;
   for (int r = -1; r < rooms; ++r)
   {
-    auto pd = RoomPolyData(b, r, outsideNode);
+    auto pd = st::MakeRoomPolyData(b, r, outsideNode);
     vtkNew<vtkIntArray> id; // the actor's room, as field data
     id->SetName("RoomId");
     id->InsertNextValue(r);
@@ -158,7 +129,7 @@ int TestPortalCullerAccuracy(int, char*[])
     actors.push_back(actor);
     props.push_back(actor);
   }
-  auto all = RoomPolyData(b, -2, outsideNode);
+  auto all = st::MakeRoomPolyData(b, -2, outsideNode);
 
   vtkNew<vtkPortalCuller> culler;
   culler->SetPortals(reader->GetOutput());

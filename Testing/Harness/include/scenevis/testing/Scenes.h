@@ -66,6 +66,12 @@ vtkSmartPointer<vtkPolyData> AppendPolygons(vtkPolyData* a, vtkPolyData* b);
 /// arrays RoomA and RoomB.
 vtkSmartPointer<vtkPolyData> MakePortalPolyData(const scenevis::scenes::BuildingScene& building);
 
+/// The polygons of @p building whose room is @p room (all rooms when @p room < -1; -1 is the
+/// outside), with an integer cell array "RoomNode": the polygon's room, or @p outsideNode for the
+/// outside (an id for the ID buffer, where -1 cannot be one).
+vtkSmartPointer<vtkPolyData> MakeRoomPolyData(
+  const scenevis::scenes::BuildingScene& building, int room, int outsideNode);
+
 /// An actor drawing @p source's output in colour (r, g, b) at @p opacity, without specular.
 vtkSmartPointer<vtkActor> MakeTranslucentActor(
   vtkAlgorithm* source, double r, double g, double b, double opacity);
