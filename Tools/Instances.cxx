@@ -412,8 +412,10 @@ vtkSmartPointer<vtkPolyData> LoadGltfMeshLibrary(const std::string& path, std::s
       const auto& primitives = model.Meshes[node.Mesh].Primitives;
       for (std::size_t p = 0; p < primitives.size(); ++p)
       {
+        // Skipped as the flattened import skips it (a part of no cells), so that placement i
+        // stays its PartId i; a primitive of lines or points is placed like a surface.
         vtkPolyData* geometry = primitives[p].Geometry;
-        if (!geometry || geometry->GetNumberOfPolys() == 0)
+        if (!geometry || geometry->GetNumberOfCells() == 0)
           continue;
         auto found = meshIdOf.find({ node.Mesh, p });
         if (found == meshIdOf.end())

@@ -1,5 +1,5 @@
 // Instanced scenes: each distinct mesh loaded once, placed many times (glTF nodes that reference
-// one mesh). One mapper per mesh and one actor per placement, so GPU buffers, BVHs and occluder
+// one mesh, VRML USEs of a DEF'd shape or geometry). One mapper per mesh and one actor per placement, so GPU buffers, BVHs and occluder
 // caches are built once per mesh, not once per copy.
 #ifndef scenevis_tool_Instances_h
 #define scenevis_tool_Instances_h
