@@ -42,7 +42,7 @@ Scene (all commands):
                         multi-actor or peel:N. cull: a placement is a part (its index, the
                         flattened file's PartId); --exact renders the placements flattened.
                         sort: the placements flattened into world space, then the BSP
-                        (exact; the same output as the flattened file)
+                        (exact; the flattened file's polygons in the same order)
   --triangles N         approximate triangle count of the spheres/cad demos (default 20000)
   --parts N             parts of the cad demo (default 1000)
   --opacity A           opacity given to every cell of a model file, in (0, 1] (default: the
