@@ -34,6 +34,7 @@
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <unordered_map>
 #include <vector>
 
 namespace scenevis
@@ -63,13 +64,35 @@ std::vector<vtkDataArray*> KeyArrays(vtkPolyData* pd, const std::vector<std::str
   return arrays;
 }
 
+/// --instances: the placement index of each actor (the pipeline makes one actor per placement,
+/// in order), which is also the PartId of the placement's cells in the flattened scene.
+std::unordered_map<vtkProp*, long long> PlacementOfActor(const MethodPipeline& pipeline)
+{
+  std::unordered_map<vtkProp*, long long> placement;
+  const auto& actors = pipeline.GetActors();
+  for (std::size_t i = 0; i < actors.size(); ++i)
+    placement.emplace(actors[i], static_cast<long long>(i));
+  return placement;
+}
+
+/// The props drawn in the last render: those the culler kept, or every actor (no culler).
+std::vector<vtkProp*> DrawnProps(const MethodPipeline& pipeline, const CullSetup& culling)
+{
+  if (const std::vector<vtkProp*>* kept = culling.Visible())
+    return *kept;
+  return std::vector<vtkProp*>(pipeline.GetActors().begin(), pipeline.GetActors().end());
+}
+
 /// cull --exact: the exact visible set (cells with a pixel in a depth-tested ID render of the
 /// whole scene) against what the mode drew. False negatives break the promise of a conservative
 /// mode; over-draw is what it costs. Translucent surfaces are opaque in the ID render, so what
 /// is seen only through glass counts as over-draw, never as a false negative.
+/// With @p placementOf (--instances), @p pd is the flattened scene, its parts (key PartId) the
+/// placements: an instance is drawn when its actor was kept, whichever mesh it shares.
 void DescribeExact(std::ostream& json, vtkRenderWindow* window, vtkCamera* camera,
   bool fixedClippingRange, vtkPolyData* pd, const std::vector<std::string>& keys,
-  const MethodPipeline& pipeline, const CullSetup& culling)
+  const MethodPipeline& pipeline, const CullSetup& culling,
+  const std::unordered_map<vtkProp*, long long>* placementOf)
 {
   namespace st = scenevis::testing;
   const auto start = std::chrono::steady_clock::now();
@@ -93,6 +116,17 @@ void DescribeExact(std::ostream& json, vtkRenderWindow* window, vtkCamera* camer
     chunked->GetDrawnCellIds(ids);
     for (const vtkIdType id : ids)
       drawn[static_cast<std::size_t>(id)] = 1;
+  }
+  else if (placementOf)
+  {
+    for (vtkProp* prop : DrawnProps(pipeline, culling))
+    {
+      const auto found = placementOf->find(prop);
+      if (found != placementOf->end())
+        drawnKeys.insert({ found->second });
+    }
+    for (vtkIdType c = 0; c < cells; ++c)
+      drawn[static_cast<std::size_t>(c)] = drawnKeys.count(CellKey(arrays, c)) ? 1 : 0;
   }
   else if (split)
   {
@@ -160,12 +194,17 @@ int RunCull(const Options& options)
 {
   ApplyBackendOption(options);
   LoadedScene scene = LoadSceneWithNormals(options);
-  vtkPolyData* pd = scene.polydata;
+  vtkPolyData* pd = scene.polydata; // --instances: the mesh library
+  // --instances: the placed meshes in world space, where every polygon is needed (the ID render
+  // of --exact, --export-scene); placement i is part i.
+  vtkSmartPointer<vtkPolyData> flattened;
+  if (scene.instanced && (options.exact || !options.exportScene.empty()))
+    flattened = FlattenInstances(*scene.instanced);
   std::vector<std::string> exported;
   if (!options.exportScene.empty())
   {
     exported.push_back(options.exportScene + ".vtp");
-    WritePolyData(pd, exported.back());
+    WritePolyData(flattened ? flattened.Get() : pd, exported.back());
     if (scene.portals)
     {
       exported.push_back(options.exportScene + "-portals.vtp");
@@ -178,14 +217,21 @@ int RunCull(const Options& options)
     scenevis::testing::MakeRenderWindow(options.width, options.height);
   vtkNew<vtkRenderer> renderer;
   window->AddRenderer(renderer);
-  SetUpCamera(cameras[0], renderer, pd, scene.zUp);
+  double bounds[6];
+  SceneBounds(scene, bounds);
+  SetUpCamera(cameras[0], renderer, bounds, scene.zUp);
   // Visibility does not depend on the drawing order: nothing is sorted.
   const ScenePlan plan = PlanScene(options, scene, "none", renderer);
-  MethodPipeline pipeline("none", pd, renderer, false, &plan.groups, plan.cull.chunked);
-  SetUpCamera(cameras[0], renderer, pd, scene.zUp); // again: the clipping range from the actors
+  MethodPipeline pipeline(
+    "none", pd, renderer, false, &plan.groups, plan.cull.chunked, plan.instanced);
+  SetUpCamera(cameras[0], renderer, bounds, scene.zUp); // again: the clipping range from the actors
   const CullSetup culling(
     plan.cull, pipeline, renderer, pd, scene.portals, ProgressBar::OnTerminal());
-  const std::vector<std::string> keys = { options.roomArray, options.partArray };
+  const std::unordered_map<vtkProp*, long long> placementOf =
+    plan.instanced ? PlacementOfActor(pipeline) : std::unordered_map<vtkProp*, long long>();
+  const std::vector<std::string> keys = plan.instanced
+    ? std::vector<std::string>{ "PartId" }
+    : std::vector<std::string>{ options.roomArray, options.partArray };
   const char* const partArray = options.partArray.c_str();
   const char* const roomArray = options.roomArray.c_str();
 
@@ -194,7 +240,7 @@ int RunCull(const Options& options)
   {
     const CameraSpec& spec = cameras[c];
     if (c > 0)
-      SetUpCamera(spec, renderer, pd, scene.zUp);
+      SetUpCamera(spec, renderer, bounds, scene.zUp);
     window->Render();
 
     // What was drawn: the visible actors' polygons, or the chunked mapper's drawn cells.
@@ -208,6 +254,16 @@ int RunCull(const Options& options)
       parts = DistinctValues(pd, partArray, &cells);
       rooms = DistinctValues(pd, roomArray, &cells);
       propsVisible = cells.empty() ? 0 : 1;
+    }
+    else if (plan.instanced)
+    {
+      // A placement is a part: its index (the flattened file's PartId).
+      for (vtkProp* prop : DrawnProps(pipeline, culling))
+      {
+        const auto found = placementOf.find(prop);
+        if (found != placementOf.end())
+          parts.insert(found->second);
+      }
     }
     else
     {
@@ -257,7 +313,9 @@ int RunCull(const Options& options)
     }
     if (options.exact)
     {
-      DescribeExact(json, window, camera, spec.FixedClippingRange(), pd, keys, pipeline, culling);
+      DescribeExact(json, window, camera, spec.FixedClippingRange(),
+        flattened ? flattened.Get() : pd, keys, pipeline, culling,
+        plan.instanced ? &placementOf : nullptr);
     }
     if (!exported.empty())
     {

@@ -1,4 +1,5 @@
-// `scenevis sort`: the polydata in BSP order for a camera, written as VTK XML.
+// `scenevis sort`: the polydata in BSP order for a camera, written as VTK XML (--instances: the
+// placed meshes flattened into world space first).
 #include "Commands.h"
 #include "Progress.h"
 #include "Report.h"
@@ -28,7 +29,18 @@ namespace tool
 
 int RunSort(const Options& options)
 {
-  const LoadedScene scene = LoadScene(options);
+  LoadedScene scene = LoadScene(options);
+  if (options.instances)
+  {
+    // The BSP over every placed polygon in world space: exact (polygons of different placements
+    // that cross are split), and cell for cell the order of the flattened file. Ordering the
+    // placements as whole actors (the multi-actor pass) is not exact: two interpenetrating
+    // placements have no right order.
+    const InstancedScene instanced = UnpackMeshLibrary(scene.polydata);
+    scene.polydata = FlattenInstances(instanced);
+    scene.description += ", " + std::to_string(instanced.meshes.size()) + " meshes placed " +
+      std::to_string(instanced.instances.size()) + " times, flattened";
+  }
   double bounds[6];
   scene.polydata->GetBounds(bounds);
   const double center[3] = { (bounds[0] + bounds[1]) / 2, (bounds[2] + bounds[3]) / 2,

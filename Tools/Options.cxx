@@ -34,10 +34,15 @@ Scene (all commands):
                         arrays RoomA and RoomB; the model needs a room cell array (RoomId
                         or --room-array; -1 = outside). The building demo brings its own
                         portals
-  --instances           render: a glTF file (.glb .gltf) as instances: each distinct mesh
-                        loaded once with one mapper, one actor (user matrix) per node that
-                        draws it, instead of one flattened copy per node. Culling modes
-                        that cull props (and none); sort none, oit, multi-actor or peel:N
+  --instances           render, cull, sort: a glTF (.glb .gltf) or VRML (.wrl) file as
+                        instances: each distinct mesh loaded once with one mapper, one
+                        actor (user matrix) per glTF node or VRML shape that draws it (a
+                        USE of a DEF'd Shape or geometry), not one flattened copy each.
+                        Culling modes that cull props (and none); render's sort none, oit,
+                        multi-actor or peel:N. cull: a placement is a part (its index, the
+                        flattened file's PartId); --exact renders the placements flattened.
+                        sort: the placements flattened into world space, then the BSP
+                        (exact; the flattened file's polygons in the same order)
   --triangles N         approximate triangle count of the spheres/cad demos (default 20000)
   --parts N             parts of the cad demo (default 1000)
   --opacity A           opacity given to every cell of a model file, in (0, 1] (default: the
@@ -410,8 +415,8 @@ Options ParseOptions(int argc, char* argv[])
   {
     options.out = "scenevis.png";
   }
-  if (options.instances && options.command != "render")
-    throw UsageError("--instances is an option of render");
+  if (options.instances && options.command == "bench")
+    throw UsageError("--instances belongs to render, cull and sort");
   if (options.command == "bench")
   {
     if (!options.framesSet)

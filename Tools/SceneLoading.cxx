@@ -206,15 +206,12 @@ LoadedScene LoadScene(const Options& options)
     name = cached;
   }
   CheckFitsInMemory(name);
-  const bool gltf = name.size() > 5 &&
-    (name.compare(name.size() - 4, 4, ".glb") == 0 ||
-      name.compare(name.size() - 5, 5, ".gltf") == 0);
-  if (options.instances && !gltf)
-    throw UsageError("--instances reads glTF files (.glb, .gltf), not '" + name + "'");
+  if (options.instances && !IsInstanceable(name))
+    throw UsageError("--instances reads glTF and VRML files (.glb .gltf .wrl), not '" + name + "'");
   std::string error;
   {
     QuietVtkOutput quiet;
-    loaded.polydata = options.instances ? LoadModelIsolated(name, error, LoadGltfMeshLibrary)
+    loaded.polydata = options.instances ? LoadModelIsolated(name, error, LoadMeshLibrary)
                                         : LoadModelIsolated(name, error);
   }
   if (!loaded.polydata)

@@ -63,8 +63,9 @@ echo "sanitize: asan build done in $(( $(date +%s) - start )) s ($build)"
 # is the leak check of the filters, mappers, passes, cullers, the model reader and the auto planner
 # (bad input included: SceneVis::IOModelsCxx-TestSceneVisModelReaderBadInput,
 # SceneVis::RenderingAutoCxx-TestSceneVisPlannerBadInput); and the tool's own code paths
-# that take files and split them (Tool.SplitParts, Tool.Instances) or read the command line to
-# decide on huge pages (Tool.HugePages). Bench.SoakLeaks: 300 frames of
+# that take files and split them (Tool.SplitParts, Tool.Instances: glTF and VRML instancing, the
+# VRML USE checks and refused matrices, flattening placements for sort and cull --exact) or read
+# the command line to decide on huge pages (Tool.HugePages). Bench.SoakLeaks: 300 frames of
 # the soak's moving camera per culling mode on a 2 x 2 engine grid (Benchmarks/BenchSoak.cxx), the
 # leak check of a long run (skipped without the data cache).
 tests='^(Core\.|Fuzz\.|SceneVis::|Tool\.(SplitParts|Instances|HugePages)\.|Bench\.SoakLeaks$)'
