@@ -8,8 +8,6 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
-#include <cstdio>
-#include <cstdlib>
 #include <cmath>
 #include <exception>
 #include <limits>
@@ -29,7 +27,7 @@ namespace
 /// splits a free plane costs there (each plane through a patch of m triangles cuts about
 /// sqrt(m) of them, so stopping free planes at m0 leaves about 5 / sqrt(m0) splits per input
 /// triangle on a generic sphere: ~0.46 at 128, while the leaf chains stay at most 128 deep).
-static const std::uint32_t kMinFreePlaneList = std::getenv("X_MINFREE") ? static_cast<std::uint32_t>(std::atoi(std::getenv("X_MINFREE"))) : 128;
+constexpr std::uint32_t kMinFreePlaneList = 128;
 
 /// Above this many fragments a polygon plane that leaves every other fragment on one side (it
 /// would peel off one polygon per level) is not taken while a free plane separates anything.
@@ -130,7 +128,6 @@ struct Task
   std::uint64_t key;
   bool isFront;      // which child of `parent` this task becomes
   bool oneSidedRun;  // see Builder::run()
-  bool oneSidedSet = false; // proven: every fragment has all others on one side of its plane
 };
 
 /**
@@ -283,30 +280,6 @@ private:
     std::uint32_t fallbackPiece = kNone;
   };
   Choice chooseScored(const Task& task, std::uint32_t n);
-  bool isOneSidedSet(const Task& task, std::uint32_t n);
-  std::vector<glm::dvec3> SetPoints;
-  std::uint32_t SetLimit = 0;
-  void findPatches(std::uint32_t cap);
-  std::uint32_t PatchCap = 0;
-  std::vector<std::uint32_t> PiecePatchStore;
-  const std::uint32_t* PiecePatch = nullptr;
-  std::uint32_t PatchCount = 0;
-  std::vector<std::uint32_t> FrontStamp, BackStamp;
-  std::uint32_t StampCounter = 0;
-  std::vector<std::pair<double, std::uint32_t>> Top;
-  std::vector<std::uint32_t> ChildF, ChildB;
-public:
-  std::size_t SplitHist[32][2] = {};
-  ~Builder()
-  {
-    if (std::getenv("SV_HIST"))
-    {
-      for (int i = 0; i < 32; ++i)
-        if (SplitHist[i][0] + SplitHist[i][1])
-          std::fprintf(stderr, "n~2^%d: polygon-plane splits %zu, free-plane splits %zu\n", i, SplitHist[i][0], SplitHist[i][1]);
-    }
-  }
-private:
   std::uint32_t splitPoint(const glm::dvec4& plane, std::uint32_t a, std::uint32_t b);
   void split(const Frag& f, const glm::dvec4& plane, Frag& front, Frag& back);
 
@@ -485,24 +458,18 @@ Builder::Choice Builder::chooseScored(const Task& task, std::uint32_t n)
   const double* costTable = CostTable.data();
   auto finalScore = [&](double splits, double front, double back) -> double
   {
-    static const double sw = std::getenv("X_SW") ? std::atof(std::getenv("X_SW")) : 0.0;
     return subtree ? costTable[static_cast<std::uint32_t>(front + splits)] +
-        costTable[static_cast<std::uint32_t>(back + splits)] + sw * splits * n / sampleSize
+        costTable[static_cast<std::uint32_t>(back + splits)]
                    : splits * Config.splitWeight + std::abs(front - back);
   };
   bool oneSided = false;
-  static const bool noPatchScore = std::getenv("SV_NOPATCHSCORE") != nullptr;
-  const bool patchScore = subtree && PiecePatch != nullptr && !noPatchScore;
   auto score = [&](const glm::dvec4& plane, std::uint32_t piece, double cutoff) -> double
   {
     oneSided = false;
     double splits = 0;
     double front = 0;
     double back = 0;
-    double patchesFront = 0;
-    double patchesBack = 0;
     double remaining = sampleSize;
-    const std::uint32_t stamp = ++StampCounter;
     for (std::uint32_t j = 0; j < sampleSize; ++j)
     {
       remaining -= 1;
@@ -510,22 +477,7 @@ Builder::Choice Builder::chooseScored(const Task& task, std::uint32_t n)
       {
         continue;
       }
-      const Side side = classifySample(plane, j);
-      if (patchScore)
-      {
-        const std::uint32_t pp = PiecePatch[SamplePiece[j]];
-        if ((side & Front) && FrontStamp[pp] != stamp)
-        {
-          FrontStamp[pp] = stamp;
-          patchesFront += 1;
-        }
-        if ((side & Back) && BackStamp[pp] != stamp)
-        {
-          BackStamp[pp] = stamp;
-          patchesBack += 1;
-        }
-      }
-      switch (side)
+      switch (classifySample(plane, j))
       {
         case Front:
           front += 1;
@@ -542,10 +494,6 @@ Builder::Choice Builder::chooseScored(const Task& task, std::uint32_t n)
             back += 1; // a free plane owns nothing: coplanar fragments go behind it
           }
           break;
-      }
-      if (patchScore)
-      {
-        continue;
       }
       // Checked every boundStride fragments only.
       if (Effort.boundStride > 1 && j % Effort.boundStride != Effort.boundStride - 1)
@@ -585,11 +533,6 @@ Builder::Choice Builder::chooseScored(const Task& task, std::uint32_t n)
         return kInfinity;
       }
       oneSided = true;
-    }
-    if (patchScore)
-    {
-      auto cost = [](double m, double p) { return p > 1.0 ? m * std::log2(p) : 0.0; };
-      return cost(front + splits, patchesFront) + cost(back + splits, patchesBack);
     }
     return finalScore(splits, front, back);
   };
@@ -680,34 +623,15 @@ Builder::Choice Builder::chooseScored(const Task& task, std::uint32_t n)
       SweepCost[k] = subtree ? subtreeCost(static_cast<double>(k) * n / m)
                              : static_cast<double>(k) * sampleSize / m;
     }
-    static const int sweepDirections = std::getenv("X_DIRS") ? std::atoi(std::getenv("X_DIRS")) : 3;
-    static const glm::dvec3 kDirs[13] = { { 1, 0, 0 }, { 0, 1, 0 }, { 0, 0, 1 },
-      glm::normalize(glm::dvec3(1, 1, 0)), glm::normalize(glm::dvec3(1, -1, 0)),
-      glm::normalize(glm::dvec3(1, 0, 1)), glm::normalize(glm::dvec3(1, 0, -1)),
-      glm::normalize(glm::dvec3(0, 1, 1)), glm::normalize(glm::dvec3(0, 1, -1)),
-      glm::normalize(glm::dvec3(1, 1, 1)), glm::normalize(glm::dvec3(1, 1, -1)),
-      glm::normalize(glm::dvec3(1, -1, 1)), glm::normalize(glm::dvec3(-1, 1, 1)) };
-    for (int axis = 0; axis < sweepDirections; ++axis)
+    for (int axis = 0; axis < 3; ++axis)
     {
       SweepLo.resize(m);
       SweepHi.resize(m);
       SweepFlat.clear();
-      const glm::dvec3 dir = kDirs[axis];
       for (std::uint32_t j = 0; j < m; ++j)
       {
-        double lo = SweepBox[2 * j][axis < 3 ? axis : 0];
-        double hi = SweepBox[2 * j + 1][axis < 3 ? axis : 0];
-        if (axis >= 3)
-        {
-          const Frag& f = list[static_cast<std::uint32_t>((static_cast<std::uint64_t>(j) * n) / m)];
-          lo = hi = glm::dot(dir, Local[Verts[f.first]]);
-          for (std::uint32_t k = 1; k < f.count; ++k)
-          {
-            const double c = glm::dot(dir, Local[Verts[f.first + k]]);
-            lo = std::min(lo, c);
-            hi = std::max(hi, c);
-          }
-        }
+        const double lo = SweepBox[2 * j][axis];
+        const double hi = SweepBox[2 * j + 1][axis];
         SweepLo[j] = lo;
         SweepHi[j] = hi;
         if (hi - lo <= 2.0 * Tol)
@@ -775,7 +699,9 @@ Builder::Choice Builder::chooseScored(const Task& task, std::uint32_t n)
       }
       if (best < kInfinity)
       {
-        glm::dvec4 plane(dir, -bestPosition);
+        glm::dvec4 plane(0.0);
+        plane[axis] = 1.0;
+        plane.w = -bestPosition;
         const double sc = score(plane, kNone, bestFree);
         if (sc < bestFree)
         {
@@ -789,10 +715,6 @@ Builder::Choice Builder::chooseScored(const Task& task, std::uint32_t n)
   Choice choice;
   double bestPolygon = kInfinity;
   bool bestOneSided = false;
-  static const std::uint32_t lookaheadTop = std::getenv("X_LA") ? std::atoi(std::getenv("X_LA")) : 0;
-  static const std::uint32_t lookaheadK = std::getenv("X_LAK") ? std::atoi(std::getenv("X_LAK")) : 16;
-  const bool lookahead = lookaheadTop > 1 && subtree && n > 2;
-  Top.clear();
   const std::uint32_t listCandidates =
     n <= Effort.extraCandidateList ? candidates * Effort.candidateFactor : candidates;
   const std::uint32_t polygonCandidates = std::min(listCandidates, n);
@@ -801,84 +723,13 @@ Builder::Choice Builder::chooseScored(const Task& task, std::uint32_t n)
     const std::uint32_t index = n <= listCandidates ? c : rng.below(n);
     const std::uint32_t piece = list[index].piece;
     const glm::dvec4& plane = Planes[piece];
-    const double sc = score(plane, piece, lookahead ? kInfinity : std::min(bestPolygon, bestFree));
-    if (lookahead && sc < kInfinity)
-    {
-      Top.emplace_back(sc, piece);
-    }
+    const double sc = score(plane, piece, std::min(bestPolygon, bestFree));
     if (sc < bestPolygon || choice.piece == kNone)
     {
       bestPolygon = std::min(bestPolygon, sc);
       choice.plane = plane;
       choice.piece = piece;
       bestOneSided = oneSided && sc < kInfinity;
-    }
-  }
-  if (lookahead && Top.size() > 1)
-  {
-    // Two levels: the candidate whose children can themselves be split most cheaply.
-    std::sort(Top.begin(), Top.end());
-    const std::size_t tops = std::min<std::size_t>(lookaheadTop, Top.size());
-    double best2 = kInfinity;
-    for (std::size_t t = 0; t < tops; ++t)
-    {
-      const std::uint32_t piece = Top[t].second;
-      const glm::dvec4& plane = Planes[piece];
-      ChildF.clear();
-      ChildB.clear();
-      for (std::uint32_t j = 0; j < sampleSize; ++j)
-      {
-        if (SamplePiece[j] == piece)
-        {
-          continue;
-        }
-        const Side side = classifySample(plane, j);
-        if (side & Front)
-        {
-          ChildF.push_back(j);
-        }
-        if (side & Back)
-        {
-          ChildB.push_back(j);
-        }
-      }
-      double total = 0.0;
-      for (const std::vector<std::uint32_t>* child : { &ChildF, &ChildB })
-      {
-        const auto m = static_cast<std::uint32_t>(child->size());
-        if (m <= 1)
-        {
-          continue;
-        }
-        double bestChild = kInfinity;
-        const std::uint32_t ks = std::min(m, lookaheadK);
-        for (std::uint32_t c = 0; c < ks && bestChild > 0.0; ++c)
-        {
-          const std::uint32_t jq = (*child)[(static_cast<std::uint64_t>(c) * m) / ks];
-          const std::uint32_t q = SamplePiece[jq];
-          const glm::dvec4& qp = Planes[q];
-          double a = 0;
-          double b = 0;
-          for (std::uint32_t j : *child)
-          {
-            if (SamplePiece[j] == q)
-            {
-              continue;
-            }
-            const Side side = classifySample(qp, j);
-            a += (side & Front) ? 1 : 0;
-            b += (side & Back) ? 1 : 0;
-          }
-          bestChild = std::min(bestChild, subtreeCost(a) + subtreeCost(b));
-        }
-        total += bestChild;
-      }
-      if (total < best2)
-      {
-        best2 = total;
-        choice.plane = plane;
-        choice.piece = piece;
-      }
     }
   }
   choice.fallbackPlane = choice.plane;
@@ -893,173 +744,6 @@ Builder::Choice Builder::chooseScored(const Task& task, std::uint32_t n)
     choice.piece = kNone;
   }
   return choice;
-}
-
-bool Builder::isOneSidedSet(const Task& task, std::uint32_t n)
-{
-  const Frag* list = Arena.data() + task.begin;
-  SetPoints.clear();
-  for (std::uint32_t i = 0; i < n; ++i)
-  {
-    for (std::uint32_t k = 0; k < list[i].count; ++k)
-    {
-      SetPoints.push_back(Local[Verts[list[i].first + k]]);
-    }
-  }
-  const glm::dvec3* pts = SetPoints.data();
-  const std::size_t m = SetPoints.size();
-  std::uint32_t lastPiece = kNone;
-  for (std::uint32_t i = 0; i < n; ++i)
-  {
-    // Strided: neighbouring fragments have similar planes; a far one finds a violation sooner.
-    const std::uint32_t piece = list[(static_cast<std::uint64_t>(i) * 7919u) % n].piece;
-    if (piece == lastPiece)
-    {
-      continue;
-    }
-    lastPiece = piece;
-    const glm::dvec4& plane = Planes[piece];
-    bool front = false;
-    bool back = false;
-    for (std::size_t k = 0; k < m; ++k)
-    {
-      const glm::dvec3& p = pts[k];
-      const double sd = plane.x * p.x + plane.y * p.y + plane.z * p.z + plane.w;
-      front |= sd > Tol;
-      back |= sd < -Tol;
-      if ((k & 15) == 15 && front && back)
-      {
-        return false;
-      }
-    }
-    if (front && back)
-    {
-      return false;
-    }
-  }
-  return true;
-}
-
-void Builder::findPatches(std::uint32_t cap)
-{
-  const auto pieces = static_cast<std::uint32_t>(PieceSource.size());
-  std::vector<std::uint32_t> start(pieces + 1, 0);
-  for (std::uint32_t p = 0; p < pieces; ++p)
-  {
-    start[p + 1] = start[p] + PieceCount[p];
-  }
-  std::vector<std::pair<std::uint64_t, std::uint32_t>> edges;
-  edges.reserve(start[pieces]);
-  for (std::uint32_t p = 0; p < pieces; ++p)
-  {
-    for (std::uint32_t k = 0; k < PieceCount[p]; ++k)
-    {
-      const std::uint32_t a = Verts[start[p] + k];
-      const std::uint32_t b = Verts[start[p] + (k + 1 == PieceCount[p] ? 0 : k + 1)];
-      const std::uint64_t key = (static_cast<std::uint64_t>(std::min(a, b)) << 32) | std::max(a, b);
-      edges.emplace_back(key, p);
-    }
-  }
-  std::sort(edges.begin(), edges.end());
-  std::vector<std::vector<std::uint32_t>> adjacent(pieces);
-  for (std::size_t i = 0; i < edges.size();)
-  {
-    std::size_t j = i;
-    while (j < edges.size() && edges[j].first == edges[i].first)
-    {
-      ++j;
-    }
-    for (std::size_t x = i; x < j; ++x)
-    {
-      for (std::size_t y = i; y < j; ++y)
-      {
-        if (x != y)
-        {
-          adjacent[edges[x].second].push_back(edges[y].second);
-        }
-      }
-    }
-    i = j;
-  }
-  PiecePatchStore.assign(pieces, kNone);
-  std::vector<std::uint32_t> rejected(pieces, kNone);
-  std::vector<std::uint32_t> members;
-  std::vector<std::int8_t> memberSide;
-  std::vector<glm::dvec3> points;
-  std::vector<std::uint32_t> queue;
-  std::vector<std::int8_t> newSide;
-  auto sideOf = [&](const glm::dvec4& plane, const glm::dvec3* pts, std::size_t m) -> int
-  {
-    bool front = false;
-    bool back = false;
-    for (std::size_t k = 0; k < m; ++k)
-    {
-      const glm::dvec3& q = pts[k];
-      const double sd = plane.x * q.x + plane.y * q.y + plane.z * q.z + plane.w;
-      front |= sd > Tol;
-      back |= sd < -Tol;
-    }
-    return front && back ? 2 : (front ? 1 : (back ? -1 : 0));
-  };
-  std::uint32_t patch = 0;
-  std::vector<glm::dvec3> tp;
-  for (std::uint32_t seed = 0; seed < pieces; ++seed)
-  {
-    if (PiecePatchStore[seed] != kNone)
-    {
-      continue;
-    }
-    members.assign(1, seed);
-    memberSide.assign(1, 0);
-    points.clear();
-    for (std::uint32_t k = 0; k < PieceCount[seed]; ++k)
-    {
-      points.push_back(Local[Verts[start[seed] + k]]);
-    }
-    PiecePatchStore[seed] = patch;
-    queue.assign(adjacent[seed].begin(), adjacent[seed].end());
-    for (std::size_t qi = 0; qi < queue.size() && members.size() < cap; ++qi)
-    {
-      const std::uint32_t t = queue[qi];
-      if (PiecePatchStore[t] != kNone || rejected[t] == patch)
-      {
-        continue;
-      }
-      tp.clear();
-      for (std::uint32_t k = 0; k < PieceCount[t]; ++k)
-      {
-        tp.push_back(Local[Verts[start[t] + k]]);
-      }
-      bool ok = true;
-      const int tSide = sideOf(Planes[t], points.data(), points.size());
-      ok = tSide != 2;
-      newSide.resize(members.size());
-      for (std::size_t i = 0; ok && i < members.size(); ++i)
-      {
-        const int side = sideOf(Planes[members[i]], tp.data(), tp.size());
-        const int old = memberSide[i];
-        if (side == 2 || (old != 0 && side != 0 && side != old))
-        {
-          ok = false;
-        }
-        newSide[i] = static_cast<std::int8_t>(old != 0 ? old : side);
-      }
-      if (!ok)
-      {
-        rejected[t] = patch;
-        continue;
-      }
-      std::copy(newSide.begin(), newSide.end(), memberSide.begin());
-      members.push_back(t);
-      memberSide.push_back(static_cast<std::int8_t>(tSide));
-      points.insert(points.end(), tp.begin(), tp.end());
-      PiecePatchStore[t] = patch;
-      queue.insert(queue.end(), adjacent[t].begin(), adjacent[t].end());
-    }
-    ++patch;
-  }
-  PatchCount = patch;
-  PiecePatch = PiecePatchStore.data();
 }
 
 /// Bounds of the points of polygons that can take part (finite, in range, >= 3 distinct ids).
@@ -1151,16 +835,6 @@ Tree Builder::run()
   Planes = PiecePlane.data();
   Sources = PieceSource.data();
   Scored = Config.partition == BuildConfig::Partition::Scored;
-  if (const char* e = std::getenv("SV_SETLIMIT")) SetLimit = static_cast<std::uint32_t>(std::atoi(e));
-  if (const char* e = std::getenv("SV_PATCH")) PatchCap = static_cast<std::uint32_t>(std::atoi(e));
-  if (PatchCap > 0 && Scored)
-  {
-    Planes = PiecePlane.data();
-    findPatches(PatchCap);
-    if (std::getenv("SV_VERBOSE")) std::fprintf(stderr, "patches %u of %zu pieces\n", PatchCount, PieceSource.size());
-  }
-  FrontStamp.assign(PatchCount, 0);
-  BackStamp.assign(PatchCount, 0);
   Threads = Config.threads > 0 ? static_cast<unsigned>(Config.threads)
                                : std::max(1u, std::thread::hardware_concurrency());
   Cancel = &CancelFlag;
@@ -1244,21 +918,7 @@ void Builder::step(const Task& task, std::vector<Task>& tasks)
   glm::dvec4 plane;
   std::uint32_t piece;
   Choice choice;
-  bool oneSidedSet = task.oneSidedSet;
-  if (Scored && !oneSidedSet && PiecePatch && n > 1)
-  {
-    const std::uint32_t first = PiecePatch[Arena[task.begin].piece];
-    oneSidedSet = true;
-    for (std::uint32_t i = 1; i < n && oneSidedSet; ++i)
-    {
-      oneSidedSet = PiecePatch[Arena[task.begin + i].piece] == first;
-    }
-  }
-  if (Scored && !oneSidedSet && n > 1 && n <= SetLimit)
-  {
-    oneSidedSet = isOneSidedSet(task, n);
-  }
-  if (!Scored || oneSidedSet || (task.oneSidedRun && n <= kMinFreePlaneList))
+  if (!Scored || (task.oneSidedRun && n <= kMinFreePlaneList))
   {
     piece = Arena[task.begin].piece;
     plane = Planes[piece];
@@ -1358,7 +1018,6 @@ void Builder::step(const Task& task, std::vector<Task>& tasks)
         Arena[write++] = back;
         FrontScratch.push_back(front);
         ++st.splits;
-        ++SplitHist[std::min<int>(31, static_cast<int>(std::log2(static_cast<double>(n))))][piece == kNone ? 1 : 0];
         break;
       }
     }
@@ -1383,11 +1042,10 @@ void Builder::step(const Task& task, std::vector<Task>& tasks)
   // concave) patch: its remaining polygons will keep doing that, and free planes have already
   // lost here, so the child skips scoring and chains. The run ends at the first node where the
   // one-sidedness fails.
-  static const bool noRun = std::getenv("SV_NORUN") != nullptr;
-  const bool oneSided = !(noRun && PiecePatch) &&
+  const bool oneSided =
     Scored && piece != kNone && nSplit == 0 && (nFront == 0 || nBack == 0);
   const Task backTask{ task.begin, backEnd, nodeIndex, task.depth + 1,
-    childKey(task.key, false), false, oneSided, oneSidedSet };
+    childKey(task.key, false), false, oneSided };
   if (parallel() && !Worker && backEnd - task.begin >= kMinParallelList &&
     frontEnd - backEnd >= kMinParallelList)
   {
@@ -1403,7 +1061,7 @@ void Builder::step(const Task& task, std::vector<Task>& tasks)
   if (frontEnd > backEnd)
   {
     tasks.push_back(Task{ backEnd, frontEnd, nodeIndex, task.depth + 1,
-      childKey(task.key, true), true, oneSided, oneSidedSet });
+      childKey(task.key, true), true, oneSided });
   }
   Placed += OwnScratch.size();
 }
@@ -1422,12 +1080,6 @@ void Builder::fork(const Task& task)
   w.Planes = Planes;
   w.Sources = Sources;
   w.Scored = Scored;
-  w.SetLimit = SetLimit;
-  w.PatchCap = PatchCap;
-  w.PiecePatch = PiecePatch;
-  w.PatchCount = PatchCount;
-  w.FrontStamp.assign(PatchCount, 0);
-  w.BackStamp.assign(PatchCount, 0);
   w.Cancel = Cancel;
   // Copies: this builder keeps appending to its own arrays while the worker runs.
   w.Local = Local;
