@@ -48,6 +48,12 @@
  * 1-3 % of fragments on organic meshes (bunny, engine) for 1.1-1.7x Default's build time. Default
  * deepens the tree of a generic (rotated) sphere: 1M depth 471 instead of 277.
  *
+ * Measured and not adopted (issue 15 item 2; BENCHMARKS.md, "Fewer fragments"): stopping at sets
+ * in which every polygon has all others on one side of its plane (convex patches: below 128
+ * fragments the scores already chain them without splits), scoring short lists by such patches,
+ * diagonal sweeps, two-level lookahead, a per-split weight in SubtreeCost, more candidates: none
+ * gets the bunny below 1.98 fragments per triangle.
+ *
  * Tolerance: Tree::tolerance = max(relativeTolerance * bounds diagonal,
  * 16 * DBL_EPSILON * max |coordinate|): the second term is the coordinate resolution, which far
  * from the origin (1e7) exceeds the relative tolerance of a small scene.
