@@ -558,6 +558,8 @@ struct HeapEntry
   std::uint8_t mask;
   bool object;
 };
+/// HeapEntry::mask of an object's second test (frustum masks use the low six bits).
+constexpr std::uint8_t kSecondTest = 0xFF;
 } // namespace
 
 struct Bvh::OcclusionFrame
@@ -669,6 +671,22 @@ void Bvh::cullNodeOccluded(OcclusionFrame& of, std::uint32_t root, std::uint8_t 
       {
         ++f.stats.culledOcclusion;
         continue;
+      }
+      if (entry.mask != kSecondTest)
+      {
+        // Not hidden by what is nearer than its box's nearest point; tested once more when the
+        // traversal reaches its centre: a long part that comes near the eye (a crankshaft along
+        // a row of engines) is mostly behind parts whose boxes come less near. Only then drawn
+        // (and kept): every decision is still a test against occluders that are drawn.
+        const glm::dvec3 c = (lo + hi) * 0.5;
+        const double key = f.params.parallel ? glm::dot(c, f.params.viewDirection)
+                                             : glm::dot(c - f.params.eye, c - f.params.eye);
+        if (key > entry.nearness)
+        {
+          heap.push_back({ key, p, kSecondTest, true });
+          std::push_heap(heap.begin(), heap.end(), later);
+          continue;
+        }
       }
       f.visible.push_back(id_[p]);
       ++f.stats.objectsDrawn;
