@@ -548,11 +548,25 @@ void Bvh::cullNode(Frame& f, std::uint32_t ni, std::uint8_t mask) const
 // Cull with occlusion
 // ----------------------------------------------------------------------------------------------
 
+namespace
+{
+/// A node or an object position waiting in cullOccluded()'s heap.
+struct HeapEntry
+{
+  double nearness;
+  std::uint32_t index;
+  std::uint8_t mask;
+  bool object;
+};
+/// HeapEntry::mask of an object's second test (frustum masks use the low six bits).
+constexpr std::uint8_t kSecondTest = 0xFF;
+} // namespace
+
 struct Bvh::OcclusionFrame
 {
   Frame base;
   OcclusionCull& occlusion;
-  std::vector<std::pair<double, std::uint32_t>> leafScratch;
+  std::vector<HeapEntry> heap;
 };
 
 namespace
@@ -625,65 +639,98 @@ void Bvh::cullOccluded(const CullParams& params,
   }
 }
 
-void Bvh::cullNodeOccluded(OcclusionFrame& of, std::uint32_t ni, std::uint8_t mask)
+void Bvh::cullNodeOccluded(OcclusionFrame& of, std::uint32_t root, std::uint8_t rootMask)
 {
+  // Best-first, not depth-first: nodes and objects come off one heap, nearest first, so that
+  // every object is tested after all nearer ones were drawn as occluders. Depth-first (nearer
+  // child first) finishes a whole subtree before its sibling: with the eye between the two, the
+  // far contents of the first are tested before the wall a few units away in the second is
+  // drawn (a Quake-3 spawn facing a wall kept 324 parts of which 4 are visible). The order does
+  // not change what a test may conclude, only how much has been drawn when it runs.
   Frame& f = of.base;
-  if (!nodePasses(f, ni, mask))
+  auto& heap = of.heap;
+  heap.clear();
+  const auto later = [](const HeapEntry& a, const HeapEntry& b) {
+    return a.nearness > b.nearness || (a.nearness == b.nearness && a.index > b.index);
+  };
+  const Node& rootNode = nodes_[root];
+  heap.push_back({ nearness(f.params, rootNode.lo, rootNode.hi), root, rootMask, false });
+  while (!heap.empty())
   {
-    return;
-  }
-  const Node& node = nodes_[ni];
-  ++f.stats.occlusionTests;
-  if (of.occlusion.buffer->boxOccluded(node.lo, node.hi))
-  {
-    f.stats.culledOcclusion += node.objects;
-    return;
-  }
-  if (!node.isLeaf())
-  {
-    const std::uint32_t a = ni + 1, b = node.first;
-    const bool aFirst = nearness(f.params, nodes_[a].lo, nodes_[a].hi) <=
-      nearness(f.params, nodes_[b].lo, nodes_[b].hi);
-    cullNodeOccluded(of, aFirst ? a : b, mask);
-    cullNodeOccluded(of, aFirst ? b : a, mask);
-    return;
-  }
-  // Objects of the leaf nearest first (the scratch is consumed before recursing elsewhere).
-  auto& order = of.leafScratch;
-  order.clear();
-  for (std::uint32_t p = node.first; p < node.first + node.count; ++p)
-  {
-    if (!always_[p])
+    std::pop_heap(heap.begin(), heap.end(), later);
+    const HeapEntry entry = heap.back();
+    heap.pop_back();
+    std::uint8_t mask = entry.mask;
+    if (entry.object)
     {
+      const std::uint32_t p = entry.index;
+      ++f.stats.occlusionTests;
       const glm::dvec3 lo(boxes_.minX[p], boxes_.minY[p], boxes_.minZ[p]);
       const glm::dvec3 hi(boxes_.maxX[p], boxes_.maxY[p], boxes_.maxZ[p]);
-      order.emplace_back(nearness(f.params, lo, hi), p);
+      if (of.occlusion.buffer->boxOccluded(lo, hi))
+      {
+        ++f.stats.culledOcclusion;
+        continue;
+      }
+      if (entry.mask != kSecondTest)
+      {
+        // Not hidden by what is nearer than its box's nearest point; tested once more when the
+        // traversal reaches its centre: a long part that comes near the eye (a crankshaft along
+        // a row of engines) is mostly behind parts whose boxes come less near. Only then drawn
+        // (and kept): every decision is still a test against occluders that are drawn.
+        const glm::dvec3 c = (lo + hi) * 0.5;
+        const double key = f.params.parallel ? glm::dot(c, f.params.viewDirection)
+                                             : glm::dot(c - f.params.eye, c - f.params.eye);
+        if (key > entry.nearness)
+        {
+          heap.push_back({ key, p, kSecondTest, true });
+          std::push_heap(heap.begin(), heap.end(), later);
+          continue;
+        }
+      }
+      f.visible.push_back(id_[p]);
+      ++f.stats.objectsDrawn;
+      f.stats.trianglesDrawn += triangles_[p];
+      if (of.occlusion.drawOccluder && occluderStamp_[p] != occlusionFrame_)
+      {
+        occluderStamp_[p] = occlusionFrame_;
+        of.occlusion.drawOccluder(id_[p]);
+        ++f.stats.occludersDrawn;
+      }
+      continue;
     }
-  }
-  std::sort(order.begin(), order.end());
-  for (const auto& entry : order)
-  {
-    const std::uint32_t p = entry.second;
-    if (!objectPasses(f, p, mask))
+    const std::uint32_t ni = entry.index;
+    if (!nodePasses(f, ni, mask))
     {
       continue;
     }
+    const Node& node = nodes_[ni];
     ++f.stats.occlusionTests;
-    const glm::dvec3 lo(boxes_.minX[p], boxes_.minY[p], boxes_.minZ[p]);
-    const glm::dvec3 hi(boxes_.maxX[p], boxes_.maxY[p], boxes_.maxZ[p]);
-    if (of.occlusion.buffer->boxOccluded(lo, hi))
+    if (of.occlusion.buffer->boxOccluded(node.lo, node.hi))
     {
-      ++f.stats.culledOcclusion;
+      f.stats.culledOcclusion += node.objects;
       continue;
     }
-    f.visible.push_back(id_[p]);
-    ++f.stats.objectsDrawn;
-    f.stats.trianglesDrawn += triangles_[p];
-    if (of.occlusion.drawOccluder && occluderStamp_[p] != occlusionFrame_)
+    if (!node.isLeaf())
     {
-      occluderStamp_[p] = occlusionFrame_;
-      of.occlusion.drawOccluder(id_[p]);
-      ++f.stats.occludersDrawn;
+      for (const std::uint32_t child : { ni + 1, node.first })
+      {
+        heap.push_back({ nearness(f.params, nodes_[child].lo, nodes_[child].hi), child, mask,
+          false });
+        std::push_heap(heap.begin(), heap.end(), later);
+      }
+      continue;
+    }
+    for (std::uint32_t p = node.first; p < node.first + node.count; ++p)
+    {
+      if (always_[p] || !objectPasses(f, p, mask))
+      {
+        continue;
+      }
+      const glm::dvec3 lo(boxes_.minX[p], boxes_.minY[p], boxes_.minZ[p]);
+      const glm::dvec3 hi(boxes_.maxX[p], boxes_.maxY[p], boxes_.maxZ[p]);
+      heap.push_back({ nearness(f.params, lo, hi), p, mask, true });
+      std::push_heap(heap.begin(), heap.end(), later);
     }
   }
 }

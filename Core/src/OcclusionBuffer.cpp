@@ -579,10 +579,13 @@ void MaskedDepthBuffer::updateTile(Tile& tile, std::uint32_t mask, float depth, 
     tile.mask = mask;
     tile.z1 = depth;
   }
-  else if (tile.z1 - depth > tile.z0 - tile.z1)
+  else if (tile.z1 - depth > std::min(tile.z0, 1.0f) - tile.z1)
   {
     // The new triangle is much nearer than the working layer: merging would push the layer's
     // depth far back; start the layer again from this triangle (Hasselgren et al.'s heuristic).
+    // A tile with no reference layer yet measures from the far plane (window depth 1), as a
+    // buffer cleared to the far plane would: with +inf the layer would never restart, and a far
+    // part drawn first into a tile would set the depth of the near wall that completes it.
     tile.mask = mask;
     tile.z1 = depth;
   }

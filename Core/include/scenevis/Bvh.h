@@ -171,9 +171,10 @@ public:
   void cull(const CullParams& params, std::vector<std::uint32_t>& visible, CullStats* stats);
 
   /**
-   * Cull with the tests of @p params and occlusion (see OcclusionCull): front-to-back order,
-   * nearest child first. @p visible lists the objects drawn, nearest first (approximately: by
-   * traversal order).
+   * Cull with the tests of @p params and occlusion (see OcclusionCull): front to back over the
+   * whole tree (one heap of nodes and objects by their boxes' nearness, so every object is
+   * tested after all objects whose boxes come nearer were drawn). @p visible lists the objects
+   * drawn, nearest box first.
    */
   void cullOccluded(const CullParams& params,
     OcclusionCull& occlusion,
