@@ -168,10 +168,24 @@ class ConverterTest(unittest.TestCase):
                                  self.path("cameras.json"), "--all-things",
                                  self.path("things.json")], capture_output=True, text=True)
         self.assertEqual(result.returncode, 0, result.stderr)
+        # The monster at (64, 32) stands in room 0, 32 units from its wall: kept. The deathmatch
+        # start stands in a room 80 high: kept (starts are always cameras).
         self.assertIn("2 start cameras, 3 thing cameras", result.stdout)
         with open(self.path("things.json")) as f:
             cameras = json.load(f)
         self.assertEqual([c["eye"] for c in cameras], [[64, 64, 41], [192, 64, 57], [64, 32, 41]])
+        # Moved to 10 units from the wall, it is left out (the near plane could reach through).
+        lumps = lump_data()
+        things = bytearray(lumps[0][1])
+        struct.pack_into("<h", things, 10 * 3 + 2, 10)
+        lumps[0] = ("THINGS", bytes(things))
+        with open(self.path("map.wad"), "wb") as f:
+            f.write(tiny_wad(lumps))
+        result = subprocess.run([sys.executable, SCRIPT, self.path("map.wad"), "MAP01",
+                                 self.path("map.vtp"), self.path("portals.vtp"),
+                                 self.path("cameras.json"), "--all-things",
+                                 self.path("things.json")], capture_output=True, text=True)
+        self.assertIn("2 start cameras, 2 thing cameras", result.stdout)
 
     def test_list(self):
         with open(self.path("map.wad"), "wb") as f:

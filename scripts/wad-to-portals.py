@@ -40,9 +40,10 @@ horizontal field of view on a square image, e.g. --size 1024x1024), clipping ran
 behind a wall 16 units away: the player's radius).
 
 --all-things OUT-things-cameras.json: also a camera per thing of any kind (monsters, items,
-decorations; hundreds of places all over the map, for benchmarks), the same way, with the eye
-kept inside the sector's height (at most 4 units under its ceiling, at least 1 above its floor;
-things in sectors less than 8 units high, shut doors and lifts, are left out).
+decorations; hundreds of places all over the map, for benchmarks), the same way, where a player
+could stand: in a sector at least 56 units high (the player's height) and at least 16 units (the
+player's radius) from every line, so that the near plane never reaches through a wall (things in
+wall niches, low crawl spaces or on a line are left out).
 
 Refused with one line on stderr and exit code 1: a file that is not a WAD, a directory or lump
 outside the file, a map that is missing, in Hexen format (BEHAVIOR) or without vanilla BSP
@@ -61,6 +62,7 @@ NO_SIDE = 0xFFFF
 SUBSECTOR_BIT = 0x8000
 START_TYPES = (1, 2, 3, 4, 11)
 VIEW_HEIGHT = 41.0
+PLAYER_HEIGHT, PLAYER_RADIUS = 56, 16
 COLOURS = {"wall": (0.75, 0.70, 0.62), "lower": (0.55, 0.60, 0.72), "upper": (0.72, 0.58, 0.55),
            "floor": (0.50, 0.62, 0.48), "ceiling": (0.66, 0.66, 0.70)}
 
@@ -311,18 +313,34 @@ def convert(data, map_name, all_things=False):
             child = nodes[child][12] if a * x + b * y + c >= 0 else nodes[child][13]
         raise WadError("the BSP nodes form a cycle")
 
+    segments = [(vertexes[v1], vertexes[v2]) for v1, v2, *_ in linedefs]
+
+    def player_fits(x, y, sector):
+        # Where a player could stand: the sector at least PLAYER_HEIGHT high and every line at
+        # least PLAYER_RADIUS away, so that the near plane (1 unit) never reaches through a wall.
+        if ceiling[sector] - floor[sector] < PLAYER_HEIGHT:
+            return False
+        r = PLAYER_RADIUS
+        for (ax, ay), (bx, by) in segments:
+            if (x < min(ax, bx) - r or x > max(ax, bx) + r or y < min(ay, by) - r
+                    or y > max(ay, by) + r):
+                continue
+            dx, dy = bx - ax, by - ay
+            t = ((x - ax) * dx + (y - ay) * dy) / float(dx * dx + dy * dy or 1)
+            t = min(1.0, max(0.0, t))
+            if math.hypot(ax + t * dx - x, ay + t * dy - y) < r:
+                return False
+        return True
+
     far = 1.05 * math.hypot(max(xs) - min(xs), max(ys) - min(ys)) + max(ceiling) - min(floor)
     cameras, thing_cameras = [], []
     for x, y, angle, kind, _flags in things:
         if kind not in START_TYPES and not all_things:
             continue
         sector = sector_at(x, y)
-        z = floor[sector] + VIEW_HEIGHT
-        if kind not in START_TYPES:
-            if ceiling[sector] - floor[sector] < 8:
-                continue  # a shut door or lift: no room for an eye
-            z = max(floor[sector] + 1.0, min(z, ceiling[sector] - 4.0))
-        eye = [float(x), float(y), z]
+        if kind not in START_TYPES and not player_fits(x, y, sector):
+            continue
+        eye = [float(x), float(y), floor[sector] + VIEW_HEIGHT]
         focal = [x + 100.0 * math.cos(math.radians(angle)),
                  y + 100.0 * math.sin(math.radians(angle)), eye[2]]
         camera = {"eye": [round(v, 3) for v in eye], "focal": [round(v, 3) for v in focal],

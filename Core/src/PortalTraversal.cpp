@@ -215,6 +215,22 @@ bool PortalTraversal::subsumed(const Region& inner, const Region& outer) const
   {
     return false;
   }
+  if (outer.via >= 0 && inner.via != outer.via)
+  {
+    // The outer region passes on only what lies beyond its entry plane; the inner's rays must
+    // be beyond it too: they are when the portal they crossed last is (a ray crosses it once).
+    if (inner.vertexCount == 0)
+    {
+      return false;
+    }
+    for (std::uint32_t v = inner.firstVertex; v < inner.firstVertex + inner.vertexCount; ++v)
+    {
+      if (geometry::planeDistance(outer.entry, this->Vertices[v]) < -10.0 * this->PlaneSlack)
+      {
+        return false;
+      }
+    }
+  }
   if (outer.edgePlanes == 0)
   {
     return true;

@@ -43,7 +43,10 @@
  *   P itself is never crossed again, and a portal entirely on the eye's side of P's plane (beyond
  *   the slack) cannot be reached; in exact mode the next portal is also clipped to the far side
  *   of P's plane (with the slack). Regions passed on through an edge-on or non-planar portal keep
- *   their entry plane (their rays still crossed it); merged and start regions have none.
+ *   their entry plane (their rays still crossed it); merged and start regions have none. A
+ *   region counts as contained in one with an entry plane only if it came through the same
+ *   portal or its clipped portal lies beyond that plane (else its rays may reach portals the
+ *   other's may not).
  * - Per frame, each portal is clipped by the eye plane and the far plane once, on first use, and
  *   kept for every region that tests it (the per-frame cache of clipped portal polygons).
  *
