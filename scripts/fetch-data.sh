@@ -18,18 +18,28 @@
 #                                 the package's pak6-patch085.pk3) converted by
 #                                 scripts/q3bsp-to-vtp.py: <map>.vtp (one PartId part per
 #                                 surface) and <map>-cameras.json (one camera per spawn point)
+#   derived/doom/                 with --levels: Doom maps of Freedoom (the package's WADs)
+#                                 converted by scripts/wad-to-portals.py into the portal scene
+#                                 format: <map>.vtp (RoomId = sector), <map>-portals.vtp
+#                                 (RoomA/RoomB), <map>-cameras.json (player starts) and
+#                                 <map>-things-cameras.json (a camera per thing: benchmarks)
 #   manifest.txt                  key=relative/path, one per line, sorted by key
 #
 # Sources and licences: assimp-testmodels (Debian, assimp's test corpus, various licences, see
 # usr/share/doc/assimp-testmodels/copyright), stl-models@0.12.0 and bunny@1.0.1 (npm; the Stanford
 # bunny is from the Stanford 3D Scanning Repository), kicad-packages3d (Debian, CC-BY-SA 4.0 with
 # exception), openarena-085-data (Debian, GPL-2+, see usr/share/doc/openarena-085-data/copyright;
-# its pak6-patch085.pk3 holds the 12 maps of OpenArena 0.8.5; openarena-data's pak0.pk3 has none).
+# its pak6-patch085.pk3 holds the 12 maps of OpenArena 0.8.5; openarena-data's pak0.pk3 has none),
+# freedoom (Debian, BSD-3-Clause-style "freedoom-license", see usr/share/doc/freedoom/copyright).
 #
 # Usage: scripts/fetch-data.sh [--kicad] [--levels] [--dir DIR] [--help]
 #   --kicad    also fetch kicad-packages3d (379 MB download; only *.wrl files are kept)
 #   --levels   also fetch openarena-085-data (37 MB download) and convert its 12 Quake-3 maps
-#              (keys level-<map> and level-<map>-cameras; python3 needed)
+#              (keys level-<map> and level-<map>-cameras; python3 needed), and freedoom (16 MB
+#              download) and convert two Doom maps into cells and portals: freedoom2's MAP12, the
+#              largest of both WADs (1,692 sectors, 5,772 open portals), and its MAP01 (198
+#              sectors) for tests (keys doom-<map>, doom-<map>-portals, doom-<map>-cameras,
+#              doom-<map>-things-cameras)
 #   --dir DIR  cache directory (overrides SCENEVIS_DATA_DIR)
 set -euo pipefail
 
@@ -209,6 +219,40 @@ with zipfile.ZipFile(sys.argv[1]) as pk3:
   mv "$out.tmp" "$out"
 }
 
+# Doom maps: the WADs stay where the package puts them; each pinned map is converted into the
+# portal scene format. The stamp names the package and the converter's checksum, as above.
+DOOM_MAPS=(freedoom2:MAP12 freedoom2:MAP01)
+derive_doom()
+{
+  local wads="$DATA_DIR/debian/freedoom/usr/share/games/doom"
+  local out="$DATA_DIR/derived/doom"
+  local converter
+  converter="$(cd "$(dirname "$0")" && pwd)/wad-to-portals.py"
+  local want
+  want="$(cat "$DATA_DIR/debian/freedoom/.scenevis-stamp") $(sha256sum "$converter" | cut -c1-16) ${DOOM_MAPS[*]}"
+  if [ -f "$out/.scenevis-stamp" ] && [ "$(cat "$out/.scenevis-stamp")" = "$want" ]; then
+    log "doom: present ($(ls "$out"/*-portals.vtp | wc -l) maps)"
+    return 0
+  fi
+  command -v python3 > /dev/null || die "'python3' not found (needed to convert the Doom maps)"
+  rm -rf "$out.tmp"
+  mkdir -p "$out.tmp"
+  local entry wad map name
+  for entry in "${DOOM_MAPS[@]}"; do
+    wad="${entry%%:*}"
+    map="${entry##*:}"
+    name="$(echo "$map" | tr '[:upper:]' '[:lower:]')"
+    [ -f "$wads/$wad.wad" ] || die "freedoom has no $wads/$wad.wad"
+    python3 "$converter" "$wads/$wad.wad" "$map" "$out.tmp/$name.vtp" "$out.tmp/$name-portals.vtp" \
+      "$out.tmp/$name-cameras.json" --all-things "$out.tmp/$name-things-cameras.json" \
+      > "$out.tmp/$name.log" || die "converting $wad $map failed"
+    log "doom $name: $(sed 's/^wad-to-portals: [^:]*: //' "$out.tmp/$name.log")"
+  done
+  echo "$want" > "$out.tmp/.scenevis-stamp"
+  rm -rf "$out"
+  mv "$out.tmp" "$out"
+}
+
 start=$(date +%s)
 command -v npm > /dev/null || die "'npm' not found (needed for stl-models and bunny)"
 fetch_deb assimp-testmodels 1
@@ -219,6 +263,8 @@ if [ "$WITH_LEVELS" = 1 ]; then
   fetch_deb openarena-085-data 0 './usr/share/games/openarena/baseoa/pak6-patch085.pk3' \
     './usr/share/doc/*'
   derive_levels
+  fetch_deb freedoom 0 './usr/share/games/doom/*.wad' './usr/share/doc/*'
+  derive_doom
 fi
 fetch_npm
 derive_bunny_ply
@@ -254,6 +300,16 @@ if [ -f "$DATA_DIR/derived/levels/.scenevis-stamp" ]; then
   done
 fi
 
+if [ -f "$DATA_DIR/derived/doom/.scenevis-stamp" ]; then
+  for level in "$DATA_DIR"/derived/doom/*-portals.vtp; do
+    map="$(basename "$level" -portals.vtp)"
+    files[doom-$map]="derived/doom/$map.vtp"
+    files[doom-$map-portals]="derived/doom/$map-portals.vtp"
+    files[doom-$map-cameras]="derived/doom/$map-cameras.json"
+    files[doom-$map-things-cameras]="derived/doom/$map-things-cameras.json"
+  done
+fi
+
 manifest="$DATA_DIR/manifest.txt"
 {
   echo "# SceneVis data manifest: key=path relative to this file's directory"
@@ -270,13 +326,13 @@ mv "$manifest.tmp" "$manifest"
 
 echo
 echo "SceneVis data in $DATA_DIR"
-printf '%-20s %12s  %s\n' KEY SIZE PATH
+printf '%-26s %12s  %s\n' KEY SIZE PATH
 grep -v '^#' "$manifest" | while IFS='=' read -r key path; do
   if [ -d "$DATA_DIR/$path" ]; then
     size="$(du -sh "$DATA_DIR/$path" | cut -f1) ($(find "$DATA_DIR/$path" -type f | wc -l) files)"
   else
     size="$(stat -c %s "$DATA_DIR/$path")"
   fi
-  printf '%-20s %12s  %s\n' "$key" "$size" "$path"
+  printf '%-26s %12s  %s\n' "$key" "$size" "$path"
 done
 echo "manifest: $manifest ($(($(date +%s) - start)) s)"

@@ -6,11 +6,24 @@
 //   build/bin/scenevis_pvs_bench                       # 24 x 24 rooms x 3 floors
 //   build/bin/scenevis_pvs_bench --rooms 6,6,2 --old-seconds 5 --segments 20000 --frames 20
 //
-// Options: --rooms X,Y,FLOORS  --halls N (open halls per floor, default 6)
+// A portal scene file instead of the maze (e.g. a Doom map converted by scripts/wad-to-portals.py):
+//
+//   build/bin/scenevis_pvs_bench --scene MAP.vtp --portals MAP-portals.vtp --cameras MAP-cameras.json
+//
+// times the portal-flow PVS of that scene (no oracle: the rooms' cells are not boxes; the PVS is
+// checked against the exact traversal from every camera instead, and `scenevis cull --exact`
+// checks both against the ID buffer) and the traversal from each camera of the file (perspective,
+// its view angle on a square image, each camera timed --frames times, default 200).
+//
+// Options: --scene FILE.vtp --portals FILE.vtp --cameras FILE.json --room-array NAME (RoomId)
+// --rooms X,Y,FLOORS  --halls N (open halls per floor, default 6)
 // --hall-size N (largest hall side in rooms, default 12)  --seed N  --threads N (0 = all cores)  --budget S (flow budget,
 // 0 = none)  --old-seconds S (limit of the separating-plane run, 0 skips it)  --segments N
 // (oracle samples)  --frames N (traversal views).
+#include "PortalSceneFile.h"
 #include "PortalSegmentOracle.h"
+
+#include "CameraFile.h"
 
 #include "scenevis/PortalGraph.h"
 #include "scenevis/PortalPvs.h"
@@ -80,6 +93,116 @@ double median(std::vector<double> v)
   std::sort(v.begin(), v.end());
   return v[v.size() / 2];
 }
+
+double percentile(std::vector<double> v, double q)
+{
+  if (v.empty())
+  {
+    return 0.0;
+  }
+  std::sort(v.begin(), v.end());
+  return v[std::min(v.size() - 1, static_cast<std::size_t>(q * static_cast<double>(v.size())))];
+}
+
+/// The PVS and the traversal of a portal scene file, seen from the cameras of a camera file.
+int benchSceneFile(const std::string& scene, const std::string& portalsFile,
+  const std::string& camerasFile, const std::string& roomArray, int threads, double budget,
+  std::size_t repeats)
+{
+  auto t0 = Clock::now();
+  PolygonMesh mesh;
+  PortalGraphReport report;
+  PortalGraph graph;
+  std::vector<tool::CameraSpec> cameras;
+  try
+  {
+    const CellSceneInput input = bench::readPortalScene(scene, portalsFile, roomArray, mesh);
+    graph = PortalGraph::build(input, &report);
+    if (!camerasFile.empty())
+    {
+      cameras = tool::ReadCameraFile(camerasFile, tool::CameraSpec());
+    }
+  }
+  catch (const std::exception& e)
+  {
+    std::fprintf(stderr, "scenevis_pvs_bench: %s\n", e.what());
+    return 1;
+  }
+  std::printf("level: %s: %d rooms, %zu portals, %zu polygons (read and graph built in %.2f s, "
+              "%zu graph errors, %zu warnings)\n",
+    scene.c_str(), graph.roomCount(), graph.portals().size(), mesh.polygonCount(), since(t0),
+    report.errors(), report.warnings());
+
+  PvsOptions options;
+  options.threads = threads;
+  options.budgetSeconds = budget;
+  PvsStats stats;
+  t0 = Clock::now();
+  const std::clock_t c0 = std::clock();
+  const PortalPvs flow = PortalPvs::compute(graph, options, &stats);
+  std::printf("portal flow: %.2f s wall, %.2f s CPU, on %d threads (might-see %.2f s, flow %.2f s); "
+              "%zu directed portals, might-see %.1f and final %.1f portals each; %zu flow steps; "
+              "%zu degraded portals%s; PVS %.1f nodes per node (%zu entries)\n",
+    since(t0), cpuSince(c0), stats.threads, stats.mightSeeSeconds, stats.flowSeconds,
+    stats.directedPortals, stats.averageMightSee, stats.averagePortalVis, stats.flowSteps,
+    stats.degradedPortals, stats.budgetExceeded ? " (budget exceeded)" : "", stats.averageSetSize,
+    entries(flow));
+
+  // Each camera: the median of its repeats; then the median and the 90th percentile over cameras.
+  std::vector<double> exactMs, pvsMs;
+  std::size_t exactRooms = 0, pvsRooms = 0, outsidePvs = 0, fallbacks = 0;
+  PortalTraversal t;
+  const TraversalOptions topt;
+  const double diagonal = graph.buildingBounds().diagonal();
+  for (const tool::CameraSpec& c : cameras)
+  {
+    const glm::dvec3 eye(c.eye[0], c.eye[1], c.eye[2]);
+    const glm::dvec3 focal(c.focal[0], c.focal[1], c.focal[2]);
+    const glm::dvec3 up = c.hasUp ? glm::dvec3(c.up[0], c.up[1], c.up[2]) : glm::dvec3(0, 0, 1);
+    const double angle = c.viewAngle > 0.0 ? c.viewAngle : 90.0;
+    const double zNear = c.FixedClippingRange() ? c.clippingRange[0] : 1e-3 * diagonal;
+    const double zFar = c.FixedClippingRange() ? c.clippingRange[1] : 2.0 * diagonal;
+    PortalView view;
+    view.eye = eye;
+    view.clipFromWorld =
+      glm::perspective(glm::radians(angle), 1.0, zNear, zFar) * glm::lookAt(eye, focal, up);
+    std::vector<double> a, b;
+    for (std::size_t r = 0; r < std::max<std::size_t>(repeats, 1); ++r)
+    {
+      auto s = Clock::now();
+      t.run(graph, view, topt);
+      a.push_back(1e3 * since(s));
+    }
+    fallbacks += t.stats().fallback == Fallback::None ? 0 : 1;
+    std::vector<std::int32_t> reached = t.visibleNodes();
+    exactRooms += reached.size();
+    for (std::size_t r = 0; r < std::max<std::size_t>(repeats, 1); ++r)
+    {
+      auto s = Clock::now();
+      t.runPvs(graph, flow, view, topt);
+      b.push_back(1e3 * since(s));
+    }
+    pvsRooms += t.visibleNodes().size();
+    for (const std::int32_t node : reached)
+    {
+      outsidePvs += t.nodeVisible(node) ? 0 : 1;
+    }
+    exactMs.push_back(median(a));
+    pvsMs.push_back(median(b));
+  }
+  if (!cameras.empty())
+  {
+    const double n = static_cast<double>(cameras.size());
+    std::printf("traversal from %zu cameras (%zu runs each; per camera the median): exact frustum "
+                "narrowing median %.3f ms, 90th percentile %.3f ms, max %.3f ms, %.1f nodes "
+                "reached; portal-flow PVS lookup median %.3f ms, %.1f nodes; %zu frustum-only "
+                "fallbacks; rooms the exact traversal reaches outside the PVS: %zu\n",
+      cameras.size(), std::max<std::size_t>(repeats, 1), median(exactMs), percentile(exactMs, 0.9),
+      percentile(exactMs, 1.0), static_cast<double>(exactRooms) / n, median(pvsMs),
+      static_cast<double>(pvsRooms) / n, fallbacks, outsidePvs);
+  }
+  return outsidePvs == 0 ? 0 : 1;
+}
 } // namespace
 
 int main(int argc, char** argv)
@@ -99,6 +222,7 @@ int main(int argc, char** argv)
   int threads = 0;
   double budget = 0.0, oldSeconds = 120.0;
   std::size_t segments = 2'000'000, frames = 200;
+  std::string scene, portalsFile, camerasFile, roomArray = "RoomId";
   for (int i = 1; i + 1 < argc; i += 2)
   {
     const std::string key = argv[i];
@@ -139,12 +263,38 @@ int main(int argc, char** argv)
     {
       frames = std::strtoull(value, nullptr, 10);
     }
+    else if (key == "--scene")
+    {
+      scene = value;
+    }
+    else if (key == "--portals")
+    {
+      portalsFile = value;
+    }
+    else if (key == "--cameras")
+    {
+      camerasFile = value;
+    }
+    else if (key == "--room-array")
+    {
+      roomArray = value;
+    }
     else
     {
       std::fprintf(stderr, "scenevis_pvs_bench: unknown option or bad value: %s %s\n", argv[i],
         value);
       return 2;
     }
+  }
+
+  if (!scene.empty() || !portalsFile.empty())
+  {
+    if (scene.empty() || portalsFile.empty())
+    {
+      std::fprintf(stderr, "scenevis_pvs_bench: --scene and --portals go together\n");
+      return 2;
+    }
+    return benchSceneFile(scene, portalsFile, camerasFile, roomArray, threads, budget, frames);
   }
 
   auto t0 = Clock::now();

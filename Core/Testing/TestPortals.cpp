@@ -516,6 +516,52 @@ TEST(PortalTraversal, StraightCorridorVisibleThroughAlignedDoorsNotAroundTheCorn
   }
 }
 
+TEST(PortalTraversal, EntryPlanesSkipTheWayBackAndAReusedTraversalMatchesAFreshOne)
+{
+  BoxRooms s = corridor();
+  const PortalGraph g = PortalGraph::build(s.finish());
+  for (const NarrowingMode mode : kModes)
+  {
+    SCOPED_TRACE(mode == NarrowingMode::ExactFrustum ? "exact" : "rectangles");
+    PortalTraversal t;
+    t.run(g, lookAt({ 2.5, 2, 1.5 }, { 30, 2, 1.5 }), withMode(mode));
+    EXPECT_EQ(visibleSet(t), (std::set<std::int32_t>{ 0, 1, 2, 3 }));
+    // From rooms 1..3 the door each came through is not tried again.
+    EXPECT_GE(t.stats().portalsBehind, 3u);
+  }
+  // One traversal run frame after frame (it resets only the rooms the previous frame reached,
+  // and clips each portal by the eye and far planes once per frame) answers as a fresh one.
+  const auto b = scenes::building(3, 6, 6, 11);
+  const PortalGraph big = PortalGraph::build(cellSceneOf(b));
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  for (const NarrowingMode mode : kModes)
+  {
+    PortalTraversal reused;
+    for (int i = 0; i < 40; ++i)
+    {
+      const Box& cell = b.rooms[rng() % b.rooms.size()].bounds;
+      const glm::dvec3 eye(cell.lo.x + 0.5 + u(rng) * 4.0, cell.lo.y + 0.5 + u(rng) * 3.0,
+        cell.lo.z + 1.6);
+      const double yaw = u(rng) * 6.283;
+      const PortalView view =
+        lookAt(eye, eye + glm::dvec3(std::cos(yaw), std::sin(yaw), 0.0), 70.0);
+      PortalTraversal fresh;
+      fresh.run(big, view, withMode(mode));
+      reused.run(big, view, withMode(mode));
+      ASSERT_EQ(visibleSet(reused), visibleSet(fresh)) << "view " << i;
+      for (const std::int32_t node : fresh.visibleNodes())
+      {
+        ASSERT_EQ(reused.regionRectangles(node), fresh.regionRectangles(node));
+      }
+      if (i % 10 == 9)
+      {
+        reused.runFrustumOnly(big, view); // every node visible: the next frame resets them all
+      }
+    }
+  }
+}
+
 TEST(PortalTraversal, CyclesTerminateAndARoomReachedTwiceGetsBothRegions)
 {
   BoxRooms s = ring();

@@ -92,6 +92,40 @@ void PortalTraversal::fallBack(Fallback why)
 bool PortalTraversal::begin(const PortalGraph& graph, const PortalView& view,
   const TraversalOptions& options)
 {
+  const auto nodes = static_cast<std::size_t>(graph.nodeCount());
+  if (this->LastGraph == &graph && this->LastNodes == nodes && this->NodeRegions.size() >= nodes &&
+    this->NodeGeneration.size() >= nodes)
+  {
+    // Only the nodes the previous frame reached have regions: reset those, not every node.
+    for (const std::int32_t n : this->Visible)
+    {
+      this->NodeRegions[static_cast<std::size_t>(n)].clear();
+      this->NodeGeneration[static_cast<std::size_t>(n)] = 0;
+    }
+  }
+  else
+  {
+    if (this->NodeRegions.size() < nodes)
+    {
+      this->NodeRegions.resize(nodes);
+    }
+    for (auto& list : this->NodeRegions)
+    {
+      list.clear();
+    }
+    this->NodeGeneration.assign(nodes, 0);
+    this->Clipped.assign(graph.portals().size(), ClippedPortal());
+    this->Frame = 0;
+  }
+  this->LastGraph = &graph;
+  this->LastNodes = nodes;
+  if (++this->Frame == 0)
+  {
+    // The stamp wrapped: no cached portal may pass for this frame's.
+    this->Clipped.assign(graph.portals().size(), ClippedPortal());
+    this->Frame = 1;
+  }
+  this->ClippedVertices.clear();
   this->Graph = &graph;
   this->Options = options;
   this->View = view;
@@ -102,16 +136,6 @@ bool PortalTraversal::begin(const PortalGraph& graph, const PortalView& view,
   this->Vertices.clear();
   this->Visible.clear();
   this->Stack.clear();
-  const auto nodes = static_cast<std::size_t>(graph.nodeCount());
-  if (this->NodeRegions.size() < nodes)
-  {
-    this->NodeRegions.resize(nodes);
-  }
-  for (auto& list : this->NodeRegions)
-  {
-    list.clear();
-  }
-  this->NodeGeneration.assign(nodes, 0);
   this->PlaneSlack = 10.0 * graph.tolerance();
 
   this->ViewFrustum = culling::Frustum::fromViewProjection(view.clipFromWorld);
@@ -191,6 +215,22 @@ bool PortalTraversal::subsumed(const Region& inner, const Region& outer) const
   {
     return false;
   }
+  if (outer.via >= 0 && inner.via != outer.via)
+  {
+    // The outer region passes on only what lies beyond its entry plane; the inner's rays must
+    // be beyond it too: they are when the portal they crossed last is (a ray crosses it once).
+    if (inner.vertexCount == 0)
+    {
+      return false;
+    }
+    for (std::uint32_t v = inner.firstVertex; v < inner.firstVertex + inner.vertexCount; ++v)
+    {
+      if (geometry::planeDistance(outer.entry, this->Vertices[v]) < -10.0 * this->PlaneSlack)
+      {
+        return false;
+      }
+    }
+  }
   if (outer.edgePlanes == 0)
   {
     return true;
@@ -263,16 +303,50 @@ bool PortalTraversal::attach(std::int32_t node, std::uint32_t region, bool check
   return true;
 }
 
-void PortalTraversal::crossPortal(const GraphPortal& portal, std::int32_t to, std::uint32_t from)
+const PortalTraversal::ClippedPortal& PortalTraversal::clippedPortal(std::uint32_t index)
+{
+  ClippedPortal& c = this->Clipped[index];
+  if (c.stamp == this->Frame)
+  {
+    return c;
+  }
+  c.stamp = this->Frame;
+  std::vector<glm::dvec3>* a = &this->ClipA;
+  std::vector<glm::dvec3>* b = &this->ClipB;
+  *a = this->Graph->portals()[index].hull;
+  geometry::clipPolygon(*a, this->FrontPlane, this->PlaneSlack, *b);
+  std::swap(a, b);
+  if (a->size() >= 3)
+  {
+    geometry::clipPolygon(*a, this->ViewFrustum.planes[culling::kFar], this->PlaneSlack, *b);
+    std::swap(a, b);
+  }
+  c.first = static_cast<std::uint32_t>(this->ClippedVertices.size());
+  c.count = a->size() >= 3 ? static_cast<std::uint32_t>(a->size()) : 0;
+  this->ClippedVertices.insert(this->ClippedVertices.end(), a->begin(), a->begin() + c.count);
+  return c;
+}
+
+void PortalTraversal::crossPortal(std::uint32_t index, std::int32_t to, std::uint32_t from)
 {
   ++this->Stats.portalsTested;
+  const GraphPortal& portal = this->Graph->portals()[index];
   const Region parent = this->Regions[from];
   const double slack = this->PlaneSlack;
   const culling::Frustum& f = this->ViewFrustum;
 
-  // Quick reject by the portal's box.
+  // The rays of the parent crossed its entry portal's plane away from the eye, once: that
+  // portal again, or one wholly on the eye's side of its plane, is out of their reach.
   const glm::dvec3& lo = portal.bounds.lo;
   const glm::dvec3& hi = portal.bounds.hi;
+  if (parent.via >= 0 &&
+    (static_cast<std::uint32_t>(parent.via) == index ||
+      culling::pVertexDistance(parent.entry, lo, hi) < -slack))
+  {
+    ++this->Stats.portalsBehind;
+    return;
+  }
+  // Quick reject by the portal's box.
   if (culling::pVertexDistance(f.planes[culling::kFar], lo, hi) < -slack ||
     culling::pVertexDistance(this->FrontPlane, lo, hi) < -slack)
   {
@@ -301,21 +375,28 @@ void PortalTraversal::crossPortal(const GraphPortal& portal, std::int32_t to, st
   }
 
   const bool exact = this->Options.mode == NarrowingMode::ExactFrustum;
+  const ClippedPortal& cached = this->clippedPortal(index);
+  if (cached.count < 3)
+  {
+    return;
+  }
   std::vector<glm::dvec3>* a = &this->ClipA;
   std::vector<glm::dvec3>* b = &this->ClipB;
-  *a = portal.hull;
+  a->assign(this->ClippedVertices.begin() + cached.first,
+    this->ClippedVertices.begin() + cached.first + cached.count);
   auto clip = [&](const glm::dvec4& plane)
   {
     geometry::clipPolygon(*a, plane, slack, *b);
     std::swap(a, b);
     return a->size() >= 3;
   };
-  if (!clip(this->FrontPlane) || !clip(f.planes[culling::kFar]))
-  {
-    return;
-  }
   if (exact)
   {
+    if (parent.via >= 0 && !clip(parent.entry))
+    {
+      ++this->Stats.portalsBehind;
+      return;
+    }
     for (std::uint32_t p = parent.firstPlane; p < parent.firstPlane + parent.planeCount; ++p)
     {
       if (!clip(this->Planes[p]))
@@ -350,6 +431,16 @@ void PortalTraversal::crossPortal(const GraphPortal& portal, std::int32_t to, st
   }
 
   const std::uint32_t id = this->addRegion(rect);
+  {
+    // The rays of the new region crossed this portal's plane away from the eye.
+    glm::dvec4 entry = portal.plane;
+    const double towards = this->View.parallel
+      ? glm::dot(glm::dvec3(entry), this->Direction)
+      : -geometry::planeDistance(entry, this->View.eye);
+    Region& r = this->Regions[id];
+    r.via = static_cast<std::int32_t>(index);
+    r.entry = towards < 0.0 ? -entry : entry;
+  }
   if (exact)
   {
     // Planes through the eye and each edge of the clipped portal, facing its centroid.
@@ -481,8 +572,7 @@ void PortalTraversal::run(const PortalGraph& graph, const PortalView& view,
     const GraphRoom& room = graph.rooms()[static_cast<std::size_t>(w.node)];
     for (const std::uint32_t pi : room.portals)
     {
-      const GraphPortal& portal = graph.portals()[pi];
-      this->crossPortal(portal, portal.other(w.node), w.region);
+      this->crossPortal(pi, graph.portals()[pi].other(w.node), w.region);
       if (this->FrustumOnly)
       {
         return;

@@ -38,6 +38,18 @@
  *   rectangle touches the building's bounds (it may cut through walls into several rooms and
  *   wall voids) or with the FrustumOnly outside policy, or an invalid view matrix.
  *
+ * - Entry planes (portal-plane culling): every ray of a region made by crossing planar portal P
+ *   has crossed P's plane, away from the eye, and a ray crosses a plane once. So from that region
+ *   P itself is never crossed again, and a portal entirely on the eye's side of P's plane (beyond
+ *   the slack) cannot be reached; in exact mode the next portal is also clipped to the far side
+ *   of P's plane (with the slack). Regions passed on through an edge-on or non-planar portal keep
+ *   their entry plane (their rays still crossed it); merged and start regions have none. A
+ *   region counts as contained in one with an entry plane only if it came through the same
+ *   portal or its clipped portal lies beyond that plane (else its rays may reach portals the
+ *   other's may not).
+ * - Per frame, each portal is clipped by the eye plane and the far plane once, on first use, and
+ *   kept for every region that tests it (the per-frame cache of clipped portal polygons).
+ *
  * Tolerances: planes are compared with a slack of 10x PortalGraph::tolerance() and rectangles are
  * grown by 1e-9 in NDC, always in the direction that keeps more. A region counts as contained in
  * another (and is not expanded) when its portal polygon is within 10 slacks of the other's edge
@@ -113,6 +125,7 @@ struct FrameStats
   std::size_t portalsTraversed = 0; ///< Crossings that produced a new region.
   std::size_t regionsSubsumed = 0;  ///< New regions contained in an existing one (not expanded).
   std::size_t regionsMerged = 0;    ///< Merges into a bounding rectangle.
+  std::size_t portalsBehind = 0;    ///< Crossings skipped by the entry plane (or its own portal).
   Fallback fallback = Fallback::None;
   // Filled by cullObjects():
   std::size_t objectsDrawn = 0;
@@ -174,6 +187,17 @@ private:
     std::uint32_t firstVertex = 0; ///< Into Vertices: the clipped portal (exact mode).
     std::uint32_t vertexCount = 0;
     std::uint32_t edgePlanes = 0;
+    /// The planar portal whose crossing made it (-1: none), and that portal's plane facing away
+    /// from the eye (the rays' side after the crossing).
+    std::int32_t via = -1;
+    glm::dvec4 entry{ 0.0 };
+  };
+  /// A portal clipped by the eye and far planes, once per frame (stamp = the frame's).
+  struct ClippedPortal
+  {
+    std::uint32_t stamp = 0;
+    std::uint32_t first = 0; ///< Into ClippedVertices.
+    std::uint32_t count = 0; ///< < 3: nothing of it in front of the eye and before the far plane.
   };
   struct Work
   {
@@ -187,7 +211,9 @@ private:
   std::uint32_t addRegion(const glm::dvec4& rect);
   bool attach(std::int32_t node, std::uint32_t region, bool checkSubsumed);
   bool subsumed(const Region& inner, const Region& outer) const;
-  void crossPortal(const GraphPortal& portal, std::int32_t to, std::uint32_t from);
+  void crossPortal(std::uint32_t index, std::int32_t to, std::uint32_t from);
+  /// The portal clipped by the eye and far planes (cached for the frame).
+  const ClippedPortal& clippedPortal(std::uint32_t index);
   glm::dvec4 rectPlane(int side, double value) const;
   void startRegion(std::int32_t node, bool expand);
   /// The start nodes of a frame (falls back when there are none to trust).
@@ -216,6 +242,12 @@ private:
   std::vector<std::int32_t> Visible;
   std::vector<Work> Stack;
   std::vector<glm::dvec3> ClipA, ClipB;
+  std::vector<ClippedPortal> Clipped;
+  std::vector<glm::dvec3> ClippedVertices;
+  std::uint32_t Frame = 0;
+  /// The graph of the previous frame and its node count: only the nodes it visited are reset.
+  const PortalGraph* LastGraph = nullptr;
+  std::size_t LastNodes = 0;
 };
 
 } // namespace portals
