@@ -512,3 +512,91 @@ TEST(OcclusionBuffer, TwoPartsSharingAnEdgeHideABoxBehindTheSeam)
     EXPECT_TRUE(buffer.boxOccluded(lo, hi)) << "a box behind the seam at " << t;
   }
 }
+
+// Runs of triangles whose model-space box is behind what the buffer has are skipped before their
+// vertices are projected (TriangleClusters): the buffer must come out bit for bit as when every
+// triangle is drawn (each skipped triangle would have been rejected by its own test), with a
+// model matrix, both projections, eyes close to the triangles and the near plane cutting some.
+TEST(OcclusionBuffer, HiddenTriangleClustersAreSkippedWithTheSameBuffer)
+{
+  std::mt19937_64 rng(777);
+  auto uniform = [&](double a, double b) { return std::uniform_real_distribution<double>(a, b)(rng); };
+  std::size_t skipped = 0, tested = 0;
+  for (int scene = 0; scene < 80; ++scene)
+  {
+    const int width = 24 + static_cast<int>(uniform(0, 90));
+    const int height = 16 + static_cast<int>(uniform(0, 70));
+    const glm::dvec3 eye(uniform(-8, 8), uniform(-12, -4), uniform(-8, 8));
+    const glm::dvec3 target(uniform(-2, 2), uniform(-2, 2), uniform(-2, 2));
+    const Camera cam = scene % 3 == 2
+      ? parallelCamera(eye, target, uniform(3, 8), width, height, 0.1, 60.0)
+      : perspectiveCamera(eye, target, uniform(30, 100), width, height,
+          scene % 4 == 1 ? 2.0 : 0.05, 60.0);
+    const glm::dmat4 worldFromModel =
+      glm::rotate(glm::translate(glm::dmat4(1.0), glm::dvec3(uniform(-1, 1), uniform(-1, 1),
+                                                  uniform(-1, 1))),
+        uniform(0, 6.28), glm::normalize(glm::dvec3(uniform(-1, 1), uniform(-1, 1), 1.0)));
+    const glm::dmat4 clipFromModel = cam.clipFromWorld * worldFromModel;
+    // A wall in front (world space), then runs of nearby triangles (model space).
+    const std::vector<Triangle> front = wall(uniform(-4, 0), uniform(2, 8), 1 + scene % 7);
+    const std::size_t perRun = 1 + static_cast<std::size_t>(scene % 9);
+    const int runs = 5 + static_cast<int>(uniform(0, 40));
+    std::vector<glm::dvec4> clip;
+    std::vector<double> xyz;
+    std::vector<std::uint32_t> indices;
+    for (int r = 0; r < runs; ++r)
+    {
+      const glm::dvec3 c(uniform(-6, 6), uniform(-6, 8), uniform(-6, 6));
+      const double size = uniform(0.05, 3.0);
+      for (std::size_t t = 0; t < perRun; ++t)
+      {
+        for (int k = 0; k < 3; ++k)
+        {
+          // Some triangles share the previous triangle's last point.
+          if (k == 0 && t > 0 && (t % 2) == 1)
+          {
+            indices.push_back(indices.back());
+            continue;
+          }
+          const glm::dvec3 p =
+            c + glm::dvec3(uniform(-size, size), uniform(-size, size), uniform(-size, size));
+          indices.push_back(static_cast<std::uint32_t>(clip.size()));
+          clip.push_back(clipFromModel * glm::dvec4(p, 1.0));
+          xyz.insert(xyz.end(), { p.x, p.y, p.z });
+        }
+      }
+    }
+    const std::size_t triangles = indices.size() / 3;
+    const std::vector<std::uint32_t> neighbors =
+      buildTriangleNeighbors(xyz.data(), clip.size(), indices.data(), triangles);
+    const std::vector<double> boxes =
+      buildTriangleClusters(xyz.data(), clip.size(), indices.data(), triangles, perRun);
+    ASSERT_EQ(boxes.size(), 6 * ((triangles + perRun - 1) / perRun));
+    TriangleClusters clusters;
+    clusters.clipFromModel = clipFromModel;
+    clusters.boxes = boxes.data();
+    clusters.trianglesPerCluster = perRun;
+    const FaceCulling culling = scene % 2 ? FaceCulling::None : FaceCulling::Back;
+
+    MaskedDepthBuffer all = bufferFor(cam), runsSkipped = bufferFor(cam);
+    draw(all, cam, front);
+    draw(runsSkipped, cam, front);
+    all.drawTriangles(
+      clip.data(), clip.size(), indices.data(), triangles, culling, neighbors.data());
+    runsSkipped.drawTriangles(clip.data(), clip.size(), indices.data(), triangles, culling,
+      neighbors.data(), &clusters);
+    ASSERT_EQ(all.tiles().size(), runsSkipped.tiles().size());
+    for (std::size_t i = 0; i < all.tiles().size(); ++i)
+    {
+      const MaskedDepthBuffer::Tile& a = all.tiles()[i];
+      const MaskedDepthBuffer::Tile& b = runsSkipped.tiles()[i];
+      ASSERT_TRUE(a.z0 == b.z0 && a.mask == b.mask && (a.mask == 0 || a.z1 == b.z1))
+        << "scene " << scene << " tile " << i;
+    }
+    EXPECT_EQ(all.stats().trianglesDrawn, runsSkipped.stats().trianglesDrawn) << "scene " << scene;
+    tested += runsSkipped.stats().clustersTested;
+    skipped += runsSkipped.stats().clustersHidden;
+  }
+  // Not the same by skipping nothing.
+  EXPECT_GT(skipped, tested / 10) << skipped << " of " << tested << " runs skipped";
+}

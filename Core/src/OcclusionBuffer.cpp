@@ -152,7 +152,8 @@ void MaskedDepthBuffer::drawTriangles(const glm::dvec4* clip,
   const std::uint32_t* indices,
   std::size_t triangleCount,
   FaceCulling culling,
-  const std::uint32_t* neighbors)
+  const std::uint32_t* neighbors,
+  const TriangleClusters* clusters)
 {
   stats_.trianglesIn += triangleCount;
   if (tiles_.empty() || culling == FaceCulling::Both)
@@ -160,36 +161,42 @@ void MaskedDepthBuffer::drawTriangles(const glm::dvec4* clip,
     stats_.trianglesRejected += triangleCount;
     return;
   }
-  // Each vertex is projected once (shared vertices get bit-identical window coordinates in every
-  // triangle, which the watertight edge rule relies on). State: 0 not finite, 1 in front of the
-  // near plane (window coordinates valid), 2 finite but behind it (its triangles are clipped).
+  // Each vertex is projected once, when a triangle first asks for it (shared vertices get
+  // bit-identical window coordinates in every triangle, which the watertight edge rule relies
+  // on; the vertices of skipped clusters are never projected). State: 0 not finite, 1 in front
+  // of the near plane (window coordinates valid), 2 finite but behind it (its triangles are
+  // clipped), 3 not projected yet.
   window_.resize(vertexCount);
   centres_.resize(vertexCount);
-  vertexState_.resize(vertexCount);
-  for (std::size_t i = 0; i < vertexCount; ++i)
-  {
-    const glm::dvec4& v = clip[i];
-    if (!finite(v))
+  vertexState_.assign(vertexCount, 3);
+  auto state = [&](std::uint32_t i) -> unsigned char {
+    unsigned char& s = vertexState_[i];
+    if (s == 3)
     {
-      vertexState_[i] = 0;
+      const glm::dvec4& v = clip[i];
+      if (!finite(v))
+      {
+        s = 0;
+      }
+      else if (v.z + v.w >= 0.0 && v.w > 0.0)
+      {
+        s = 1;
+        const double inverseW = 1.0 / v.w;
+        window_[i] = glm::dvec3((v.x * inverseW * 0.5 + 0.5) * width_,
+          (v.y * inverseW * 0.5 + 0.5) * height_, v.z * inverseW * 0.5 + 0.5);
+        centres_[i] = centreSpan(window_[i].x, window_[i].y, width_, height_);
+      }
+      else
+      {
+        s = 2;
+      }
     }
-    else if (v.z + v.w >= 0.0 && v.w > 0.0)
-    {
-      vertexState_[i] = 1;
-      const double inverseW = 1.0 / v.w;
-      window_[i] = glm::dvec3((v.x * inverseW * 0.5 + 0.5) * width_,
-        (v.y * inverseW * 0.5 + 0.5) * height_, v.z * inverseW * 0.5 + 0.5);
-      centres_[i] = centreSpan(window_[i].x, window_[i].y, width_, height_);
-    }
-    else
-    {
-      vertexState_[i] = 2;
-    }
-  }
+    return s;
+  };
   auto valid = [&](std::size_t t) {
     const std::uint32_t* tri = indices + 3 * t;
     return tri[0] < vertexCount && tri[1] < vertexCount && tri[2] < vertexCount &&
-      vertexState_[tri[0]] != 0 && vertexState_[tri[1]] != 0 && vertexState_[tri[2]] != 0;
+      state(tri[0]) != 0 && state(tri[1]) != 0 && state(tri[2]) != 0;
   };
   // Facing: an edge is inside the occluder only if the neighbour across it faces the same way.
   // In front of the near plane it is the sign of the window-space area; otherwise the sign of
@@ -217,55 +224,145 @@ void MaskedDepthBuffer::drawTriangles(const glm::dvec4* clip,
     }
     return (det > 0.0) - (det < 0.0);
   };
-  for (std::size_t t = 0; t < triangleCount; ++t)
+  const bool clustered = clusters && clusters->boxes && clusters->trianglesPerCluster > 0;
+  const std::size_t run = clustered ? clusters->trianglesPerCluster : triangleCount;
+  for (std::size_t begin = 0; begin < triangleCount; begin += run)
   {
-    if (!valid(t))
+    const std::size_t end = std::min(triangleCount, begin + run);
+    if (clustered)
     {
-      ++stats_.trianglesRejected;
-      continue;
+      ++stats_.clustersTested;
+      if (boxBehindTiles(clusters->clipFromModel, clusters->boxes + 6 * (begin / run)))
+      {
+        ++stats_.clustersHidden;
+        stats_.trianglesRejected += end - begin;
+        continue;
+      }
     }
-    const std::uint32_t* tri = indices + 3 * t;
-    const bool front =
-      vertexState_[tri[0]] == 1 && vertexState_[tri[1]] == 1 && vertexState_[tri[2]] == 1;
-    // Pixels whose centres can be inside (most triangles of a detailed mesh have none), then the
-    // face: both from what was computed per vertex (and per triangle for the facing).
-    CentreSpan span;
-    double area2 = 0.0;
-    if (front)
+    for (std::size_t t = begin; t < end; ++t)
     {
-      span = triangleSpan(centres_[tri[0]], centres_[tri[1]], centres_[tri[2]]);
-      area2 = doubleArea(window_[tri[0]], window_[tri[1]], window_[tri[2]]);
-      if (span.x0 > span.x1 || span.y0 > span.y1 || culled(area2, culling) ||
-        hidden(window_[tri[0]], window_[tri[1]], window_[tri[2]], span))
+      if (!valid(t))
       {
         ++stats_.trianglesRejected;
         continue;
       }
-    }
-    unsigned outline = 7u;
-    const int faces = neighbors ? (front ? (area2 > 0.0) - (area2 < 0.0) : facing(t)) : 0;
-    if (faces != 0)
-    {
-      outline = 0u;
-      for (int k = 0; k < 3; ++k)
+      const std::uint32_t* tri = indices + 3 * t;
+      const bool front =
+        vertexState_[tri[0]] == 1 && vertexState_[tri[1]] == 1 && vertexState_[tri[2]] == 1;
+      // Pixels whose centres can be inside (most triangles of a detailed mesh have none), then
+      // the face: both from what was computed per vertex (and per triangle for the facing).
+      CentreSpan span;
+      double area2 = 0.0;
+      if (front)
       {
-        const std::uint32_t n = neighbors[3 * t + k];
-        if (n >= triangleCount || facing(n) != faces)
+        span = triangleSpan(centres_[tri[0]], centres_[tri[1]], centres_[tri[2]]);
+        area2 = doubleArea(window_[tri[0]], window_[tri[1]], window_[tri[2]]);
+        if (span.x0 > span.x1 || span.y0 > span.y1 || culled(area2, culling) ||
+          hidden(window_[tri[0]], window_[tri[1]], window_[tri[2]], span))
         {
-          outline |= 1u << k;
+          ++stats_.trianglesRejected;
+          continue;
         }
       }
-    }
-    if (front)
-    {
-      drawFrontTriangle(window_[tri[0]], window_[tri[1]], window_[tri[2]], area2, span, outline);
-    }
-    else
-    {
-      const glm::dvec4 v[3] = { clip[tri[0]], clip[tri[1]], clip[tri[2]] };
-      drawClippedTriangle(v, culling, outline);
+      unsigned outline = 7u;
+      const int faces = neighbors ? (front ? (area2 > 0.0) - (area2 < 0.0) : facing(t)) : 0;
+      if (faces != 0)
+      {
+        outline = 0u;
+        for (int k = 0; k < 3; ++k)
+        {
+          const std::uint32_t n = neighbors[3 * t + k];
+          if (n >= triangleCount || facing(n) != faces)
+          {
+            outline |= 1u << k;
+          }
+        }
+      }
+      if (front)
+      {
+        drawFrontTriangle(window_[tri[0]], window_[tri[1]], window_[tri[2]], area2, span, outline);
+      }
+      else
+      {
+        const glm::dvec4 v[3] = { clip[tri[0]], clip[tri[1]], clip[tri[2]] };
+        drawClippedTriangle(v, culling, outline);
+      }
     }
   }
+}
+
+bool MaskedDepthBuffer::boxBehindTiles(const glm::dmat4& clipFromModel, const double* box)
+{
+  constexpr double inf = std::numeric_limits<double>::infinity();
+  double x0 = inf, y0 = inf, zNear = inf, x1 = -inf, y1 = -inf;
+  for (int k = 0; k < 8; ++k)
+  {
+    const glm::dvec4 c =
+      clipFromModel * glm::dvec4(box[k & 1], box[2 + ((k >> 1) & 1)], box[4 + ((k >> 2) & 1)], 1.0);
+    // Every corner in front of the near plane: then the box's projection is inside its corners'
+    // (a point of the box projects into their convex hull) and its nearest window depth is at a
+    // corner (depth is a ratio of affine functions with a positive denominator).
+    if (!finite(c) || !(c.w > 0.0) || !(c.z + c.w >= 0.0))
+    {
+      return false;
+    }
+    const double inverseW = 1.0 / c.w;
+    const double x = (c.x * inverseW * 0.5 + 0.5) * width_;
+    const double y = (c.y * inverseW * 0.5 + 0.5) * height_;
+    x0 = std::min(x0, x);
+    x1 = std::max(x1, x);
+    y0 = std::min(y0, y);
+    y1 = std::max(y1, y);
+    zNear = std::min(zNear, c.z * inverseW * 0.5 + 0.5);
+  }
+  // The centres a triangle of the box may cover (triangleSpan of its vertices), one pixel more
+  // on each side against the rounding of the two projections; its nearest depth without the
+  // depth margin hidden() adds (the margin covers their rounding).
+  const CentreSpan lo = centreSpan(x0, y0, width_, height_);
+  const CentreSpan hi = centreSpan(x1, y1, width_, height_);
+  const int sx0 = std::max(0, lo.x0 - 1), sx1 = std::min(width_ - 1, hi.x1 + 1);
+  const int sy0 = std::max(0, lo.y0 - 1), sy1 = std::min(height_ - 1, hi.y1 + 1);
+  if (sx0 > sx1 || sy0 > sy1)
+  {
+    return true; // no centre on screen: every triangle of the box has an empty span
+  }
+  return behindTiles(
+    sx0 / kTileWidth, sy0 / kTileHeight, sx1 / kTileWidth, sy1 / kTileHeight, zNear);
+}
+
+std::vector<double> buildTriangleClusters(const double* xyz, std::size_t pointCount,
+  const std::uint32_t* indices, std::size_t triangleCount, std::size_t trianglesPerCluster)
+{
+  std::vector<double> boxes;
+  if (trianglesPerCluster == 0)
+  {
+    return boxes;
+  }
+  constexpr double inf = std::numeric_limits<double>::infinity();
+  const std::size_t count = (triangleCount + trianglesPerCluster - 1) / trianglesPerCluster;
+  boxes.reserve(6 * count);
+  for (std::size_t r = 0; r < count; ++r)
+  {
+    double b[6] = { inf, -inf, inf, -inf, inf, -inf };
+    const std::size_t end = std::min(triangleCount, (r + 1) * trianglesPerCluster);
+    for (std::size_t i = 3 * r * trianglesPerCluster; i < 3 * end; ++i)
+    {
+      if (indices[i] >= pointCount)
+      {
+        continue;
+      }
+      const double* p = xyz + 3 * std::size_t(indices[i]);
+      for (int a = 0; a < 3; ++a)
+      {
+        // A NaN coordinate makes the box NaN: its run is never skipped (the test needs finite
+        // corners).
+        b[2 * a] = std::isnan(p[a]) ? p[a] : std::min(b[2 * a], p[a]);
+        b[2 * a + 1] = std::isnan(p[a]) ? p[a] : std::max(b[2 * a + 1], p[a]);
+      }
+    }
+    boxes.insert(boxes.end(), b, b + 6);
+  }
+  return boxes;
 }
 
 namespace

@@ -22,6 +22,10 @@ namespace so = scenevis::occlusion;
 
 namespace
 {
+/// Triangles per run whose box is tested before the run is rasterized (see
+/// scenevis::occlusion::TriangleClusters).
+constexpr std::size_t kTrianglesPerCluster = 32;
+
 /// Whether polygon @p ids (n >= 4 points) is planar and convex: then its fan covers exactly it.
 bool PlanarConvex(vtkPoints* points, const vtkIdType* ids, vtkIdType n)
 {
@@ -171,6 +175,8 @@ vtkOccluderRasterizer::Mesh* vtkOccluderRasterizer::MeshOf(vtkPolyData* data)
     }
     mesh.Neighbors = so::buildTriangleNeighbors(xyz.data(), static_cast<std::size_t>(pointCount),
       mesh.Triangles.data(), mesh.Triangles.size() / 3);
+    mesh.Clusters = so::buildTriangleClusters(xyz.data(), static_cast<std::size_t>(pointCount),
+      mesh.Triangles.data(), mesh.Triangles.size() / 3, kTrianglesPerCluster);
     mesh.Closed = !mesh.Triangles.empty() &&
       std::find(mesh.Neighbors.begin(), mesh.Neighbors.end(), so::kNoNeighbor) ==
         mesh.Neighbors.end();
@@ -188,9 +194,11 @@ vtkOccluderRasterizer::Mesh* vtkOccluderRasterizer::MeshOf(vtkPolyData* data)
   else
   {
     mesh.Neighbors.clear();
+    mesh.Clusters.clear();
   }
   mesh.Triangles.shrink_to_fit();
   mesh.Neighbors.shrink_to_fit();
+  mesh.Clusters.shrink_to_fit();
   this->CacheBytes += mesh.Bytes();
   return &mesh;
 }
@@ -332,8 +340,24 @@ void vtkOccluderRasterizer::Draw(vtkProp* prop, const double bounds[6])
         transform(i, p[0], p[1], p[2]);
       }
     }
+    // Runs of triangles behind what the buffer already has are skipped before their vertices
+    // are projected (most of a part seen beside or behind a nearer one).
+    so::TriangleClusters clusters;
+    for (int r = 0; r < 4; ++r)
+    {
+      for (int c = 0; c < 4; ++c)
+      {
+        clusters.clipFromModel[c][r] = m[4 * r + c];
+      }
+    }
+    clusters.boxes = mesh->Clusters.data();
+    clusters.trianglesPerCluster = kTrianglesPerCluster;
     buffer.drawTriangles(this->Clip.data(), this->Clip.size(), mesh->Triangles.data(),
-      mesh->Triangles.size() / 3, culling, mesh->Neighbors.data());
+      mesh->Triangles.size() / 3, culling, mesh->Neighbors.data(),
+      mesh->Clusters.size() == 6 * ((mesh->Triangles.size() / 3 + kTrianglesPerCluster - 1) /
+                                     kTrianglesPerCluster)
+        ? &clusters
+        : nullptr);
     ++this->OccludersDrawn;
     this->OccluderTriangles += static_cast<vtkIdType>(mesh->Triangles.size() / 3);
   }

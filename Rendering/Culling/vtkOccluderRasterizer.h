@@ -75,12 +75,17 @@ private:
     vtkMTimeType Time = 0;
     std::vector<std::uint32_t> Triangles; // 3 point ids each
     std::vector<std::uint32_t> Neighbors; // 3 per triangle
+    /// Model-space boxes of runs of kTrianglesPerCluster triangles (buildTriangleClusters).
+    std::vector<double> Clusters;
     /// Closed and consistently oriented (every edge has a neighbour): only the faces of one
     /// side can be nearest, those facing out (Outward: the signed volume is positive).
     bool Closed = false;
     bool Outward = true;
     std::uint64_t LastFrame = 0;
-    std::size_t Bytes() const { return (this->Triangles.size() + this->Neighbors.size()) * 4; }
+    std::size_t Bytes() const
+    {
+      return (this->Triangles.size() + this->Neighbors.size()) * 4 + this->Clusters.size() * 8;
+    }
   };
   Mesh* MeshOf(vtkPolyData* data);
   void Evict();

@@ -93,12 +93,34 @@ constexpr std::uint32_t kNoNeighbor = 0xFFFFFFFFu;
 std::vector<std::uint32_t> buildTriangleNeighbors(
   const double* xyz, std::size_t pointCount, const std::uint32_t* indices, std::size_t triangleCount);
 
+/**
+ * Bounds of consecutive runs of an occluder's triangles, for MaskedDepthBuffer::drawTriangles:
+ * run r holds triangles [r * trianglesPerCluster, (r + 1) * trianglesPerCluster) and lies in the
+ * model-space box boxes[6 r .. 6 r + 5] (x0 x1 y0 y1 z0 z1, as VTK's bounds); @p clipFromModel
+ * maps model points to the clip space of the triangles' vertices. A run whose box is behind the
+ * whole-tile depth of every tile it touches is skipped before its vertices are projected: each
+ * of its triangles would have been rejected by the same test (exact: the buffer is the same).
+ */
+struct TriangleClusters
+{
+  glm::dmat4 clipFromModel{ 1.0 };
+  const double* boxes = nullptr;
+  std::size_t trianglesPerCluster = 0;
+};
+
+/// Model-space boxes of runs of @p trianglesPerCluster triangles (6 doubles per run, see
+/// TriangleClusters). @p xyz: 3 coordinates per point; indices out of range are ignored.
+std::vector<double> buildTriangleClusters(const double* xyz, std::size_t pointCount,
+  const std::uint32_t* indices, std::size_t triangleCount, std::size_t trianglesPerCluster);
+
 /// Counters since the last clear().
 struct BufferStats
 {
   std::size_t trianglesIn = 0;        ///< triangles handed to drawTriangles()
   std::size_t trianglesDrawn = 0;     ///< ... that touched at least one tile
   std::size_t trianglesRejected = 0;  ///< degenerate, back-facing, off-screen, non-finite, behind
+  std::size_t clustersTested = 0;     ///< TriangleClusters runs tested before their triangles
+  std::size_t clustersHidden = 0;     ///< ... skipped whole (their triangles count as rejected)
   std::size_t tilesUpdated = 0;       ///< tile updates with a non-empty coverage mask
   std::size_t boxesTested = 0;
   std::size_t boxesOccluded = 0;
@@ -150,14 +172,16 @@ public:
    * triangle, each < @p vertexCount (others are rejected). Triangles with non-finite vertices,
    * zero area, culled faces or nothing in front of the near plane are rejected (counted).
    * @p neighbors: optional, from buildTriangleNeighbors() for these indices; it makes shared edges
-   * watertight (see the file comment).
+   * watertight (see the file comment). @p clusters: optional bounds of runs of the triangles
+   * (see TriangleClusters): hidden runs are skipped whole, with the same result.
    */
   void drawTriangles(const glm::dvec4* clip,
     std::size_t vertexCount,
     const std::uint32_t* indices,
     std::size_t triangleCount,
     FaceCulling culling = FaceCulling::None,
-    const std::uint32_t* neighbors = nullptr);
+    const std::uint32_t* neighbors = nullptr,
+    const TriangleClusters* clusters = nullptr);
 
   /// Whether the world-space box [lo, hi] is hidden behind the occluders drawn so far (see the
   /// file comment). Only the part of the box inside the frustum (sides and near plane) is
@@ -204,6 +228,9 @@ private:
   /// ones), found before its set-up.
   bool hidden(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c,
     const CentreSpan& span);
+  /// Whether model-space box @p box (x0 x1 y0 y1 z0 z1) mapped by @p clipFromModel is behind
+  /// the whole-tile depth of every tile it may touch (false if it reaches the near plane).
+  bool boxBehindTiles(const glm::dmat4& clipFromModel, const double* box);
   /// Whether every tile of [tx0, tx1] x [ty0, ty1] has z0 <= @p depth (nothing nearer to add).
   bool behindTiles(int tx0, int ty0, int tx1, int ty1, double depth);
   /// After tile (tx, ty)'s z0 went down from @p oldZ0: its block's bound follows.
