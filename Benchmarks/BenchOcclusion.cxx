@@ -21,7 +21,7 @@
 //    occluders' frame + the queries + drawing what passed.
 // Usage: scenevis_occlusion_bench [--grid N] [--size WxH] [--frames K]
 //        [--pixels-per-triangle P] [--smoke] [--write-flat FILE.vtp] [--occlusion-only]
-//        [--view NAME]
+//        [--view NAME] [--cull-only K]
 // --write-flat writes the grid as ONE polydata (raw appended data, the model's point normals, a
 // PartId cell array naming the 46,000 placed parts, as flattening exporters write it) and exits:
 // the input of `scenevis render --scene`.
@@ -29,7 +29,9 @@
 // --occlusion-only measures the occlusion culler alone (no frustum-only or GL-query rows, which
 // draw most of the grid): minutes less per run when tuning the culler, or profiling it with
 // many --frames; --view measures only the view whose name starts with NAME ("engine", "inside",
-// "overview").
+// "overview"); --cull-only K also calls the culler K times in a row at each camera without
+// drawing (warm caches) and prints its wall and thread CPU time per cull: the culler's cost alone,
+// for tuning and profiling it on a loaded machine.
 // Needs the data cache (scripts/fetch-data.sh); prints "SKIPPED" and exits 77 (CTest's
 // SKIP_RETURN_CODE) without it.
 #include "EngineGrid.h"
@@ -54,6 +56,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <ctime>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -117,8 +120,38 @@ struct Row
   std::size_t queries = 0;   ///< gl-queries: boxes queried
 };
 
+/// This thread's CPU time in seconds (the cull's own cost, whatever the load of other processes).
+double ThreadSeconds()
+{
+  timespec t{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  return double(t.tv_sec) + 1e-9 * double(t.tv_nsec);
+}
+
+/// --cull-only: @p repeats direct Cull() calls at the current camera, no drawing between them
+/// (warm caches: the culler's cost alone, for profiling and tuning it).
+void MeasureCullOnly(EngineGrid& g, vtkOctreeCuller* culler, const char* view, int repeats)
+{
+  double wall = 0, cpu = 0;
+  int kept = 0;
+  for (int r = 0; r < repeats; ++r)
+  {
+    std::vector<vtkProp*> props(g.actors.begin(), g.actors.end());
+    int length = static_cast<int>(props.size()), initialized = 0;
+    const auto start = Clock::now();
+    const double cpuStart = ThreadSeconds();
+    culler->Cull(g.renderer, props.data(), length, initialized);
+    cpu += ThreadSeconds() - cpuStart;
+    wall += Seconds(start);
+    kept = length;
+  }
+  std::printf("%-12s cull only: %d culls, %.3f ms wall, %.3f ms thread CPU per cull, %d props "
+              "kept\n",
+    view, repeats, 1e3 * wall / repeats, 1e3 * cpu / repeats, kept);
+}
+
 Row Measure(EngineGrid& g, vtkRenderWindow* window, vtkOctreeCuller* culler, const char* name,
-  const std::set<std::size_t>& visible, int frames)
+  const std::set<std::size_t>& visible, int frames, int cullOnly, const char* view)
 {
   Row row;
   row.culler = name;
@@ -131,6 +164,10 @@ Row Measure(EngineGrid& g, vtkRenderWindow* window, vtkOctreeCuller* culler, con
   culler->Cull(g.renderer, props.data(), length, initialized);
   std::set<vtkProp*> drawn(props.begin(), props.begin() + length);
   row.drawn = drawn.size();
+  if (cullOnly > 0)
+  {
+    MeasureCullOnly(g, culler, view, cullOnly);
+  }
   for (const std::size_t a : visible)
   {
     row.missing += drawn.count(g.actors[a]) ? 0 : 1;
@@ -274,6 +311,7 @@ int main(int argc, char* argv[])
   double pixelsPerTriangle = -1.0; // the culler's default
   const char* flatFile = nullptr;
   bool occlusionOnly = false;
+  int cullOnly = 0;
   std::string onlyView;
   for (int i = 1; i < argc; ++i)
   {
@@ -290,6 +328,8 @@ int main(int argc, char* argv[])
       frames = std::max(1, std::atoi(argv[++i]));
     else if (a == "--view" && i + 1 < argc)
       onlyView = argv[++i];
+    else if (a == "--cull-only" && i + 1 < argc)
+      cullOnly = std::max(0, std::atoi(argv[++i]));
     else if (a == "--occlusion-only")
       occlusionOnly = true;
     else if (a == "--smoke")
@@ -302,7 +342,8 @@ int main(int argc, char* argv[])
     else
     {
       std::cerr << "usage: scenevis_occlusion_bench [--grid N] [--size WxH] [--frames K] "
-                   "[--pixels-per-triangle P] [--smoke] [--occlusion-only] [--view NAME]\n";
+                   "[--pixels-per-triangle P] [--smoke] [--occlusion-only] [--view NAME] "
+                   "[--cull-only K]\n";
       return 2;
     }
   }
@@ -368,9 +409,9 @@ int main(int argc, char* argv[])
     std::vector<Row> rows;
     if (!occlusionOnly)
     {
-      rows.push_back(Measure(g, window, frustum, "frustum", visible, frames));
+      rows.push_back(Measure(g, window, frustum, "frustum", visible, frames, cullOnly, v.name));
     }
-    rows.push_back(Measure(g, window, occlusion, "occlusion", visible, frames));
+    rows.push_back(Measure(g, window, occlusion, "occlusion", visible, frames, cullOnly, v.name));
     if (!occlusionOnly)
     {
       const Row glRow = MeasureQueries(g, window, visible);

@@ -557,6 +557,9 @@ struct HeapEntry
   std::uint32_t index;
   std::uint8_t mask;
   bool object;
+  /// An object's second test: the buffer's revision at its first test (the same revision
+  /// answers the same, so the test is not repeated when nothing was drawn in between).
+  std::uint64_t revision = 0;
 };
 /// HeapEntry::mask of an object's second test (frustum masks use the low six bits).
 constexpr std::uint8_t kSecondTest = 0xFF;
@@ -584,6 +587,13 @@ inline double nearness(const CullParams& p, const glm::dvec3& lo, const glm::dve
   return nearestDistance2(p.eye, lo, hi);
 }
 } // namespace
+
+bool Bvh::worthDrawing(const OcclusionCull& occlusion, std::uint32_t p) const
+{
+  return !occlusion.worthDrawing ||
+    occlusion.worthDrawing(glm::dvec3(boxes_.minX[p], boxes_.minY[p], boxes_.minZ[p]),
+      glm::dvec3(boxes_.maxX[p], boxes_.maxY[p], boxes_.maxZ[p]), triangles_[p]);
+}
 
 void Bvh::cullOccluded(const CullParams& params,
   OcclusionCull& occlusion,
@@ -624,8 +634,11 @@ void Bvh::cullOccluded(const CullParams& params,
         continue;
       }
       occluderStamp_[p] = occlusionFrame_;
-      occlusion.drawOccluder(id);
-      ++local.occludersDrawn;
+      if (worthDrawing(occlusion, p))
+      {
+        occlusion.drawOccluder(id);
+        ++local.occludersDrawn;
+      }
     }
   }
   if (!nodes_.empty())
@@ -664,13 +677,18 @@ void Bvh::cullNodeOccluded(OcclusionFrame& of, std::uint32_t root, std::uint8_t 
     if (entry.object)
     {
       const std::uint32_t p = entry.index;
-      ++f.stats.occlusionTests;
       const glm::dvec3 lo(boxes_.minX[p], boxes_.minY[p], boxes_.minZ[p]);
       const glm::dvec3 hi(boxes_.maxX[p], boxes_.maxY[p], boxes_.maxZ[p]);
-      if (of.occlusion.buffer->boxOccluded(lo, hi))
+      const bool unchanged =
+        entry.mask == kSecondTest && entry.revision == of.occlusion.buffer->revision();
+      if (!unchanged)
       {
-        ++f.stats.culledOcclusion;
-        continue;
+        ++f.stats.occlusionTests;
+        if (of.occlusion.buffer->boxOccluded(lo, hi))
+        {
+          ++f.stats.culledOcclusion;
+          continue;
+        }
       }
       if (entry.mask != kSecondTest)
       {
@@ -683,7 +701,7 @@ void Bvh::cullNodeOccluded(OcclusionFrame& of, std::uint32_t root, std::uint8_t 
                                              : glm::dot(c - f.params.eye, c - f.params.eye);
         if (key > entry.nearness)
         {
-          heap.push_back({ key, p, kSecondTest, true });
+          heap.push_back({ key, p, kSecondTest, true, of.occlusion.buffer->revision() });
           std::push_heap(heap.begin(), heap.end(), later);
           continue;
         }
@@ -694,8 +712,11 @@ void Bvh::cullNodeOccluded(OcclusionFrame& of, std::uint32_t root, std::uint8_t 
       if (of.occlusion.drawOccluder && occluderStamp_[p] != occlusionFrame_)
       {
         occluderStamp_[p] = occlusionFrame_;
-        of.occlusion.drawOccluder(id_[p]);
-        ++f.stats.occludersDrawn;
+        if (worthDrawing(of.occlusion, p))
+        {
+          of.occlusion.drawOccluder(id_[p]);
+          ++f.stats.occludersDrawn;
+        }
       }
       continue;
     }

@@ -115,10 +115,12 @@ void MaskedDepthBuffer::resize(int width, int height)
     }
   }
   stats_ = BufferStats();
+  ++revision_;
 }
 
 void MaskedDepthBuffer::setClipFromWorld(const glm::dmat4& clipFromWorld)
 {
+  ++revision_;
   clipFromWorld_ = clipFromWorld;
   const glm::dmat4 worldFromClip = glm::inverse(clipFromWorld);
   nearCornersValid_ = true;
@@ -136,6 +138,7 @@ void MaskedDepthBuffer::clear()
   std::fill(tiles_.begin(), tiles_.end(), Tile{ kNoOccluder, 0.0f, 0u });
   std::fill(blockZ0_.begin(), blockZ0_.end(), kNoOccluder);
   stats_ = BufferStats();
+  ++revision_;
 }
 
 float MaskedDepthBuffer::tileDepth(int x, int y) const
@@ -576,6 +579,7 @@ void MaskedDepthBuffer::drawFrontTriangle(const glm::dvec3& a, const glm::dvec3&
       const double depth = std::min(zCorners + offset + planeError, zFarVertex) + depthMargin;
       const float oldZ0 = tile.z0;
       updateTile(tile, mask, roundUp(depth), outsideX_[tx] | outsideY_[ty]);
+      ++revision_;
       if (tile.z0 != oldZ0)
       {
         lowerBlock(tx, ty, oldZ0);

@@ -203,6 +203,44 @@ vtkOccluderRasterizer::Mesh* vtkOccluderRasterizer::MeshOf(vtkPolyData* data)
   return &mesh;
 }
 
+double vtkOccluderRasterizer::ScreenArea(const double bounds[6]) const
+{
+  const double* b = bounds;
+  const int w = this->DepthBuffer.width(), h = this->DepthBuffer.height();
+  double x0 = w, x1 = 0, y0 = h, y1 = 0;
+  for (int k = 0; k < 8; ++k)
+  {
+    const double p[3] = { b[k & 1], b[2 + ((k >> 1) & 1)], b[4 + ((k >> 2) & 1)] };
+    const double* m = this->ClipFromWorld;
+    const double cw = m[12] * p[0] + m[13] * p[1] + m[14] * p[2] + m[15];
+    const double cz = m[8] * p[0] + m[9] * p[1] + m[10] * p[2] + m[11];
+    if (!(cw > 0.0) || cz + cw < 0.0)
+    {
+      return double(w) * h;
+    }
+    const double x = ((m[0] * p[0] + m[1] * p[1] + m[2] * p[2] + m[3]) / cw * 0.5 + 0.5) * w;
+    const double y = ((m[4] * p[0] + m[5] * p[1] + m[6] * p[2] + m[7]) / cw * 0.5 + 0.5) * h;
+    x0 = std::min(x0, x);
+    x1 = std::max(x1, x);
+    y0 = std::min(y0, y);
+    y1 = std::max(y1, y);
+  }
+  return std::max(0.0, std::min<double>(x1, w) - std::max(0.0, x0)) *
+    std::max(0.0, std::min<double>(y1, h) - std::max(0.0, y0));
+}
+
+bool vtkOccluderRasterizer::WorthDrawing(const double lo[3], const double hi[3], vtkIdType triangles)
+{
+  const double bounds[6] = { lo[0], hi[0], lo[1], hi[1], lo[2], hi[2] };
+  if (this->MinimumPixelsPerTriangle > 0.0 && triangles > 0 &&
+    this->ScreenArea(bounds) < this->MinimumPixelsPerTriangle * static_cast<double>(triangles))
+  {
+    ++this->OccludersSkipped;
+    return false;
+  }
+  return true;
+}
+
 void vtkOccluderRasterizer::Draw(vtkProp* prop, const double bounds[6])
 {
   // dynamic_cast, not SafeDownCast: this runs for every visible prop, and SafeDownCast compares
@@ -226,42 +264,14 @@ void vtkOccluderRasterizer::Draw(vtkProp* prop, const double bounds[6])
   // Occluder selection first: most visible props of a wide view are skipped by it, before the
   // actor's matrix (which may recompute it) is asked for.
   Mesh* mesh = this->MeshOf(data);
-  if (this->MinimumPixelsPerTriangle > 0.0 && !mesh->Triangles.empty())
+  if (this->MinimumPixelsPerTriangle > 0.0 && !mesh->Triangles.empty() &&
+    this->ScreenArea(bounds) <
+      this->MinimumPixelsPerTriangle * static_cast<double>(mesh->Triangles.size() / 3))
   {
-    // Screen rectangle of the prop's bounds (clamped to the viewport; a box reaching the near
-    // plane counts as the whole viewport).
-    const double* b = bounds;
-    const int w = this->DepthBuffer.width(), h = this->DepthBuffer.height();
-    double x0 = w, x1 = 0, y0 = h, y1 = 0;
-    bool whole = false;
-    for (int k = 0; k < 8 && !whole; ++k)
-    {
-      const double p[3] = { b[k & 1], b[2 + ((k >> 1) & 1)], b[4 + ((k >> 2) & 1)] };
-      const double* m = this->ClipFromWorld;
-      const double cw = m[12] * p[0] + m[13] * p[1] + m[14] * p[2] + m[15];
-      const double cz = m[8] * p[0] + m[9] * p[1] + m[10] * p[2] + m[11];
-      if (!(cw > 0.0) || cz + cw < 0.0)
-      {
-        whole = true;
-        break;
-      }
-      const double x = ((m[0] * p[0] + m[1] * p[1] + m[2] * p[2] + m[3]) / cw * 0.5 + 0.5) * w;
-      const double y = ((m[4] * p[0] + m[5] * p[1] + m[6] * p[2] + m[7]) / cw * 0.5 + 0.5) * h;
-      x0 = std::min(x0, x);
-      x1 = std::max(x1, x);
-      y0 = std::min(y0, y);
-      y1 = std::max(y1, y);
-    }
-    const double area = whole ? double(w) * h
-                              : std::max(0.0, std::min<double>(x1, w) - std::max(0.0, x0)) *
-        std::max(0.0, std::min<double>(y1, h) - std::max(0.0, y0));
-    if (area < this->MinimumPixelsPerTriangle * static_cast<double>(mesh->Triangles.size() / 3))
-    {
-      ++this->OccludersSkipped;
-      this->DrawSeconds +=
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-      return;
-    }
+    ++this->OccludersSkipped;
+    this->DrawSeconds +=
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return;
   }
   vtkMatrix4x4* model = actor->GetMatrix();
   const double determinant = model->Determinant();

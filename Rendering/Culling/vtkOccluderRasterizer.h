@@ -49,6 +49,12 @@ public:
   /// Rasterize @p prop if it is an opaque occluder (see the class comment); @p bounds: its world
   /// bounds as the culler knows them (for occluder selection).
   void Draw(vtkProp* prop, const double bounds[6]);
+  /// Occluder selection alone, before any question to the actor, its mapper or its data (in a
+  /// wide view nearly every prop is visible and most are too small to occlude; this is what such
+  /// a prop costs): false, and counted
+  /// in OccludersSkipped, if a prop with world bounds [lo, hi] and @p triangles OpenGL triangles
+  /// covers fewer than MinimumPixelsPerTriangle pixels per triangle.
+  bool WorthDrawing(const double lo[3], const double hi[3], vtkIdType triangles);
 
   scenevis::occlusion::MaskedDepthBuffer& Buffer() { return this->DepthBuffer; }
 
@@ -56,7 +62,8 @@ public:
   /// triangle is not rasterized (it costs more than it hides: small, finely tessellated parts).
   /// 0 rasterizes every visible opaque prop. Leaving occluders out is always conservative.
   double MinimumPixelsPerTriangle = 0.0;
-  vtkIdType OccludersSkipped = 0; ///< this frame, by MinimumPixelsPerTriangle
+  vtkIdType OccludersSkipped = 0; ///< this frame, by MinimumPixelsPerTriangle (WorthDrawing()
+                                  ///< counts props that would not occlude anyway too)
 
   ///@{
   /// This frame: props rasterized, their triangles, seconds spent in Draw().
@@ -88,6 +95,9 @@ private:
     }
   };
   Mesh* MeshOf(vtkPolyData* data);
+  /// Pixels of the viewport covered by the screen rectangle of world box @p bounds (the whole
+  /// viewport when a corner is behind the eye or in front of the near plane).
+  double ScreenArea(const double bounds[6]) const;
   void Evict();
 
   scenevis::occlusion::MaskedDepthBuffer DepthBuffer;

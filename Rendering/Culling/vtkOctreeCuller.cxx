@@ -165,8 +165,13 @@ public:
     {
       if (s < this->Present.size() && this->Present[s])
       {
+        // Selected already (worthDrawing): no triangle hint, the cached mesh's count decides.
         raster.Draw(this->Slots[s].Prop, this->Slots[s].Bounds);
       }
+    };
+    occlusion.worthDrawing = [&raster](const glm::dvec3& lo, const glm::dvec3& hi,
+                               std::uint32_t triangles) {
+      return raster.WorthDrawing(&lo.x, &hi.x, static_cast<vtkIdType>(triangles));
     };
     occlusion.seeds = &this->LastVisible;
     this->Bvh.cullOccluded(params, occlusion, this->Visible, &stats);

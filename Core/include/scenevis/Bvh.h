@@ -112,6 +112,13 @@ struct OcclusionCull
   occlusion::MaskedDepthBuffer* buffer = nullptr;
   /// Rasterize object @p id into the buffer if it is an occluder (at most once per cull).
   std::function<void(std::uint32_t id)> drawOccluder;
+  /// Occluder selection, optional: whether an object with world box [lo, hi] and @p triangles
+  /// (its build-time triangle count) is worth rasterizing; when it says no, drawOccluder is not
+  /// called for it (leaving an occluder out is always conservative). Asked from the hierarchy's
+  /// own arrays, so that a wide view whose objects are nearly all visible and nearly all too small
+  /// to occlude does not touch the caller's per-object records.
+  std::function<bool(const glm::dvec3& lo, const glm::dvec3& hi, std::uint32_t triangles)>
+    worthDrawing;
   /// Objects drawn as occluders before the traversal (temporal coherence: last frame's visible
   /// set). Seeds that fail this frame's frustum / distance / size / cone tests are skipped.
   const std::vector<std::uint32_t>* seeds = nullptr;
@@ -194,6 +201,8 @@ private:
   void cullNode(Frame& frame, std::uint32_t node, std::uint8_t mask) const;
   struct OcclusionFrame;
   void cullNodeOccluded(OcclusionFrame& frame, std::uint32_t node, std::uint8_t mask);
+  /// OcclusionCull::worthDrawing of the object at position @p p (true without one).
+  bool worthDrawing(const OcclusionCull& occlusion, std::uint32_t p) const;
   bool nodePasses(Frame& frame, std::uint32_t node, std::uint8_t& mask) const;
   bool objectPasses(Frame& frame, std::uint32_t position, std::uint8_t mask) const;
   void computeNodeBounds(std::uint32_t node);

@@ -201,6 +201,10 @@ public:
   const std::vector<Tile>& tiles() const { return tiles_; }
 
   const BufferStats& stats() const { return stats_; }
+  /// Changes whenever a test's answer may change (a tile written, the buffer cleared, resized or
+  /// given another camera): two tests of the same box at the same revision answer alike, so a
+  /// caller may keep the first answer instead of asking again.
+  std::uint64_t revision() const { return revision_; }
   std::size_t memoryBytes() const
   {
     return tiles_.capacity() * sizeof(Tile) + blockZ0_.capacity() * sizeof(float);
@@ -261,6 +265,7 @@ private:
   glm::dvec3 nearCorners_[4];
   bool nearCornersValid_ = false;
   BufferStats stats_;
+  std::uint64_t revision_ = 0;
 };
 
 } // namespace occlusion
