@@ -78,8 +78,8 @@ int RunRender(const Options& options)
   std::string reason = plan.sortReason;
   const bool onTerminal = ProgressBar::OnTerminal();
   const auto actorsStart = std::chrono::steady_clock::now();
-  MethodPipeline pipeline(
-    method, pd, renderer, onTerminal, &plan.groups, plan.cull.chunked, plan.instanced);
+  MethodPipeline pipeline(method, pd, renderer, onTerminal, &plan.groups, plan.cull.chunked,
+    plan.instanced, plan.instancedProps);
   const double actorsMs = Milliseconds(actorsStart);
   if (method == "multi-actor" && !plan.instanced)
   {

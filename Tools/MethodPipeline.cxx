@@ -1,6 +1,8 @@
 // The translucency methods of --sort as one pipeline on a renderer.
 #include "MethodPipeline.h"
 
+#include "vtkInstancedActor.h"
+
 #include <vtkCamera.h>
 #include <vtkCommand.h>
 #include <vtkMatrix4x4.h>
@@ -25,7 +27,7 @@ constexpr int kFastExitActors = 1000;
 
 MethodPipeline::MethodPipeline(const std::string& method, vtkPolyData* pd, vtkRenderer* renderer,
   bool showProgress, const std::vector<vtkSmartPointer<vtkPolyData>>* groups, bool chunked,
-  const InstancedScene* instanced)
+  const InstancedScene* instanced, bool instancedProps)
   : Method(method)
   , Input(pd)
   , InputPolygons(pd ? pd->GetNumberOfPolys() : 0)
@@ -65,6 +67,40 @@ MethodPipeline::MethodPipeline(const std::string& method, vtkPolyData* pd, vtkRe
   {
     this->BspMapper->SetInputData(pd);
     makeActor(this->BspMapper);
+  }
+  else if (instanced && instancedProps)
+  {
+    // One vtkInstancedActor per mesh, its placements as plain matrices (136 bytes each instead
+    // of a vtkActor and its transforms); a placement-aware culler culls them one by one.
+    this->PerMesh = true;
+    vtkNew<vtkProperty> property;
+    std::vector<vtkSmartPointer<vtkInstancedActor>> meshActors;
+    for (const auto& mesh : instanced->meshes)
+    {
+      auto mapper = vtkSmartPointer<vtkPolyDataMapper>::New();
+      mapper->SetInputData(mesh);
+      mapper->SetScalarModeToUseCellData();
+      mapper->SetColorModeToDirectScalars();
+      meshActors.push_back(vtkSmartPointer<vtkInstancedActor>::New());
+      meshActors.back()->SetMapper(mapper);
+      meshActors.back()->SetProperty(property);
+    }
+    for (std::size_t i = 0; i < instanced->instances.size(); ++i)
+    {
+      const Instance& instance = instanced->instances[i];
+      meshActors[instance.mesh]->AddPlacement(
+        instance.matrix->GetData(), static_cast<vtkIdType>(i));
+      this->InstancedPolygons += instanced->meshes[instance.mesh]->GetNumberOfPolys();
+    }
+    this->PlacementCount = static_cast<vtkIdType>(instanced->instances.size());
+    for (const auto& actor : meshActors)
+    {
+      if (actor->GetNumberOfPlacements() == 0)
+        continue;
+      renderer->GetViewProps()->AddItem(actor);
+      actor->AddConsumer(renderer);
+      this->Actors.push_back(actor);
+    }
   }
   else if (instanced)
   {

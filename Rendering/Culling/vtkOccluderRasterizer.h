@@ -47,8 +47,10 @@ public:
   /// vtkCamera::GetCompositeProjectionTransformMatrix(aspect, -1, 1) returns it).
   void BeginFrame(int width, int height, const double clipFromWorldRowMajor[16]);
   /// Rasterize @p prop if it is an opaque occluder (see the class comment); @p bounds: its world
-  /// bounds as the culler knows them (for occluder selection).
-  void Draw(vtkProp* prop, const double bounds[6]);
+  /// bounds as the culler knows them (for occluder selection); @p placement: the model-to-world
+  /// matrix to draw it with (16 values, row-major; a vtkInstancedActor's placement), instead of
+  /// the actor's own.
+  void Draw(vtkProp* prop, const double bounds[6], const double* placement = nullptr);
 
   scenevis::occlusion::MaskedDepthBuffer& Buffer() { return this->DepthBuffer; }
 
