@@ -243,6 +243,11 @@ int RunCull(const Options& options)
   const ScenePlan plan = PlanScene(options, scene, "none", renderer);
   MethodPipeline pipeline("none", pd, renderer, false, &plan.groups, plan.cull.chunked,
     plan.instanced, plan.instancedProps);
+  if (pipeline.InstancedProps() && !flattened)
+  {
+    // The placements live in the instanced actors now (6 MB for 46,000 of them).
+    std::vector<Instance>().swap(scene.instanced->instances);
+  }
   SetUpCamera(cameras[0], renderer, bounds, scene.zUp); // again: the clipping range from the actors
   const CullSetup culling(
     plan.cull, pipeline, renderer, pd, scene.portals, ProgressBar::OnTerminal());

@@ -85,11 +85,15 @@ MethodPipeline::MethodPipeline(const std::string& method, vtkPolyData* pd, vtkRe
       meshActors.back()->SetMapper(mapper);
       meshActors.back()->SetProperty(property);
     }
+    std::vector<vtkIdType> placementsOf(instanced->meshes.size(), 0);
+    for (const Instance& instance : instanced->instances)
+      ++placementsOf[instance.mesh];
+    for (std::size_t m = 0; m < meshActors.size(); ++m)
+      meshActors[m]->ReservePlacements(placementsOf[m]);
     for (std::size_t i = 0; i < instanced->instances.size(); ++i)
     {
       const Instance& instance = instanced->instances[i];
-      meshActors[instance.mesh]->AddPlacement(
-        instance.matrix->GetData(), static_cast<vtkIdType>(i));
+      meshActors[instance.mesh]->AddPlacement(instance.matrix.data(), static_cast<vtkIdType>(i));
       this->InstancedPolygons += instanced->meshes[instance.mesh]->GetNumberOfPolys();
     }
     this->PlacementCount = static_cast<vtkIdType>(instanced->instances.size());
@@ -116,7 +120,9 @@ MethodPipeline::MethodPipeline(const std::string& method, vtkPolyData* pd, vtkRe
     for (const auto& instance : instanced->instances)
     {
       vtkActor* actor = makeActor(mappers[instance.mesh]);
-      actor->SetUserMatrix(instance.matrix);
+      vtkNew<vtkMatrix4x4> matrix;
+      matrix->DeepCopy(instance.matrix.data());
+      actor->SetUserMatrix(matrix);
       actor->SetProperty(property);
       this->InstancedPolygons += instanced->meshes[instance.mesh]->GetNumberOfPolys();
     }

@@ -70,6 +70,16 @@ void vtkInstancedActor::RemoveAllPlacements()
 }
 
 //------------------------------------------------------------------------------
+void vtkInstancedActor::ReservePlacements(vtkIdType count)
+{
+  if (count > 0)
+  {
+    this->Matrices.reserve(16 * static_cast<std::size_t>(count));
+    this->PlacementIds.reserve(static_cast<std::size_t>(count));
+  }
+}
+
+//------------------------------------------------------------------------------
 const double* vtkInstancedActor::GetPlacementMatrix(vtkIdType i) const
 {
   if (i < 0 || i >= this->GetNumberOfPlacements())

@@ -69,6 +69,8 @@ public:
    */
   vtkIdType AddPlacement(const double matrix[16], vtkIdType id = -1);
   void RemoveAllPlacements();
+  /// Room for @p count placements in all (AddPlacement then never reallocates below it).
+  void ReservePlacements(vtkIdType count);
   vtkIdType GetNumberOfPlacements() const
   {
     return static_cast<vtkIdType>(this->PlacementIds.size());

@@ -689,6 +689,19 @@ double vtkOctreeCuller::Cull(
     sc::BoxArrays boxes;
     std::vector<std::uint32_t> triangles;
     in.ListSlots.resize(n);
+    // One slot per prop, per placement of a vtkInstancedActor: sized once (a slot is ~180
+    // bytes; growing by doubling would hold up to twice that for 46,000 placements).
+    std::size_t slots = 0;
+    for (std::size_t i = 0; i < n; ++i)
+    {
+      auto* instanced = vtkInstancedActor::SafeDownCast(propList[i]);
+      slots += instanced ? std::max<std::size_t>(1, instanced->GetNumberOfPlacements()) : 1;
+    }
+    if (in.Slots.capacity() > slots)
+    {
+      std::vector<Slot>().swap(in.Slots); // cleared above
+    }
+    in.Slots.reserve(slots);
     for (std::size_t i = 0; i < n; ++i)
     {
       const auto found = in.SlotOf.find(propList[i]);

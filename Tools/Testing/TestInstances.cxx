@@ -84,7 +84,7 @@ vtkSmartPointer<vtkImageData> Render(const InstancedScene* scene, vtkPolyData* f
       renderer->AddActor(actors.back());
     }
     for (const auto& instance : scene->instances)
-      actors[instance.mesh]->AddPlacement(instance.matrix->GetData());
+      actors[instance.mesh]->AddPlacement(instance.matrix.data());
   }
   else if (scene)
   {
@@ -94,7 +94,9 @@ vtkSmartPointer<vtkImageData> Render(const InstancedScene* scene, vtkPolyData* f
     {
       vtkNew<vtkActor> actor;
       actor->SetMapper(mappers[instance.mesh]);
-      actor->SetUserMatrix(instance.matrix);
+      vtkNew<vtkMatrix4x4> matrix;
+      matrix->DeepCopy(instance.matrix.data());
+      actor->SetUserMatrix(matrix);
       renderer->AddActor(actor);
     }
   }
