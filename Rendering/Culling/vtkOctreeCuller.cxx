@@ -136,6 +136,7 @@ public:
   std::vector<vtkProp*> Culled;
   std::vector<std::uint32_t> KeptSlots;
   std::vector<vtkIdType> Placements; // scratch: the visible placements of an instanced actor
+  std::vector<std::uint32_t> InstancedHeads; // first slot of each vtkInstancedActor
   std::size_t RefitsSinceCheck = 0;
   std::vector<std::pair<double, std::uint32_t>> Keyed;
   std::vector<std::uint32_t> SortedSlots;
@@ -626,6 +627,19 @@ double vtkOctreeCuller::Cull(
   const auto n = static_cast<std::size_t>(listLength);
 
   // --- 1. Map the list onto the hierarchy's slots; rebuild only for props never seen. ----------
+  // A vtkInstancedActor that gained or lost placements needs other slots: rebuild.
+  for (const std::uint32_t head : in.InstancedHeads)
+  {
+    const Slot& slot = in.Slots[head];
+    const vtkIdType placements =
+      static_cast<vtkInstancedActor*>(slot.Prop.GetPointer())->GetNumberOfPlacements();
+    if ((slot.Placement < 0) != (placements == 0) ||
+      (placements > 0 && static_cast<vtkIdType>(slot.Count) != placements))
+    {
+      in.RebuildRequested = true;
+      break;
+    }
+  }
   const bool sameList = !in.RebuildRequested && n == in.LastList.size() &&
     std::equal(propList, propList + n, in.LastList.begin());
   bool rebuild = in.RebuildRequested || in.NormalConesBuilt != this->NormalConeCulling;
@@ -685,6 +699,7 @@ double vtkOctreeCuller::Cull(
     in.EventsActive = false;
     in.Slots.clear();
     in.SlotOf.clear();
+    in.InstancedHeads.clear();
     in.Invalidated.clear();
     sc::BoxArrays boxes;
     std::vector<std::uint32_t> triangles;
@@ -727,6 +742,10 @@ double vtkOctreeCuller::Cull(
       }
       in.SlotOf.emplace(propList[i], s);
       in.ListSlots[i] = s;
+      if (instanced)
+      {
+        in.InstancedHeads.push_back(s);
+      }
     }
     in.Bvh.build(boxes, sc::BuildMethod::BinnedSah, 4, &triangles);
     in.LastVisible.clear(); // slot numbers changed

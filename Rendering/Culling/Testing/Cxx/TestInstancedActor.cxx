@@ -226,6 +226,38 @@ bool TestSameImages()
   return ok;
 }
 
+/// Placements added or removed between frames are culled and drawn like the first ones.
+bool TestPlacementsChange()
+{
+  bool ok = true;
+  Scene scene;
+  Build(scene, true, 2);
+  SetCamera(scene.Renderer, 0);
+  scene.Window->Render();
+  vtkInstancedActor* actor = scene.Instanced;
+  const double added[16] = { 1, 0, 0, 4, 0, 1, 0, 7, 0, 0, 1, 1, 0, 0, 0, 1 };
+  actor->AddPlacement(added, 1000);
+  scene.Window->Render();
+  bool drawn = false;
+  for (vtkIdType k = 0; k < actor->GetNumberOfVisiblePlacements(); ++k)
+  {
+    drawn = drawn || actor->GetPlacementId(actor->GetVisiblePlacement(k)) == 1000;
+  }
+  ok &= Check(drawn, "a placement added after the first frame is drawn");
+  actor->RemoveAllPlacements();
+  const double one[16] = { 1, 0, 0, 4, 0, 1, 0, 2, 0, 0, 1, 0, 0, 0, 0, 1 };
+  actor->AddPlacement(one);
+  scene.Window->Render();
+  ok &= Check(actor->GetNumberOfVisiblePlacements() == 1 && actor->GetVisiblePlacement(0) == 0,
+    "after RemoveAllPlacements and one AddPlacement: that one drawn");
+  ok &= Check(st::CoveredFraction(st::CaptureImage(scene.Window)) > 0.001, "  and seen");
+  actor->RemoveAllPlacements();
+  scene.Window->Render();
+  ok &= Check(st::CoveredFraction(st::CaptureImage(scene.Window)) == 0.0,
+    "without placements nothing is drawn");
+  return ok;
+}
+
 bool TestBadInput()
 {
   bool ok = true;
@@ -283,6 +315,7 @@ int TestInstancedActor(int, char*[])
   vtkOutput.ExpectError("indices out of");
   vtkOutput.ExpectWarning("non-finite bounds");
   bool ok = TestSameImages();
+  ok &= TestPlacementsChange();
   ok &= TestBadInput();
   return vtkOutput.ExitCode(ok ? EXIT_SUCCESS : EXIT_FAILURE);
 }
