@@ -303,6 +303,11 @@ TEST(Instances, VrmlUsesBecomePlacementsOfOneMesh)
   thresholds.maxCoveredBadFraction = 0.0005;
   std::string why;
   EXPECT_TRUE(st::WithinThresholds(difference, thresholds, &why)) << why << difference.Summary();
+  for (const Draw draw : { Draw::InstancedProps, Draw::InstancedPropsOccluded })
+  {
+    EXPECT_TRUE(st::ImagesIdentical(Render(&scene, nullptr, eye, 100.0, draw), instanced, &why))
+      << "vtkInstancedActor per mesh: " << why;
+  }
   EXPECT_GT(st::CoveredFraction(instanced), 0.05);
 }
 
