@@ -203,7 +203,7 @@ vtkIdType vtkInstancedActor::GetVisiblePlacement(vtkIdType k) const
 //------------------------------------------------------------------------------
 double* vtkInstancedActor::GetBounds()
 {
-  vtkMTimeType time = this->vtkObject::GetMTime();
+  vtkMTimeType time = this->GetMTime(); // with the user matrix or transform
   if (this->Mapper)
   {
     this->Mapper->GetBounds(); // brings the input up to date

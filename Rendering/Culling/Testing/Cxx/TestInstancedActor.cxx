@@ -226,6 +226,37 @@ bool TestSameImages()
   return ok;
 }
 
+/// The actor's own matrix (here its position) applies after each placement's: the image of 72
+/// actors whose user matrices are translation x placement; moving it refits the culler.
+bool TestOwnTransform()
+{
+  bool ok = true;
+  Scene actors, instanced;
+  Build(actors, false, 2);
+  Build(instanced, true, 2);
+  SetCamera(actors.Renderer, 0);
+  SetCamera(instanced.Renderer, 0);
+  actors.Window->Render();
+  instanced.Window->Render();
+  const double move[16] = { 1, 0, 0, -2.5, 0, 1, 0, 1.0, 0, 0, 1, 0.5, 0, 0, 0, 1 };
+  const std::vector<std::vector<double>> placements = Placements();
+  for (std::size_t i = 0; i < actors.Actors.size(); ++i)
+  {
+    vtkNew<vtkMatrix4x4> matrix;
+    vtkMatrix4x4::Multiply4x4(move, placements[i].data(), &matrix->Element[0][0]);
+    actors.Actors[i]->SetUserMatrix(matrix);
+  }
+  instanced.Instanced->SetPosition(-2.5, 1.0, 0.5);
+  actors.Window->Render();
+  instanced.Window->Render();
+  std::string why;
+  ok &= Check(
+    st::ImagesIdentical(st::CaptureImage(actors.Window), st::CaptureImage(instanced.Window), &why),
+    "moved by its position: the same image as 72 actors moved alike" + why);
+  ok &= Check(Kept(actors) == Kept(instanced), "  and the same placements kept");
+  return ok;
+}
+
 /// Placements added or removed between frames are culled and drawn like the first ones.
 bool TestPlacementsChange()
 {
@@ -316,6 +347,7 @@ int TestInstancedActor(int, char*[])
   vtkOutput.ExpectWarning("non-finite bounds");
   bool ok = TestSameImages();
   ok &= TestPlacementsChange();
+  ok &= TestOwnTransform();
   ok &= TestBadInput();
   return vtkOutput.ExitCode(ok ? EXIT_SUCCESS : EXIT_FAILURE);
 }
