@@ -46,7 +46,7 @@ Scene (all commands):
                         Each mesh is one vtkInstancedActor drawing its placements, culled
                         placement by placement (--cull none, octree, occlusion, auto
                         choosing one of them; render's sort none, oit or peel:N)
-  --instance-actors     with --instances: one vtkActor per placement instead (about 5 kB
+  --instance-actors     with --instances: one vtkActor per placement instead (about 4.6 kB
                         each); always so for multi-actor sorting, frustum (VTK's culler of
                         props) and normal-cones
   --triangles N         approximate triangle count of the spheres/cad demos (default 20000)
