@@ -266,6 +266,9 @@ ScenePlan PlanScene(const Options& options, const LoadedScene& scene, const std:
   const std::size_t actors = plan.instanced ? plan.instanced->instances.size() : plan.groups.size();
   plan.sort = ChooseSort(sort, plan.facts.translucentFraction > 0.0, plan.cull,
     plan.instanced || plan.groups.size() > 1, actors, plan.sortReason);
+  const std::string& m = plan.cull.method;
+  plan.instancedProps = plan.instanced && !options.instanceActors && plan.sort != "multi-actor" &&
+    (m == "none" || m == "octree" || m == "occlusion");
   if (plan.sort == "multi-actor" && plan.groups.empty())
   {
     const auto splitStart = std::chrono::steady_clock::now();

@@ -53,6 +53,10 @@ struct ScenePlan
   std::string sortReason;
   /// --instances: the placed meshes (groups then holds the meshes, one mapper each).
   const InstancedScene* instanced = nullptr;
+  /// --instances drawn as one vtkInstancedActor per mesh (culled per placement), not one actor
+  /// per placement: culling none, octree or occlusion (VTK's frustum culler sees props, not
+  /// placements), sort none, oit or peel:N, and no --instance-actors.
+  bool instancedProps = false;
   double inspectMs = 0.0; ///< reading the scene's facts (parts, rooms, translucency, view)
   double splitMs = 0.0;   ///< splitting it into one polydata per part / room
 };

@@ -9,6 +9,7 @@
 #include "SceneLoading.h"
 #include "ViewSetup.h"
 #include "vtkChunkedPolyDataMapper.h"
+#include "vtkInstancedActor.h"
 
 #include "scenevis/testing/IdBuffer.h"
 #include "scenevis/testing/RenderWindow.h"
@@ -83,6 +84,28 @@ std::vector<vtkProp*> DrawnProps(const MethodPipeline& pipeline, const CullSetup
   return std::vector<vtkProp*>(pipeline.GetActors().begin(), pipeline.GetActors().end());
 }
 
+/// --instances: the placements drawn in the last render (their indices, the flattened file's
+/// PartIds): of each kept actor placed alone (@p placementOf), of each kept vtkInstancedActor
+/// the placements it was told to draw.
+std::set<long long> DrawnPlacements(const MethodPipeline& pipeline, const CullSetup& culling,
+  const std::unordered_map<vtkProp*, long long>& placementOf)
+{
+  std::set<long long> drawn;
+  for (vtkProp* prop : DrawnProps(pipeline, culling))
+  {
+    if (auto* instanced = vtkInstancedActor::SafeDownCast(prop))
+    {
+      for (vtkIdType k = 0; k < instanced->GetNumberOfVisiblePlacements(); ++k)
+        drawn.insert(instanced->GetPlacementId(instanced->GetVisiblePlacement(k)));
+      continue;
+    }
+    const auto found = placementOf.find(prop);
+    if (found != placementOf.end())
+      drawn.insert(found->second);
+  }
+  return drawn;
+}
+
 /// cull --exact: the exact visible set (cells with a pixel in a depth-tested ID render of the
 /// whole scene) against what the mode drew. False negatives break the promise of a conservative
 /// mode; over-draw is what it costs. Translucent surfaces are opaque in the ID render, so what
@@ -109,7 +132,7 @@ void DescribeExact(std::ostream& json, vtkRenderWindow* window, vtkCamera* camer
   const vtkIdType cells = pd->GetNumberOfCells();
   std::vector<char> drawn(static_cast<std::size_t>(cells), 0);
   std::set<std::vector<long long>> drawnKeys;
-  const bool split = pipeline.Parts() > 1;
+  const bool split = pipeline.Placements() > 1;
   if (vtkChunkedPolyDataMapper* chunked = pipeline.GetChunkedMapper())
   {
     std::vector<vtkIdType> ids;
@@ -119,12 +142,8 @@ void DescribeExact(std::ostream& json, vtkRenderWindow* window, vtkCamera* camer
   }
   else if (placementOf)
   {
-    for (vtkProp* prop : DrawnProps(pipeline, culling))
-    {
-      const auto found = placementOf->find(prop);
-      if (found != placementOf->end())
-        drawnKeys.insert({ found->second });
-    }
+    for (const long long placement : DrawnPlacements(pipeline, culling, *placementOf))
+      drawnKeys.insert({ placement });
     for (vtkIdType c = 0; c < cells; ++c)
       drawn[static_cast<std::size_t>(c)] = drawnKeys.count(CellKey(arrays, c)) ? 1 : 0;
   }
@@ -222,8 +241,13 @@ int RunCull(const Options& options)
   SetUpCamera(cameras[0], renderer, bounds, scene.zUp);
   // Visibility does not depend on the drawing order: nothing is sorted.
   const ScenePlan plan = PlanScene(options, scene, "none", renderer);
-  MethodPipeline pipeline(
-    "none", pd, renderer, false, &plan.groups, plan.cull.chunked, plan.instanced);
+  MethodPipeline pipeline("none", pd, renderer, false, &plan.groups, plan.cull.chunked,
+    plan.instanced, plan.instancedProps);
+  if (pipeline.InstancedProps() && !flattened)
+  {
+    // The placements live in the instanced actors now (6 MB for 46,000 of them).
+    std::vector<Instance>().swap(scene.instanced->instances);
+  }
   SetUpCamera(cameras[0], renderer, bounds, scene.zUp); // again: the clipping range from the actors
   const CullSetup culling(
     plan.cull, pipeline, renderer, pd, scene.portals, ProgressBar::OnTerminal());
@@ -258,12 +282,7 @@ int RunCull(const Options& options)
     else if (plan.instanced)
     {
       // A placement is a part: its index (the flattened file's PartId).
-      for (vtkProp* prop : DrawnProps(pipeline, culling))
-      {
-        const auto found = placementOf.find(prop);
-        if (found != placementOf.end())
-          parts.insert(found->second);
-      }
+      parts = DrawnPlacements(pipeline, culling, placementOf);
     }
     else
     {
@@ -293,7 +312,8 @@ int RunCull(const Options& options)
          << ", \"reason\": " << JsonString(plan.cull.reason);
     culling.Describe(json);
     json << "},\n  \"cull_ms\": " << culling.CullMs()
-         << ",\n  \"props\": {\"total\": " << pipeline.Parts() << ", \"visible\": " << propsVisible
+         << ",\n  \"props\": {\"total\": " << pipeline.Placements()
+         << ", \"visible\": " << propsVisible
          << "},\n  \"triangles\": {\"total\": " << plan.facts.triangles
          << ", \"visible\": " << culling.TrianglesDrawn()
          << "},\n  \"parts\": {\"total\": " << plan.facts.parts << ", \"visible\": " << parts.size()

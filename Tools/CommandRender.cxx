@@ -78,9 +78,14 @@ int RunRender(const Options& options)
   std::string reason = plan.sortReason;
   const bool onTerminal = ProgressBar::OnTerminal();
   const auto actorsStart = std::chrono::steady_clock::now();
-  MethodPipeline pipeline(
-    method, pd, renderer, onTerminal, &plan.groups, plan.cull.chunked, plan.instanced);
+  MethodPipeline pipeline(method, pd, renderer, onTerminal, &plan.groups, plan.cull.chunked,
+    plan.instanced, plan.instancedProps);
   const double actorsMs = Milliseconds(actorsStart);
+  if (pipeline.InstancedProps())
+  {
+    // The placements live in the instanced actors now (6 MB for 46,000 of them).
+    std::vector<Instance>().swap(scene.instanced->instances);
+  }
   if (method == "multi-actor" && !plan.instanced)
   {
     const std::string& part = options.partArray;

@@ -5,6 +5,7 @@
 #include "Report.h"
 #include "SceneLoading.h"
 #include "vtkChunkedPolyDataMapper.h"
+#include "vtkInstancedActor.h"
 #include "vtkOcclusionCuller.h"
 
 #include <vtkActor.h>
@@ -141,7 +142,9 @@ CullSetup::CullSetup(const CullPlan& plan, const MethodPipeline& pipeline, vtkRe
         found = trianglesOfInput.emplace(input, CountTriangles(input)).first;
       triangles = found->second;
     }
-    this->TrianglesOf[actor] = triangles;
+    this->TrianglesOf[actor] = triangles; // instanced props: per placement
+    if (auto* instanced = vtkInstancedActor::SafeDownCast(actor))
+      triangles *= instanced->GetNumberOfPlacements();
     this->TotalTriangles += triangles;
   }
   vtkSmartPointer<vtkCuller> inner;
@@ -197,7 +200,15 @@ CullSetup::CullSetup(const CullPlan& plan, const MethodPipeline& pipeline, vtkRe
 
 vtkIdType CullSetup::PropsDrawn() const
 {
-  return this->Stage ? static_cast<vtkIdType>(this->Stage->Visible.size()) : this->Pipeline.Parts();
+  if (!this->Stage)
+    return this->Pipeline.Placements();
+  vtkIdType props = 0;
+  for (vtkProp* prop : this->Stage->Visible)
+  {
+    auto* instanced = vtkInstancedActor::SafeDownCast(prop);
+    props += instanced ? instanced->GetNumberOfVisiblePlacements() : 1;
+  }
+  return props;
 }
 
 vtkIdType CullSetup::TrianglesDrawn() const
@@ -210,7 +221,9 @@ vtkIdType CullSetup::TrianglesDrawn() const
   for (vtkProp* prop : this->Stage->Visible)
   {
     auto found = this->TrianglesOf.find(prop);
-    triangles += found == this->TrianglesOf.end() ? 0 : found->second;
+    auto* instanced = vtkInstancedActor::SafeDownCast(prop);
+    triangles += (found == this->TrianglesOf.end() ? 0 : found->second) *
+      (instanced ? instanced->GetNumberOfVisiblePlacements() : 1);
   }
   return triangles;
 }
@@ -237,8 +250,10 @@ void CullSetup::Describe(std::ostream& json) const
   json << ", \"approximate\": " << (this->Plan.smallPixels > 0.0 ? "true" : "false");
   if (this->Plan.smallPixels > 0.0)
     json << ", \"minimum_pixels\": " << this->Plan.smallPixels;
-  json << ", \"actors\": " << this->Pipeline.Parts()
-       << ", \"triangles_total\": " << this->TotalTriangles;
+  json << ", \"actors\": " << this->Pipeline.Parts();
+  if (this->Pipeline.InstancedProps())
+    json << ", \"instanced_props\": true, \"placements\": " << this->Pipeline.Placements();
+  json << ", \"triangles_total\": " << this->TotalTriangles;
   if (this->Octree)
   {
     vtkOctreeCuller* oc = this->Octree;
@@ -275,7 +290,7 @@ void CullSetup::Describe(std::ostream& json) const
     {
       json << ", \"pvs\": {\"method\": "
            << (p->GetPVSMethod() == vtkPortalCuller::PVS_SEPARATING_PLANES ? "\"separating-planes\""
-                                                                          : "\"portal-flow\"")
+                                                                           : "\"portal-flow\"")
            << ", \"average_rooms\": " << p->GetPVSAverageSetSize()
            << ", \"degraded_portals\": " << p->GetPVSDegradedPortals()
            << ", \"budget_exceeded\": " << (p->GetPVSBudgetExceeded() ? "true" : "false") << "}";

@@ -461,6 +461,7 @@ InstancedScene UnpackMeshLibrary(vtkPolyData* library)
     throw std::runtime_error("the mesh library has no placements (InstanceMesh, InstanceMatrix)");
   }
   InstancedScene scene;
+  scene.instances.reserve(static_cast<std::size_t>(meshOf->GetNumberOfTuples()));
   scene.meshes = SplitByKeys(library, { "MeshId" });
   for (auto& mesh : scene.meshes)
   {
@@ -479,8 +480,7 @@ InstancedScene UnpackMeshLibrary(vtkPolyData* library)
         std::to_string(mesh) + " of " + std::to_string(scene.meshes.size()));
     Instance instance;
     instance.mesh = static_cast<std::size_t>(mesh);
-    instance.matrix = vtkSmartPointer<vtkMatrix4x4>::New();
-    instance.matrix->DeepCopy(matrixOf->GetTuple(i));
+    matrixOf->GetTypedTuple(i, instance.matrix.data());
     scene.instances.push_back(instance);
   }
   return scene;
@@ -496,7 +496,7 @@ vtkSmartPointer<vtkPolyData> FlattenInstances(
     // The same filter and matrix as the flattened import (vtkSceneVisModelReader), so the same
     // float coordinates.
     vtkNew<vtkTransform> transform;
-    transform->SetMatrix(instance.matrix);
+    transform->SetMatrix(instance.matrix.data());
     vtkNew<vtkTransformPolyDataFilter> moved;
     moved->SetTransform(transform);
     moved->SetInputData(scene.meshes[instance.mesh]);
@@ -532,7 +532,7 @@ void InstanceBounds(const InstancedScene& scene, const Instance& instance, doubl
   {
     const double p[4] = { box[k & 1], box[2 + ((k >> 1) & 1)], box[4 + ((k >> 2) & 1)], 1.0 };
     double q[4];
-    instance.matrix->MultiplyPoint(p, q);
+    vtkMatrix4x4::MultiplyPoint(instance.matrix.data(), p, q);
     for (int a = 0; a < 3; ++a)
     {
       bounds[2 * a] = std::min(bounds[2 * a], q[a]);
@@ -553,14 +553,14 @@ void InstancedBounds(const InstancedScene& scene, double bounds[6])
     // Every point through the matrix (not the box's corners, which a rotation widens): the
     // same bounds, hence the same default camera, as the flattened scene.
     vtkPolyData* mesh = scene.meshes[instance.mesh];
-    const double(*m)[4] = instance.matrix->Element;
+    const double* m = instance.matrix.data();
     for (vtkIdType i = 0; i < mesh->GetNumberOfPoints(); ++i)
     {
       double p[3];
       mesh->GetPoint(i, p);
       for (int a = 0; a < 3; ++a)
       {
-        const double q = m[a][0] * p[0] + m[a][1] * p[1] + m[a][2] * p[2] + m[a][3];
+        const double q = m[4 * a] * p[0] + m[4 * a + 1] * p[1] + m[4 * a + 2] * p[2] + m[4 * a + 3];
         bounds[2 * a] = std::min(bounds[2 * a], q);
         bounds[2 * a + 1] = std::max(bounds[2 * a + 1], q);
       }

@@ -1,6 +1,8 @@
 // The translucency methods of --sort as one pipeline on a renderer.
 #include "MethodPipeline.h"
 
+#include "vtkInstancedActor.h"
+
 #include <vtkCamera.h>
 #include <vtkCommand.h>
 #include <vtkMatrix4x4.h>
@@ -25,7 +27,7 @@ constexpr int kFastExitActors = 1000;
 
 MethodPipeline::MethodPipeline(const std::string& method, vtkPolyData* pd, vtkRenderer* renderer,
   bool showProgress, const std::vector<vtkSmartPointer<vtkPolyData>>* groups, bool chunked,
-  const InstancedScene* instanced)
+  const InstancedScene* instanced, bool instancedProps)
   : Method(method)
   , Input(pd)
   , InputPolygons(pd ? pd->GetNumberOfPolys() : 0)
@@ -66,6 +68,44 @@ MethodPipeline::MethodPipeline(const std::string& method, vtkPolyData* pd, vtkRe
     this->BspMapper->SetInputData(pd);
     makeActor(this->BspMapper);
   }
+  else if (instanced && instancedProps)
+  {
+    // One vtkInstancedActor per mesh, its placements as plain matrices (136 bytes each instead
+    // of a vtkActor and its transforms); a placement-aware culler culls them one by one.
+    this->PerMesh = true;
+    vtkNew<vtkProperty> property;
+    std::vector<vtkSmartPointer<vtkInstancedActor>> meshActors;
+    for (const auto& mesh : instanced->meshes)
+    {
+      auto mapper = vtkSmartPointer<vtkPolyDataMapper>::New();
+      mapper->SetInputData(mesh);
+      mapper->SetScalarModeToUseCellData();
+      mapper->SetColorModeToDirectScalars();
+      meshActors.push_back(vtkSmartPointer<vtkInstancedActor>::New());
+      meshActors.back()->SetMapper(mapper);
+      meshActors.back()->SetProperty(property);
+    }
+    std::vector<vtkIdType> placementsOf(instanced->meshes.size(), 0);
+    for (const Instance& instance : instanced->instances)
+      ++placementsOf[instance.mesh];
+    for (std::size_t m = 0; m < meshActors.size(); ++m)
+      meshActors[m]->ReservePlacements(placementsOf[m]);
+    for (std::size_t i = 0; i < instanced->instances.size(); ++i)
+    {
+      const Instance& instance = instanced->instances[i];
+      meshActors[instance.mesh]->AddPlacement(instance.matrix.data(), static_cast<vtkIdType>(i));
+      this->InstancedPolygons += instanced->meshes[instance.mesh]->GetNumberOfPolys();
+    }
+    this->PlacementCount = static_cast<vtkIdType>(instanced->instances.size());
+    for (const auto& actor : meshActors)
+    {
+      if (actor->GetNumberOfPlacements() == 0)
+        continue;
+      renderer->GetViewProps()->AddItem(actor);
+      actor->AddConsumer(renderer);
+      this->Actors.push_back(actor);
+    }
+  }
   else if (instanced)
   {
     std::vector<vtkSmartPointer<vtkPolyDataMapper>> mappers;
@@ -80,7 +120,9 @@ MethodPipeline::MethodPipeline(const std::string& method, vtkPolyData* pd, vtkRe
     for (const auto& instance : instanced->instances)
     {
       vtkActor* actor = makeActor(mappers[instance.mesh]);
-      actor->SetUserMatrix(instance.matrix);
+      vtkNew<vtkMatrix4x4> matrix;
+      matrix->DeepCopy(instance.matrix.data());
+      actor->SetUserMatrix(matrix);
       actor->SetProperty(property);
       this->InstancedPolygons += instanced->meshes[instance.mesh]->GetNumberOfPolys();
     }

@@ -38,14 +38,16 @@ namespace tool
 /// method must then be none, oit, multi-actor or peel:N); multi-actor draws one actor per group
 /// (the parts) and one actor without @p groups. @p chunked draws the one mesh through
 /// vtkChunkedPolyDataMapper (method none, oit or peel:N). With @p instanced, @p groups are its
-/// meshes: one mapper per mesh, one actor per placement (its matrix as the user matrix). @p pd
-/// may be null when more than one group is drawn (the flattened scene they came from released).
+/// meshes: one mapper per mesh, one actor per placement (its matrix as the user matrix), or with
+/// @p instancedProps one vtkInstancedActor per mesh holding its placements (placement i with id
+/// i). @p pd may be null when more than one group is drawn (the flattened scene they came from
+/// released).
 class MethodPipeline
 {
 public:
   MethodPipeline(const std::string& method, vtkPolyData* pd, vtkRenderer* renderer,
     bool showProgress, const std::vector<vtkSmartPointer<vtkPolyData>>* groups = nullptr,
-    bool chunked = false, const InstancedScene* instanced = nullptr);
+    bool chunked = false, const InstancedScene* instanced = nullptr, bool instancedProps = false);
 
   /// Brings a filter's order up to date for the camera (before rendering); milliseconds.
   double Update();
@@ -71,7 +73,14 @@ public:
   /// Polygons drawn in the last frame.
   vtkIdType Fragments() const;
 
+  /// VTK actors (with instanced props: one per mesh).
   int Parts() const { return static_cast<int>(this->Actors.size()); }
+  /// What a culler culls one by one: the placements of instanced props, else the actors.
+  vtkIdType Placements() const
+  {
+    return this->PerMesh ? this->PlacementCount : static_cast<vtkIdType>(this->Actors.size());
+  }
+  bool InstancedProps() const { return this->PerMesh; }
   const std::vector<vtkSmartPointer<vtkActor>>& GetActors() const { return this->Actors; }
   vtkChunkedPolyDataMapper* GetChunkedMapper() const { return this->Chunked; }
 
@@ -108,6 +117,8 @@ private:
   double LastUpdateMs = 0.0;
   vtkMTimeType OrderCountBefore = 0;
   vtkIdType InstancedPolygons = 0; ///< --instances: the placed meshes' polygons
+  bool PerMesh = false;            ///< vtkInstancedActors, one per mesh
+  vtkIdType PlacementCount = 0;
 };
 
 /**

@@ -42,7 +42,13 @@ Scene (all commands):
                         multi-actor or peel:N. cull: a placement is a part (its index, the
                         flattened file's PartId); --exact renders the placements flattened.
                         sort: the placements flattened into world space, then the BSP
-                        (exact; the flattened file's polygons in the same order)
+                        (exact; the flattened file's polygons in the same order).
+                        Each mesh is one vtkInstancedActor drawing its placements, culled
+                        placement by placement (--cull none, octree, occlusion, auto
+                        choosing one of them; render's sort none, oit or peel:N)
+  --instance-actors     with --instances: one vtkActor per placement instead (about 4.6 kB
+                        each); always so for multi-actor sorting, frustum (VTK's culler of
+                        props) and normal-cones
   --triangles N         approximate triangle count of the spheres/cad demos (default 20000)
   --parts N             parts of the cad demo (default 1000)
   --opacity A           opacity given to every cell of a model file, in (0, 1] (default: the
@@ -255,6 +261,8 @@ Options ParseOptions(int argc, char* argv[])
       options.parts = ParseCount(flag, value(), 1, 10000000);
     else if (flag == "--instances")
       options.instances = true;
+    else if (flag == "--instance-actors")
+      options.instanceActors = true;
     else if (flag == "--opacity")
     {
       options.opacity = ParseNumber(flag, value());
@@ -417,6 +425,8 @@ Options ParseOptions(int argc, char* argv[])
   }
   if (options.instances && options.command == "bench")
     throw UsageError("--instances belongs to render, cull and sort");
+  if (options.instanceActors && !options.instances)
+    throw UsageError("--instance-actors goes with --instances");
   if (options.command == "bench")
   {
     if (!options.framesSet)

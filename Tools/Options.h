@@ -38,6 +38,8 @@ struct Options
   double opacity = 0.4; ///< a model file's: only with --opacity (else its own materials')
   bool opacitySet = false;
   bool instances = false; ///< --instances: a glTF's meshes once each, one actor per placement
+  /// --instance-actors: one vtkActor per placement (the path before vtkInstancedActor)
+  bool instanceActors = false;
   /// --camera, --up, --parallel, --view-angle, --parallel-scale, --clipping-range.
   CameraSpec camera;
   /// --cameras FILE.json: one run per camera (the command line's camera options as defaults).

@@ -43,8 +43,8 @@ bool PlanarConvex(vtkPoints* points, const vtkIdType* ids, vtkIdType n)
   {
     const glm::dvec3& a = p[i];
     const glm::dvec3& b = p[(i + 1) % p.size()];
-    normal += glm::dvec3((a.y - b.y) * (a.z + b.z), (a.z - b.z) * (a.x + b.x),
-      (a.x - b.x) * (a.y + b.y));
+    normal +=
+      glm::dvec3((a.y - b.y) * (a.z + b.z), (a.z - b.z) * (a.x + b.x), (a.x - b.x) * (a.y + b.y));
     size = std::max(size, glm::length(b - a));
   }
   const double length = glm::length(normal);
@@ -153,8 +153,9 @@ vtkOccluderRasterizer::Mesh* vtkOccluderRasterizer::MeshOf(vtkPolyData* data)
       {
         for (vtkIdType i = 1; i + 1 < n; ++i)
         {
-          mesh.Triangles.insert(mesh.Triangles.end(), { static_cast<std::uint32_t>(ids[0]),
-            static_cast<std::uint32_t>(ids[i]), static_cast<std::uint32_t>(ids[i + 1]) });
+          mesh.Triangles.insert(mesh.Triangles.end(),
+            { static_cast<std::uint32_t>(ids[0]), static_cast<std::uint32_t>(ids[i]),
+              static_cast<std::uint32_t>(ids[i + 1]) });
         }
       }
     }
@@ -163,9 +164,9 @@ vtkOccluderRasterizer::Mesh* vtkOccluderRasterizer::MeshOf(vtkPolyData* data)
     {
       for (vtkIdType j = 0; j + 2 < n; ++j)
       {
-        mesh.Triangles.insert(mesh.Triangles.end(), { static_cast<std::uint32_t>(ids[j]),
-          static_cast<std::uint32_t>(ids[j + 1 + j % 2]),
-          static_cast<std::uint32_t>(ids[j + 1 + (j + 1) % 2]) });
+        mesh.Triangles.insert(mesh.Triangles.end(),
+          { static_cast<std::uint32_t>(ids[j]), static_cast<std::uint32_t>(ids[j + 1 + j % 2]),
+            static_cast<std::uint32_t>(ids[j + 1 + (j + 1) % 2]) });
       }
     }
     std::vector<double> xyz(static_cast<std::size_t>(3 * pointCount));
@@ -241,7 +242,7 @@ bool vtkOccluderRasterizer::WorthDrawing(const double lo[3], const double hi[3],
   return true;
 }
 
-void vtkOccluderRasterizer::Draw(vtkProp* prop, const double bounds[6])
+void vtkOccluderRasterizer::Draw(vtkProp* prop, const double bounds[6], const double* placement)
 {
   // dynamic_cast, not SafeDownCast: this runs for every visible prop, and SafeDownCast compares
   // class names along the hierarchy.
@@ -273,8 +274,16 @@ void vtkOccluderRasterizer::Draw(vtkProp* prop, const double bounds[6])
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return;
   }
-  vtkMatrix4x4* model = actor->GetMatrix();
-  const double determinant = model->Determinant();
+  double model[16];
+  if (placement)
+  {
+    std::copy(placement, placement + 16, model);
+  }
+  else
+  {
+    vtkMatrix4x4::DeepCopy(model, actor->GetMatrix());
+  }
+  const double determinant = vtkMatrix4x4::Determinant(model);
   so::FaceCulling culling = so::FaceCulling::None;
   if (property->GetBackfaceCulling() || property->GetFrontfaceCulling())
   {
@@ -312,11 +321,12 @@ void vtkOccluderRasterizer::Draw(vtkProp* prop, const double bounds[6])
   if (!mesh->Triangles.empty())
   {
     double m[16];
-    vtkMatrix4x4::Multiply4x4(this->ClipFromWorld, &model->GetData()[0], m);
+    vtkMatrix4x4::Multiply4x4(this->ClipFromWorld, model, m);
     vtkPoints* points = data->GetPoints();
     const vtkIdType n = points->GetNumberOfPoints();
     this->Clip.resize(static_cast<std::size_t>(n));
-    auto transform = [this, &m](vtkIdType i, double x, double y, double z) {
+    auto transform = [this, &m](vtkIdType i, double x, double y, double z)
+    {
       glm::dvec4& c = this->Clip[static_cast<std::size_t>(i)];
       c.x = m[0] * x + m[1] * y + m[2] * z + m[3];
       c.y = m[4] * x + m[5] * y + m[6] * z + m[7];
@@ -364,8 +374,8 @@ void vtkOccluderRasterizer::Draw(vtkProp* prop, const double bounds[6])
     clusters.trianglesPerCluster = kTrianglesPerCluster;
     buffer.drawTriangles(this->Clip.data(), this->Clip.size(), mesh->Triangles.data(),
       mesh->Triangles.size() / 3, culling, mesh->Neighbors.data(),
-      mesh->Clusters.size() == 6 * ((mesh->Triangles.size() / 3 + kTrianglesPerCluster - 1) /
-                                     kTrianglesPerCluster)
+      mesh->Clusters.size() ==
+          6 * ((mesh->Triangles.size() / 3 + kTrianglesPerCluster - 1) / kTrianglesPerCluster)
         ? &clusters
         : nullptr);
     ++this->OccludersDrawn;

@@ -47,13 +47,15 @@ public:
   /// vtkCamera::GetCompositeProjectionTransformMatrix(aspect, -1, 1) returns it).
   void BeginFrame(int width, int height, const double clipFromWorldRowMajor[16]);
   /// Rasterize @p prop if it is an opaque occluder (see the class comment); @p bounds: its world
-  /// bounds as the culler knows them (for occluder selection).
-  void Draw(vtkProp* prop, const double bounds[6]);
+  /// bounds as the culler knows them (for occluder selection); @p placement: the model-to-world
+  /// matrix to draw it with (16 values, row-major; a vtkInstancedActor's placement), instead of
+  /// the actor's own.
+  void Draw(vtkProp* prop, const double bounds[6], const double* placement = nullptr);
   /// Occluder selection alone, before any question to the actor, its mapper or its data (in a
   /// wide view nearly every prop is visible and most are too small to occlude; this is what such
-  /// a prop costs): false, and counted
-  /// in OccludersSkipped, if a prop with world bounds [lo, hi] and @p triangles OpenGL triangles
-  /// covers fewer than MinimumPixelsPerTriangle pixels per triangle.
+  /// a prop costs): false, and counted in OccludersSkipped, if a prop with world bounds [lo, hi]
+  /// and @p triangles OpenGL triangles covers fewer than MinimumPixelsPerTriangle pixels per
+  /// triangle.
   bool WorthDrawing(const double lo[3], const double hi[3], vtkIdType triangles);
 
   scenevis::occlusion::MaskedDepthBuffer& Buffer() { return this->DepthBuffer; }

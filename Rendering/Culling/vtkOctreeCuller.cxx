@@ -8,6 +8,7 @@
 #include "vtkCellArray.h"
 #include "vtkCullerCollection.h"
 #include "vtkDataObject.h"
+#include "vtkInstancedActor.h"
 #include "vtkLinearTransform.h"
 #include "vtkMapper.h"
 #include "vtkMath.h"
@@ -46,9 +47,9 @@ namespace
 {
 enum class SlotKind : unsigned char
 {
-  Tree,    ///< 3D prop with valid bounds: in the hierarchy
-  Flat,    ///< 2D prop (no bounds): always drawn
-  Invalid  ///< uninitialized / empty / NaN bounds: always drawn
+  Tree,   ///< 3D prop with valid bounds: in the hierarchy
+  Flat,   ///< 2D prop (no bounds): always drawn
+  Invalid ///< uninitialized / empty / NaN bounds: always drawn
 };
 
 struct Slot
@@ -70,7 +71,24 @@ struct Slot
   std::vector<vtkObject*> Watched;
   bool Polled = false;
   bool Registered = false;
+  /// A placement of a vtkInstancedActor: its index (-1: the slot is the whole prop). The
+  /// placements of one actor are consecutive slots; the first (the actor's slot in SlotOf and
+  /// ListSlots) holds their number in Count.
+  vtkIdType Placement = -1;
+  std::uint32_t Count = 1;
 };
+
+/// The bounds slot @p slot stands for now: the prop's, or its placement's (into @p scratch).
+const double* CurrentBounds(const Slot& slot, double scratch[6])
+{
+  if (slot.Placement < 0)
+  {
+    return slot.Prop->GetBounds();
+  }
+  static_cast<vtkInstancedActor*>(slot.Prop.GetPointer())
+    ->GetPlacementBounds(slot.Placement, scratch);
+  return scratch;
+}
 
 bool FiniteBounds(const double* b)
 {
@@ -117,6 +135,8 @@ public:
   std::vector<std::uint32_t> LastVisible;
   std::vector<vtkProp*> Culled;
   std::vector<std::uint32_t> KeptSlots;
+  std::vector<vtkIdType> Placements; // scratch: the visible placements of an instanced actor
+  std::vector<std::uint32_t> InstancedHeads; // first slot of each vtkInstancedActor
   std::size_t RefitsSinceCheck = 0;
   std::vector<std::pair<double, std::uint32_t>> Keyed;
   std::vector<std::uint32_t> SortedSlots;
@@ -154,8 +174,7 @@ public:
     raster.MinimumPixelsPerTriangle = minimumPixelsPerTriangle;
     vtkCamera* cam = ren->GetActiveCamera();
     const int* size = ren->GetSize();
-    vtkMatrix4x4* m =
-      cam->GetCompositeProjectionTransformMatrix(ren->GetTiledAspectRatio(), -1, 1);
+    vtkMatrix4x4* m = cam->GetCompositeProjectionTransformMatrix(ren->GetTiledAspectRatio(), -1, 1);
     raster.BeginFrame(size[0], size[1], &m->GetData()[0]);
     sc::OcclusionCull occlusion;
     occlusion.buffer = &raster.Buffer();
@@ -165,8 +184,12 @@ public:
     {
       if (s < this->Present.size() && this->Present[s])
       {
-        // Selected already (worthDrawing): no triangle hint, the cached mesh's count decides.
-        raster.Draw(this->Slots[s].Prop, this->Slots[s].Bounds);
+        const Slot& slot = this->Slots[s];
+        double model[16];
+        const bool placed = slot.Placement >= 0 &&
+          static_cast<vtkInstancedActor*>(slot.Prop.GetPointer())
+            ->GetPlacementModelMatrix(slot.Placement, model);
+        raster.Draw(slot.Prop, slot.Bounds, placed ? model : nullptr);
       }
     };
     occlusion.worthDrawing = [&raster](const glm::dvec3& lo, const glm::dvec3& hi,
@@ -279,7 +302,8 @@ public:
     const char* name = prop->GetClassName();
     // Only plain actors: subclasses such as vtkFollower / vtkLODActor / vtkAxesActor compute
     // their matrix or bounds from other state (the camera, their parts).
-    if (std::strcmp(name, "vtkOpenGLActor") != 0 && std::strcmp(name, "vtkActor") != 0)
+    if (std::strcmp(name, "vtkOpenGLActor") != 0 && std::strcmp(name, "vtkActor") != 0 &&
+      std::strcmp(name, "vtkInstancedActor") != 0)
     {
       return false;
     }
@@ -440,7 +464,8 @@ vtkIdType vtkOctreeCuller::GetNumberOfObservedObjects() const
 
 vtkIdType vtkOctreeCuller::GetNumberOfPolledProps() const
 {
-  return this->Internals->EventsActive ? static_cast<vtkIdType>(this->Internals->PolledSlots.size()) : 0;
+  return this->Internals->EventsActive ? static_cast<vtkIdType>(this->Internals->PolledSlots.size())
+                                       : 0;
 }
 
 //------------------------------------------------------------------------------
@@ -511,7 +536,8 @@ static bool RefreshSlot(Slot& slot, bool& warnedInvalid, vtkOctreeCuller* self)
   const SlotKind oldKind = slot.Kind;
   double old[6];
   std::copy(slot.Bounds, slot.Bounds + 6, old);
-  const double* b = prop->GetBounds();
+  double placementBounds[6];
+  const double* b = CurrentBounds(slot, placementBounds);
   if (!b)
   {
     slot.Kind = SlotKind::Flat;
@@ -567,12 +593,13 @@ static bool RefreshSlot(Slot& slot, bool& warnedInvalid, vtkOctreeCuller* self)
         {
           // Triangles OpenGL draws: n - 2 per polygon or strip of n points (read from the cell
           // arrays' sizes, constant time).
-          const auto triangles = [](vtkCellArray* cells) {
+          const auto triangles = [](vtkCellArray* cells)
+          {
             return std::max<vtkIdType>(
               0, cells->GetNumberOfConnectivityIds() - 2 * cells->GetNumberOfCells());
           };
-          slot.Triangles = static_cast<std::uint32_t>(std::min<vtkIdType>(UINT32_MAX,
-            triangles(pd->GetPolys()) + triangles(pd->GetStrips())));
+          slot.Triangles = static_cast<std::uint32_t>(std::min<vtkIdType>(
+            UINT32_MAX, triangles(pd->GetPolys()) + triangles(pd->GetStrips())));
         }
       }
     }
@@ -604,8 +631,21 @@ double vtkOctreeCuller::Cull(
   const auto n = static_cast<std::size_t>(listLength);
 
   // --- 1. Map the list onto the hierarchy's slots; rebuild only for props never seen. ----------
-  const bool sameList =
-    !in.RebuildRequested && n == in.LastList.size() && std::equal(propList, propList + n, in.LastList.begin());
+  // A vtkInstancedActor that gained or lost placements needs other slots: rebuild.
+  for (const std::uint32_t head : in.InstancedHeads)
+  {
+    const Slot& slot = in.Slots[head];
+    const vtkIdType placements =
+      static_cast<vtkInstancedActor*>(slot.Prop.GetPointer())->GetNumberOfPlacements();
+    if ((slot.Placement < 0) != (placements == 0) ||
+      (placements > 0 && static_cast<vtkIdType>(slot.Count) != placements))
+    {
+      in.RebuildRequested = true;
+      break;
+    }
+  }
+  const bool sameList = !in.RebuildRequested && n == in.LastList.size() &&
+    std::equal(propList, propList + n, in.LastList.begin());
   bool rebuild = in.RebuildRequested || in.NormalConesBuilt != this->NormalConeCulling;
   if (!sameList && !rebuild)
   {
@@ -626,8 +666,9 @@ double vtkOctreeCuller::Cull(
       else
       {
         in.ListSlots[i] = it->second;
-        present += in.Present[it->second] ? 0 : 1;
-        in.Present[it->second] = 1;
+        const std::uint32_t count = in.Slots[it->second].Count;
+        present += in.Present[it->second] ? 0 : count;
+        std::fill_n(in.Present.begin() + it->second, count, 1);
       }
     }
     // Forget props that are gone once they are the majority (they are held by reference).
@@ -662,10 +703,24 @@ double vtkOctreeCuller::Cull(
     in.EventsActive = false;
     in.Slots.clear();
     in.SlotOf.clear();
+    in.InstancedHeads.clear();
     in.Invalidated.clear();
     sc::BoxArrays boxes;
     std::vector<std::uint32_t> triangles;
     in.ListSlots.resize(n);
+    // One slot per prop, per placement of a vtkInstancedActor: sized once (a slot is ~180
+    // bytes; growing by doubling would hold up to twice that for 46,000 placements).
+    std::size_t slots = 0;
+    for (std::size_t i = 0; i < n; ++i)
+    {
+      auto* instanced = vtkInstancedActor::SafeDownCast(propList[i]);
+      slots += instanced ? std::max<std::size_t>(1, instanced->GetNumberOfPlacements()) : 1;
+    }
+    if (in.Slots.capacity() > slots)
+    {
+      std::vector<Slot>().swap(in.Slots); // cleared above
+    }
+    in.Slots.reserve(slots);
     for (std::size_t i = 0; i < n; ++i)
     {
       const auto found = in.SlotOf.find(propList[i]);
@@ -675,14 +730,26 @@ double vtkOctreeCuller::Cull(
         continue;
       }
       const auto s = static_cast<std::uint32_t>(in.Slots.size());
-      in.Slots.emplace_back();
-      Slot& slot = in.Slots.back();
-      slot.Prop = propList[i];
-      RefreshSlot(slot, in.WarnedInvalidBounds, this);
+      auto* instanced = vtkInstancedActor::SafeDownCast(propList[i]);
+      const vtkIdType placements = instanced ? instanced->GetNumberOfPlacements() : 0;
+      // A vtkInstancedActor is one slot per placement (none: one slot, drawing nothing).
+      for (vtkIdType k = 0; k < std::max<vtkIdType>(1, placements); ++k)
+      {
+        in.Slots.emplace_back();
+        Slot& slot = in.Slots.back();
+        slot.Prop = propList[i];
+        slot.Placement = placements > 0 ? k : -1;
+        slot.Count = k == 0 ? static_cast<std::uint32_t>(std::max<vtkIdType>(1, placements)) : 0;
+        RefreshSlot(slot, in.WarnedInvalidBounds, this);
+        boxes.push_back(slot.Kind == SlotKind::Tree ? ToBox(slot.Bounds) : scenevis::Box());
+        triangles.push_back(slot.Triangles);
+      }
       in.SlotOf.emplace(propList[i], s);
       in.ListSlots[i] = s;
-      boxes.push_back(slot.Kind == SlotKind::Tree ? ToBox(slot.Bounds) : scenevis::Box());
-      triangles.push_back(slot.Triangles);
+      if (instanced)
+      {
+        in.InstancedHeads.push_back(s);
+      }
     }
     in.Bvh.build(boxes, sc::BuildMethod::BinnedSah, 4, &triangles);
     in.LastVisible.clear(); // slot numbers changed
@@ -690,7 +757,7 @@ double vtkOctreeCuller::Cull(
     {
       for (std::uint32_t s = 0; s < in.Slots.size(); ++s)
       {
-        if (in.Slots[s].Kind == SlotKind::Tree)
+        if (in.Slots[s].Kind == SlotKind::Tree && in.Slots[s].Placement < 0)
         {
           in.Bvh.setNormalCone(s, ActorNormalCone(in.Slots[s].Prop));
         }
@@ -735,7 +802,7 @@ double vtkOctreeCuller::Cull(
       {
         in.Bvh.update(s, slot.Kind == SlotKind::Tree ? ToBox(slot.Bounds) : scenevis::Box());
       }
-      if (this->NormalConeCulling && slot.Kind == SlotKind::Tree)
+      if (this->NormalConeCulling && slot.Kind == SlotKind::Tree && slot.Placement < 0)
       {
         in.Bvh.setNormalCone(s, ActorNormalCone(slot.Prop)); // rotation keeps bounds sometimes
       }
@@ -752,10 +819,12 @@ double vtkOctreeCuller::Cull(
         {
           continue;
         }
-        const double* b = slot.Prop->GetBounds();
+        double scratchBounds[6];
+        const double* b = CurrentBounds(slot, scratchBounds);
         const bool same = slot.Kind == SlotKind::Tree && b && std::equal(b, b + 6, slot.Bounds);
-        if (!same || (slot.Kind == SlotKind::Tree && this->NormalConeCulling &&
-                       slot.Prop->vtkObject::GetMTime() != slot.PropTime))
+        if (!same ||
+          (slot.Kind == SlotKind::Tree && this->NormalConeCulling &&
+            slot.Prop->vtkObject::GetMTime() != slot.PropTime))
         {
           refresh(s);
         }
@@ -809,10 +878,12 @@ double vtkOctreeCuller::Cull(
         {
           continue;
         }
-        const double* b = slot.Prop->GetBounds();
+        double scratchBounds[6];
+        const double* b = CurrentBounds(slot, scratchBounds);
         const bool same = slot.Kind == SlotKind::Tree && b && std::equal(b, b + 6, slot.Bounds);
-        if (!same || (slot.Kind == SlotKind::Tree && this->NormalConeCulling &&
-                       slot.Prop->vtkObject::GetMTime() != slot.PropTime))
+        if (!same ||
+          (slot.Kind == SlotKind::Tree && this->NormalConeCulling &&
+            slot.Prop->vtkObject::GetMTime() != slot.PropTime))
         {
           refresh(s);
           in.Register(s, this->NormalConeCulling, scratch);
@@ -895,8 +966,8 @@ double vtkOctreeCuller::Cull(
     cam->GetDirectionOfProjection(dop);
     const double* range = cam->GetClippingRange();
     bool finite = std::isfinite(aspect) && aspect > 0.0 && std::isfinite(range[0]) &&
-      std::isfinite(range[1]) && range[1] > range[0] &&
-      std::isfinite(cam->GetViewAngle()) && std::isfinite(cam->GetParallelScale());
+      std::isfinite(range[1]) && range[1] > range[0] && std::isfinite(cam->GetViewAngle()) &&
+      std::isfinite(cam->GetParallelScale());
     for (int k = 0; k < 3; ++k)
     {
       finite = finite && std::isfinite(eye[k]) && std::isfinite(focal[k]) && std::isfinite(dop[k]);
@@ -949,8 +1020,8 @@ double vtkOctreeCuller::Cull(
     sc::CullStats stats;
     if (this->OcclusionCulling)
     {
-      in.CullOccluded(ren, params, this->OccluderCacheBudget,
-        this->OccluderMinimumPixelsPerTriangle, stats);
+      in.CullOccluded(
+        ren, params, this->OccluderCacheBudget, this->OccluderMinimumPixelsPerTriangle, stats);
       const vtkOccluderRasterizer& raster = *in.Occlusion;
       this->NumberOfPropsCulledByOcclusion = static_cast<vtkIdType>(stats.culledOcclusion);
       this->NumberOfOcclusionTests = static_cast<vtkIdType>(stats.occlusionTests);
@@ -992,7 +1063,23 @@ double vtkOctreeCuller::Cull(
   for (std::size_t i = 0; i < n; ++i)
   {
     const std::uint32_t s = in.ListSlots[i];
-    if (in.Drawn[s])
+    bool drawn = in.Drawn[s] != 0;
+    if (in.Slots[s].Placement >= 0)
+    {
+      // A vtkInstancedActor: drawn while any placement is, and told which.
+      in.Placements.clear();
+      for (std::uint32_t k = 0; k < in.Slots[s].Count; ++k)
+      {
+        if (in.Drawn[s + k])
+        {
+          in.Placements.push_back(static_cast<vtkIdType>(k));
+        }
+      }
+      static_cast<vtkInstancedActor*>(propList[i])
+        ->SetVisiblePlacements(in.Placements.data(), static_cast<vtkIdType>(in.Placements.size()));
+      drawn = !in.Placements.empty();
+    }
+    if (drawn)
     {
       propList[kept++] = propList[i];
       in.KeptSlots.push_back(s);

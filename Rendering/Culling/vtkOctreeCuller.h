@@ -79,6 +79,15 @@
  * Statistics of the last Cull(): nodes visited, props tested / culled (by reason) / drawn,
  * triangles drawn (polygons of the props' polydata).
  *
+ * vtkInstancedActor: each placement is a prop of its own in the hierarchy (its box: the mesh's
+ * box corners through the placement's model matrix), culled by frustum, distance, size and, in
+ * vtkOcclusionCuller, occlusion (a visible placement occludes with its own matrix); normal-cone
+ * culling does not apply to placements. The actor stays in the list while any placement is
+ * kept and is told which ones to draw (vtkInstancedActor::SetVisiblePlacements); when its
+ * number of placements changes the hierarchy is rebuilt. The hierarchy's statistics (tested,
+ * culled by reason, triangles drawn) count placements; NumberOfPropsDrawn / NumberOfPropsCulled
+ * count the entries of the prop list.
+ *
  * @sa vtkCuller vtkFrustumCoverageCuller vtkRenderer::AddCuller
  */
 

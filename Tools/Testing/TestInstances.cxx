@@ -5,6 +5,8 @@
 // are that copy cell for cell (placement i is its PartId i), so the BSP orders both alike.
 #include "../Instances.h"
 #include "vtkBSPSortFilter.h"
+#include "vtkInstancedActor.h"
+#include "vtkOcclusionCuller.h"
 
 #include "scenevis/testing/GTestSupport.h"
 #include "scenevis/testing/ImageCompare.h"
@@ -14,6 +16,7 @@
 #include <vtkActor.h>
 #include <vtkCamera.h>
 #include <vtkCellData.h>
+#include <vtkCullerCollection.h>
 #include <vtkFieldData.h>
 #include <vtkIdList.h>
 #include <vtkImageData.h>
@@ -40,14 +43,28 @@ vtkIdType Triangles(vtkPolyData* pd)
   return pd->GetNumberOfPolys(); // glTF primitives are triangles
 }
 
+/// How Render draws an instanced scene: one vtkActor per placement, or one vtkInstancedActor
+/// per mesh (the tool's default), alone or under vtkOcclusionCuller.
+enum class Draw
+{
+  Actors,
+  InstancedProps,
+  InstancedPropsOccluded
+};
+
 /// Renders @p meshes placed by @p scene (or, without it, the one flattened polydata) with the
 /// tool's colouring: direct RGBA cell scalars.
 vtkSmartPointer<vtkImageData> Render(const InstancedScene* scene, vtkPolyData* flattened,
-  const double eye[3] = nullptr, double farClip = 3000.0)
+  const double eye[3] = nullptr, double farClip = 3000.0, Draw draw = Draw::Actors)
 {
   vtkSmartPointer<vtkRenderWindow> window = st::MakeRenderWindow(320, 240);
   vtkNew<vtkRenderer> renderer;
   window->AddRenderer(renderer);
+  if (draw == Draw::InstancedPropsOccluded)
+  {
+    renderer->GetCullers()->RemoveAllItems();
+    renderer->AddCuller(vtkSmartPointer<vtkOcclusionCuller>::New());
+  }
   std::vector<vtkSmartPointer<vtkPolyDataMapper>> mappers;
   auto mapperOf = [&](vtkPolyData* pd)
   {
@@ -57,7 +74,19 @@ vtkSmartPointer<vtkImageData> Render(const InstancedScene* scene, vtkPolyData* f
     mappers.back()->SetColorModeToDirectScalars();
     return mappers.back().Get();
   };
-  if (scene)
+  if (scene && draw != Draw::Actors)
+  {
+    std::vector<vtkSmartPointer<vtkInstancedActor>> actors;
+    for (const auto& mesh : scene->meshes)
+    {
+      actors.push_back(vtkSmartPointer<vtkInstancedActor>::New());
+      actors.back()->SetMapper(mapperOf(mesh));
+      renderer->AddActor(actors.back());
+    }
+    for (const auto& instance : scene->instances)
+      actors[instance.mesh]->AddPlacement(instance.matrix.data());
+  }
+  else if (scene)
   {
     for (const auto& mesh : scene->meshes)
       mapperOf(mesh);
@@ -65,7 +94,9 @@ vtkSmartPointer<vtkImageData> Render(const InstancedScene* scene, vtkPolyData* f
     {
       vtkNew<vtkActor> actor;
       actor->SetMapper(mappers[instance.mesh]);
-      actor->SetUserMatrix(instance.matrix);
+      vtkNew<vtkMatrix4x4> matrix;
+      matrix->DeepCopy(instance.matrix.data());
+      actor->SetUserMatrix(matrix);
       renderer->AddActor(actor);
     }
   }
@@ -191,6 +222,11 @@ TEST(Instances, RepeatedNodesLoadOnceAndFlattenToTheImport)
   std::string why;
   EXPECT_TRUE(st::WithinThresholds(difference, thresholds, &why)) << why << difference.Summary();
   EXPECT_GT(st::CoveredFraction(instanced), 0.05);
+  for (const Draw draw : { Draw::InstancedProps, Draw::InstancedPropsOccluded })
+  {
+    EXPECT_TRUE(st::ImagesIdentical(Render(&scene, nullptr, eye, 100.0, draw), instanced, &why))
+      << "vtkInstancedActor per mesh: " << why;
+  }
 
   // sort --instances: the BSP over the flattened placements is the BSP over the flattened file.
   const std::vector<vtkIdType> order = BspOrder(flattened, eye);
@@ -267,6 +303,11 @@ TEST(Instances, VrmlUsesBecomePlacementsOfOneMesh)
   thresholds.maxCoveredBadFraction = 0.0005;
   std::string why;
   EXPECT_TRUE(st::WithinThresholds(difference, thresholds, &why)) << why << difference.Summary();
+  for (const Draw draw : { Draw::InstancedProps, Draw::InstancedPropsOccluded })
+  {
+    EXPECT_TRUE(st::ImagesIdentical(Render(&scene, nullptr, eye, 100.0, draw), instanced, &why))
+      << "vtkInstancedActor per mesh: " << why;
+  }
   EXPECT_GT(st::CoveredFraction(instanced), 0.05);
 }
 
@@ -338,6 +379,14 @@ TEST(Instances, EngineMeshesLoadOnceAndPlaceEveryNode)
   std::string why;
   EXPECT_TRUE(st::WithinThresholds(difference, thresholds, &why)) << why << difference.Summary();
   EXPECT_GT(st::CoveredFraction(instanced), 0.2);
+
+  // One vtkInstancedActor per mesh draws every placement as its own actor would: pixel for
+  // pixel, with no culler and under vtkOcclusionCuller (which culls placements one by one).
+  for (const Draw draw : { Draw::InstancedProps, Draw::InstancedPropsOccluded })
+  {
+    vtkSmartPointer<vtkImageData> props = Render(&scene, nullptr, nullptr, 3000.0, draw);
+    EXPECT_TRUE(st::ImagesIdentical(props, instanced, &why)) << why;
+  }
 }
 
 TEST(Instances, ALibraryWithoutPlacementsIsAnError)
