@@ -101,10 +101,13 @@ struct CullStats
  * tested, so what is drawn occludes what is behind it.
  *
  * Conservative: an object is culled only if its box is hidden behind occluders; each occluder is
- * an object this traversal reports visible (drawOccluder is only ever called for such objects) or
- * a seed that passes this frame's other tests and is hidden only behind nearer occluders
- * (transitively behind visible ones). So whatever the caller draws opaque where drawOccluder said,
- * the culled objects are hidden in the final image.
+ * an object this traversal reports visible, or one it drew when its box's nearest point was not
+ * hidden and culled later (when the traversal reached the box's centre, with more drawn) because
+ * it was then hidden behind occluders drawn before it, or a seed that passes this frame's other
+ * tests. An occluder that is not reported visible is hidden at each of its pixels behind earlier
+ * occluders, so what it hides is hidden by them too (transitively by visible ones). So whatever
+ * the caller draws opaque where drawOccluder said, the culled objects are hidden in the final
+ * image.
  */
 struct OcclusionCull
 {
@@ -203,6 +206,8 @@ private:
   void cullNodeOccluded(OcclusionFrame& frame, std::uint32_t node, std::uint8_t mask);
   /// OcclusionCull::worthDrawing of the object at position @p p (true without one).
   bool worthDrawing(const OcclusionCull& occlusion, std::uint32_t p) const;
+  /// Hands the object at position @p p to drawOccluder once per cull (if worthDrawing).
+  void drawOnce(OcclusionFrame& frame, std::uint32_t p);
   bool nodePasses(Frame& frame, std::uint32_t node, std::uint8_t& mask) const;
   bool objectPasses(Frame& frame, std::uint32_t position, std::uint8_t mask) const;
   void computeNodeBounds(std::uint32_t node);
