@@ -248,6 +248,16 @@ ScenePlan PlanScene(const Options& options, const LoadedScene& scene, const std:
   }
   plan.inspectMs = Milliseconds(inspectStart);
   plan.cull = PlanCulling(options.cull, plan.facts, options.roomArray);
+  if (plan.instanced && options.cull == "auto" && plan.cull.chunked)
+  {
+    // The rule's choice for one big opaque mesh; placements are drawn as they are, one actor
+    // per mesh, so they are culled as props instead.
+    const std::string why = plan.cull.reason;
+    plan.cull = PlanCulling("octree", plan.facts, options.roomArray);
+    plan.cull.reason = "placements are drawn as they are (--instances), so not chunked: the BVH "
+                       "culls them one by one; the rule for one mesh said: " +
+      why;
+  }
   if (plan.instanced)
   {
     if (plan.cull.chunked)

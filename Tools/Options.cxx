@@ -96,7 +96,8 @@ render and cull:
                         translucent, under 90 % of the triangles in the first view (with
                         --instances: 100+ placements, any view) -> octree, or occlusion when
                         the opaque parts' screen rectangles cover the area they span 4+ times;
-                        an opaque mesh of 500k+ triangles -> chunked; otherwise none. The
+                        an opaque mesh of 500k+ triangles -> chunked (with --instances:
+                        octree, placements are not one mesh); otherwise none. The
                         report says why, in numbers. A frame whose camera did not move
                         re-uses the last visible set and order
 
