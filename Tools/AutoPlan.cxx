@@ -248,6 +248,7 @@ ScenePlan PlanScene(const Options& options, const LoadedScene& scene, const std:
   }
   plan.inspectMs = Milliseconds(inspectStart);
   plan.cull = PlanCulling(options.cull, plan.facts, options.roomArray);
+  plan.cull.pvsBudget = options.pvsBudget;
   if (plan.instanced)
   {
     if (plan.cull.chunked)
