@@ -93,9 +93,10 @@ render and cull:
                         an opaque mesh of 500k+ triangles -> chunked; otherwise none. The
                         report says why, in numbers. A frame whose camera did not move
                         re-uses the last visible set and order
-  --pvs-budget SECONDS  with --cull pvs: stop the PVS precompute's portal flow after SECONDS
-                        (wall clock, > 0; default: none); the portals not finished keep their
-                        might-see sets (conservative, larger), and the report says how many
+  --pvs-budget SECONDS  with --cull pvs: the PVS precompute's portal flow shares SECONDS (wall
+                        clock, > 0; default: none) among the portals; a portal's flow that
+                        used its share closes with what it might still see (conservative,
+                        larger sets), and the report says how many
                         (culling.portals.pvs.degraded_portals, budget_exceeded)
 
 render:

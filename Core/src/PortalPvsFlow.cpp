@@ -30,11 +30,11 @@ struct DirectedPortal
 {
   std::int32_t from = 0;
   std::int32_t to = 0;
-  glm::dvec4 plane{ 0.0 }; ///< Facing `to`; coordinates relative to the portals' centre.
-  Winding winding;         ///< The graph portal's hull, relative to the portals' centre.
+  glm::dvec4 plane{ 0.0 };  ///< Facing `to`; coordinates relative to the portals' centre.
+  Winding winding;          ///< The graph portal's hull, relative to the portals' centre.
   glm::dvec3 centre{ 0.0 }; ///< Of a sphere around the winding (quick side tests).
   double radius = 0.0;
-  bool usable = false;     ///< Planar with known sides: it may narrow the flow.
+  bool usable = false; ///< Planar with known sides: it may narrow the flow.
 };
 
 inline bool bit(const std::uint64_t* set, std::size_t i)
@@ -75,8 +75,8 @@ double minDistance(const Winding& w, const glm::dvec4& plane)
 }
 
 /// Clips @p w in place to dot(plane, p) >= -slack (@p scratch is reused); false when < 3 points.
-bool chop(Winding& w, const glm::dvec4& plane, double slack, Winding& scratch,
-  bool* changed = nullptr)
+bool chop(
+  Winding& w, const glm::dvec4& plane, double slack, Winding& scratch, bool* changed = nullptr)
 {
   bool allIn = true;
   for (const auto& p : w)
@@ -106,8 +106,8 @@ bool chop(Winding& w, const glm::dvec4& plane, double slack, Winding& scratch,
  * front. With @p flip (called with the two swapped) they face away from the first argument.
  * One plane per edge (the first found) is enough to be conservative.
  */
-void findSeparators(const Winding& source, const Winding& pass, bool flip, double on,
-  std::vector<glm::dvec4>& out)
+void findSeparators(
+  const Winding& source, const Winding& pass, bool flip, double on, std::vector<glm::dvec4>& out)
 {
   const std::size_t ns = source.size();
   for (std::size_t i = 0; i < ns; ++i)
@@ -172,8 +172,7 @@ void findSeparators(const Winding& source, const Winding& pass, bool flip, doubl
 }
 
 /// The separating planes of (source, pass) and of (pass, source), each facing beyond the pass.
-void separators(const Winding& source, const Winding& pass, double on,
-  std::vector<glm::dvec4>& out)
+void separators(const Winding& source, const Winding& pass, double on, std::vector<glm::dvec4>& out)
 {
   out.clear();
   findSeparators(source, pass, false, on, out);
@@ -181,8 +180,7 @@ void separators(const Winding& source, const Winding& pass, double on,
 }
 
 /// Clips @p target by @p planes in turn; false when nothing is left.
-bool chopAll(Winding& target, const std::vector<glm::dvec4>& planes, double slack,
-  Winding& scratch)
+bool chopAll(Winding& target, const std::vector<glm::dvec4>& planes, double slack, Winding& scratch)
 {
   for (const glm::dvec4& plane : planes)
   {
@@ -221,7 +219,8 @@ struct Shared
   double on = 0.0, slack = 0.0;
   std::size_t maxSteps = 0;
   bool clipSource = false;
-  std::atomic<bool> stop{ false }, budgetHit{ false };
+  /// stop: cancelled (flows abort); closing: the budget ran out (flows close their branches).
+  std::atomic<bool> stop{ false }, closing{ false }, budgetHit{ false };
   std::atomic<std::size_t> totalSteps{ 0 }, degraded{ 0 };
 
   const std::uint64_t* mightOf(std::size_t p) const { return &this->mightSee[p * this->words]; }
@@ -296,8 +295,15 @@ struct Shared
     std::fill(rejected.begin(), rejected.end(), 0);
   }
 
-  /// The flow from directed portal @p s; false when stopped (budget, cancel).
-  bool flow(std::size_t s, std::vector<Level>& levels, Winding& scratch)
+  /**
+   * The flow from directed portal @p s; false when cancelled. After @p limit steps, or once
+   * the budget has run out, the flow closes instead of descending: a portal that passes the
+   * clipping is marked seen together with everything its branch might still see (the might
+   * bits of its level: the intersection of the might-see or final sets of the portals on the
+   * path), which bounds whatever lies beyond it. @p closed says whether that happened.
+   */
+  bool flow(
+    std::size_t s, std::vector<Level>& levels, Winding& scratch, std::size_t limit, bool& closed)
   {
     const DirectedPortal& src = this->portals[s];
     std::uint64_t* visS = this->visOf(s);
@@ -316,6 +322,7 @@ struct Shared
     root.separatorsReady = false;
     std::size_t depth = 0, steps = 0;
     bool ok = true;
+    bool closeNow = this->closing.load(std::memory_order_relaxed);
     for (;;)
     {
       Level& L = levels[depth];
@@ -406,23 +413,32 @@ struct Shared
         }
       }
       setBit(visS, p);
+      if (closeNow)
+      {
+        for (std::size_t w = 0; w < W; ++w)
+        {
+          visS[w] |= N.might[w];
+        }
+        continue;
+      }
       N.node = dp.to;
       N.next = 0;
       N.plane = dp.plane;
       N.separatorsReady = false;
       ++depth;
-      if ((++steps & 1023u) == 0 && this->stop.load(std::memory_order_relaxed))
+      if ((++steps & 1023u) == 0)
       {
-        ok = false;
-        break;
+        if (this->stop.load(std::memory_order_relaxed))
+        {
+          ok = false;
+          break;
+        }
+        closeNow = closeNow || this->closing.load(std::memory_order_relaxed);
       }
-      if (this->maxSteps && steps > this->maxSteps)
-      {
-        ok = false;
-        break;
-      }
+      closeNow = closeNow || (limit && steps >= limit);
     }
     this->totalSteps.fetch_add(steps, std::memory_order_relaxed);
+    closed = closeNow;
     return ok;
   }
 };
@@ -636,8 +652,23 @@ PortalPvs computePortalFlow(const PortalGraph& g, const PvsOptions& options, Pvs
       if (budget > 0.0 && std::chrono::duration<double>(Clock::now() - flowStart).count() > budget)
       {
         sh.budgetHit = true;
-        sh.stop = true;
+        sh.closing = true;
       }
+    };
+    // With a budget, each flow gets an even share of the time left, in steps at the rate
+    // measured so far, so that the budget narrows every portal a little rather than leaving
+    // the last ones (the most expensive: most might-see) with nothing.
+    auto stepLimit = [&](std::size_t left) -> std::size_t
+    {
+      const double elapsed = std::chrono::duration<double>(Clock::now() - flowStart).count();
+      const std::size_t done = sh.totalSteps.load(std::memory_order_relaxed);
+      if (!(budget > 0.0) || elapsed < 0.25 || done == 0)
+      {
+        return sh.maxSteps;
+      }
+      const double share = (budget - elapsed) * (double(done) / elapsed) / double(left);
+      const auto steps = static_cast<std::size_t>(std::max(256.0, share));
+      return sh.maxSteps ? std::min(sh.maxSteps, steps) : steps;
     };
     runParallel(
       order.size(), threads,
@@ -647,11 +678,14 @@ PortalPvs computePortalFlow(const PortalGraph& g, const PvsOptions& options, Pvs
         thread_local Winding scratch;
         const std::uint32_t s = order[i];
         overBudget();
-        if (sh.stop.load(std::memory_order_relaxed) || !sh.flow(s, levels, scratch))
+        bool closed = false;
+        const std::size_t limit = stepLimit(order.size() - i);
+        if (sh.stop.load(std::memory_order_relaxed) || !sh.flow(s, levels, scratch, limit, closed))
         {
           std::copy(sh.mightOf(s), sh.mightOf(s) + sh.words, sh.visOf(s));
-          sh.degraded.fetch_add(1);
+          closed = true;
         }
+        sh.degraded.fetch_add(closed ? 1 : 0);
         sh.done[s].store(1, std::memory_order_release);
         weight.fetch_add(mightCount[s], std::memory_order_relaxed);
       },
