@@ -101,6 +101,15 @@ def area_xy(polygon):
                for p, q in zip(polygon, polygon[1:] + polygon[:1])) / 2.0
 
 
+def area_3d(polygon):
+    n = [0.0, 0.0, 0.0]
+    for p, q in zip(polygon, polygon[1:] + polygon[:1]):
+        n[0] += (p[1] - q[1]) * (p[2] + q[2])
+        n[1] += (p[2] - q[2]) * (p[0] + q[0])
+        n[2] += (p[0] - q[0]) * (p[1] + q[1])
+    return sum(v * v for v in n) ** 0.5 / 2.0
+
+
 class ConverterTest(unittest.TestCase):
     def setUp(self):
         self.dir = tempfile.TemporaryDirectory()
@@ -127,10 +136,13 @@ class ConverterTest(unittest.TestCase):
         # Walls: 3 of room 0; the open line's lower (0..16) and upper (96..128) parts face room 0;
         # 2 of room 1; the shut door's line closes room 1 (16..96); the door itself, a closed
         # sector, has no walls, floor or ceiling. Then a floor and a ceiling per subsector of
-        # rooms 0 and 1.
-        self.assertIn('NumberOfPolys="12"', head)
+        # rooms 0 and 1. The two walls of room 0 beside the open line get the corners of its
+        # lower and upper parts (no T-junctions) and are written as 6 triangles each: 22 cells.
+        self.assertIn('NumberOfPolys="22"', head)
         walls = [(r, p) for r, p in zip(rooms, model) if len(set(q[2] for q in p)) > 1]
-        self.assertEqual(sorted(r for r, _ in walls), [0, 0, 0, 0, 0, 1, 1, 1])
+        self.assertEqual(sorted(set(r for r, _ in walls)), [0, 1])
+        for room, area in ((0, 3 * 128 * 128 + 128 * 16 + 128 * 32), (1, 3 * 128 * 80)):
+            self.assertAlmostEqual(sum(area_3d(p) for r, p in walls if r == room), area, places=2)
         spans = sorted((r, min(q[2] for q in p), max(q[2] for q in p), p[0][0]) for r, p in walls
                        if p[0][0] == p[1][0] and p[0][0] in (128, 256))
         self.assertEqual(spans, [(0, 0, 16, 128), (0, 96, 128, 128), (1, 16, 96, 256)])
@@ -143,7 +155,7 @@ class ConverterTest(unittest.TestCase):
             down = polygon[0][2] == ceiling and area_xy(polygon) < 0
             self.assertTrue(up or down, (room, polygon))  # floors face up, ceilings down
             self.assertAlmostEqual(abs(area_xy(polygon)), width * 128, places=3)
-        self.assertEqual(len(arrays["Colors"]), 4 * 12)
+        self.assertEqual(len(arrays["Colors"]), 4 * 22)
         head, arrays = read_vtp(self.path("portals.vtp"))
         self.assertIn('NumberOfPolys="1"', head)
         (portal,) = polygons(arrays)
@@ -182,6 +194,11 @@ class ConverterTest(unittest.TestCase):
         self.assertEqual(result.returncode, 0, result.stderr)
         self.assertRegex(result.stdout, r" [1-9][0-9]* T-junctions closed")
         model = polygons(read_vtp(self.path("map.vtp"))[1])
+        # And no three collinear points in a cell: VTK would triangulate them into a needle
+        # triangle with wrong depths (a one-pixel hole in a MAP12 wall).
+        for polygon in model:
+            for a, b, c in zip(polygon, polygon[1:] + polygon[:1], polygon[2:] + polygon[:2]):
+                self.assertGreater(area_3d([a, b, c]), 1e-6, polygon)
         points = {p for polygon in model for p in polygon}
         for polygon in model:
             for a, b in zip(polygon, polygon[1:] + polygon[:1]):

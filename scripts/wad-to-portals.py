@@ -29,7 +29,9 @@ OUT.vtp: polygons with the cell arrays
   assumption: along a two-sided line a sector's height range is covered by the lower part, the
   opening and the upper part. And the model is watertight: points within 1e-3 are welded, and
   every point lying inside another polygon's edge is inserted into that edge (no T-junctions,
-  whose pixel cracks would show rooms no portal leads to).
+  whose pixel cracks would show rooms no portal leads to); a polygon that got such points is
+  written as triangles from its centre (VTK's own triangulation of collinear points makes
+  needle triangles with wrong depths).
 
 OUT-portals.vtp: one vertical quad per two-sided line joining two different sectors, over the
 opening between the higher of the two floors and the lower of the two ceilings (integer cell
@@ -156,7 +158,8 @@ def make_watertight(polygons, weld=1e-3):
     polygon's edge (within `weld`) into that edge, in place: T-junctions (a subsector's floor
     edge spanning two of its neighbour's, a wall's foot spanning several floor edges, a lower
     part's top corner on the vertical edge of the wall beside it) leave pixel cracks that the
-    rasterizer lets rays through, into rooms no portal leads to. Returns the points inserted."""
+    rasterizer lets rays through, into rooms no portal leads to. Returns the points inserted and
+    the indices of the polygons that got some."""
     cell = 64.0
     welded, grid = [], {}
 
@@ -176,8 +179,8 @@ def make_watertight(polygons, weld=1e-3):
 
     for polygon in polygons:
         polygon[:] = [weld_point(tuple(float(v) for v in p)) for p in polygon]
-    inserted = 0
-    for polygon in polygons:
+    inserted, changed = 0, []
+    for index, polygon in enumerate(polygons):
         out = []
         for i, a in enumerate(polygon):
             b = polygon[(i + 1) % len(polygon)]
@@ -206,8 +209,31 @@ def make_watertight(polygons, weld=1e-3):
             between.sort()
             out.extend(q for _, q in between)
             inserted += len(between)
+        if len(out) > len(polygon):
+            changed.append(index)
         polygon[:] = out
-    return inserted
+    return inserted, changed
+
+
+def fan_around_centre(polygons, rooms, kinds, changed):
+    """Replaces each polygon of `changed` (convex, with points on its edges) by triangles from its
+    centre to each edge, in place. VTK triangulates a polygon itself, and three collinear points
+    (an inserted point between two corners) become a needle triangle whose depth is wrong: MAP12
+    showed a floor 570 units behind a wall through a one-pixel hole in the wall."""
+    changed = set(changed)
+    out_polygons, out_rooms, out_kinds = [], [], []
+    for index, (polygon, room, kind) in enumerate(zip(polygons, rooms, kinds)):
+        if index not in changed:
+            out_polygons.append(polygon)
+            out_rooms.append(room)
+            out_kinds.append(kind)
+            continue
+        centre = tuple(sum(p[k] for p in polygon) / len(polygon) for k in range(3))
+        for i, a in enumerate(polygon):
+            out_polygons.append([centre, a, polygon[(i + 1) % len(polygon)]])
+            out_rooms.append(room)
+            out_kinds.append(kind)
+    polygons[:], rooms[:], kinds[:] = out_polygons, out_rooms, out_kinds
 
 
 def right_of(x0, y0, dx, dy):
@@ -374,7 +400,8 @@ def convert(data, map_name, all_things=False):
         rooms.append(sector)
         kinds.append(("ceiling", sector))
 
-    t_junctions = make_watertight(polygons)
+    t_junctions, changed = make_watertight(polygons)
+    fan_around_centre(polygons, rooms, kinds, changed)
 
     # Cameras: the sector a thing stands in, found by walking the BSP.
     def sector_at(x, y):
