@@ -141,6 +141,10 @@ void findSeparators(
         const double d = geometry::planeDistance(plane, source[k]);
         lo = std::min(lo, d);
         hi = std::max(hi, d);
+        if (hi > on && lo < -on)
+        {
+          break; // settled: numerically not convex
+        }
       }
       if (hi > on && lo < -on)
       {
@@ -160,6 +164,10 @@ void findSeparators(
         const double d = geometry::planeDistance(plane, q);
         behind = behind || d < -on;
         front = front || d > on;
+        if (behind)
+        {
+          break; // settled: not separating
+        }
       }
       if (behind || !front)
       {
@@ -351,19 +359,30 @@ struct Shared
         ? &this->vis[static_cast<std::size_t>(p) * W]
         : this->mightOf(p);
       N.might.resize(W);
-      std::uint64_t more = 0;
-      for (std::size_t w = 0; w < W; ++w)
+      // The bits beyond p: needed first only when p is already seen (nothing new: skip it);
+      // otherwise only for a p that survives the clipping.
+      const bool seenP = bit(visS, p);
+      auto intersect = [&]()
       {
-        N.might[w] = L2.might[w] & test[w];
-        more |= N.might[w] & ~visS[w];
-      }
-      if (!more && bit(visS, p))
+        std::uint64_t more = 0;
+        for (std::size_t w = 0; w < W; ++w)
+        {
+          N.might[w] = L2.might[w] & test[w];
+          more |= N.might[w] & ~visS[w];
+        }
+        return more != 0;
+      };
+      if (seenP && !intersect())
       {
         continue; // nothing new behind p
       }
       const DirectedPortal& dp = this->portals[p];
       if (!dp.usable)
       {
+        if (!seenP)
+        {
+          intersect();
+        }
         setBit(visS, p); // no narrowing through it: everything it may lead to
         for (std::size_t w = 0; w < W; ++w)
         {
@@ -411,6 +430,10 @@ struct Shared
             continue;
           }
         }
+      }
+      if (!seenP)
+      {
+        intersect();
       }
       setBit(visS, p);
       if (closeNow)
