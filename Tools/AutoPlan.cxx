@@ -258,6 +258,7 @@ ScenePlan PlanScene(const Options& options, const LoadedScene& scene, const std:
                        "culls them one by one; the rule for one mesh said: " +
       why;
   }
+  plan.cull.pvsBudget = options.pvsBudget;
   if (plan.instanced)
   {
     if (plan.cull.chunked)

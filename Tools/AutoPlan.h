@@ -41,6 +41,7 @@ struct CullPlan
   bool chunked = false;
   double smallPixels = 0.0;
   std::string roomArray = "RoomId"; ///< the cell array the portal culler reads rooms from
+  double pvsBudget = 0.0;           ///< --cull pvs: the precompute's budget in seconds (0: none)
 };
 
 /// The --cull plan applied to a loaded scene: the groups drawn as actors and the sort method.

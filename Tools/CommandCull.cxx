@@ -180,14 +180,25 @@ void DescribeExact(std::ostream& json, vtkRenderWindow* window, vtkCamera* camer
     }
   }
   // What an approximate mode costs on screen: the pixels whose visible cell it did not draw.
+  // The first lost pixels themselves (x, y from the bottom left, cell): where to look.
   std::size_t visiblePixels = 0;
   std::size_t lostPixels = 0;
-  for (const std::uint32_t id : visibleIds.ids)
+  std::ostringstream lostList;
+  for (std::size_t i = 0; i < visibleIds.ids.size(); ++i)
   {
+    const std::uint32_t id = visibleIds.ids[i];
     if (id == st::kNoId || id >= drawn.size())
       continue;
     ++visiblePixels;
-    lostPixels += drawn[id] ? 0 : 1;
+    if (drawn[id])
+      continue;
+    if (lostPixels < 64)
+    {
+      const auto width = static_cast<std::size_t>(visibleIds.width);
+      lostList << (lostPixels ? ", " : "") << "[" << i % width << ", " << i / width << ", " << id
+               << "]";
+    }
+    ++lostPixels;
   }
   const auto drawnCells = std::count(drawn.begin(), drawn.end(), 1);
   json << ",\n  \"exact\": {\"visible_pixels\": " << visiblePixels
@@ -205,6 +216,8 @@ void DescribeExact(std::ostream& json, vtkRenderWindow* window, vtkCamera* camer
          << ", \"false_negative_props\": " << missedKeys.size()
          << ", \"overdraw_props\": " << overdrawProps;
   }
+  if (lostPixels > 0)
+    json << ", \"lost\": [" << lostList.str() << "]";
   json << ", \"id_render_ms\": " << exactMs << "}";
 }
 } // namespace

@@ -178,6 +178,8 @@ CullSetup::CullSetup(const CullPlan& plan, const MethodPipeline& pipeline, vtkRe
     inner = this->Portal;
     if (m == "pvs")
     {
+      // Past the budget, the unfinished portals keep their conservative might-see sets.
+      this->Portal->SetPVSBudgetSeconds(plan.pvsBudget);
       vtkNew<ProgressBar> progress;
       progress->Label = "computing PVS";
       if (showProgress)
@@ -293,6 +295,7 @@ void CullSetup::Describe(std::ostream& json) const
                                                                            : "\"portal-flow\"")
            << ", \"average_rooms\": " << p->GetPVSAverageSetSize()
            << ", \"degraded_portals\": " << p->GetPVSDegradedPortals()
+           << ", \"budget_seconds\": " << p->GetPVSBudgetSeconds()
            << ", \"budget_exceeded\": " << (p->GetPVSBudgetExceeded() ? "true" : "false") << "}";
     }
     json << "}";

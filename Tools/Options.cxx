@@ -100,6 +100,11 @@ render and cull:
                         octree, placements are not one mesh); otherwise none. The
                         report says why, in numbers. A frame whose camera did not move
                         re-uses the last visible set and order
+  --pvs-budget SECONDS  with --cull pvs: the PVS precompute's portal flow shares SECONDS (wall
+                        clock, > 0; default: none) among the portals; a portal's flow that
+                        used its share closes with what it might still see (conservative,
+                        larger sets), and the report says how many
+                        (culling.portals.pvs.degraded_portals, budget_exceeded)
 
 render:
   --sort METHOD         auto (default), none (unsorted alpha), oit (VTK's default weighted
@@ -341,6 +346,13 @@ Options ParseOptions(int argc, char* argv[])
       options.exportScene = value();
     else if (flag == "--exact")
       options.exact = true;
+    else if (flag == "--pvs-budget")
+    {
+      const std::string text = value();
+      options.pvsBudget = ParseNumber(flag, text);
+      if (!(options.pvsBudget > 0.0) || options.pvsBudget > 1e6)
+        throw UsageError(flag + " expects seconds in (0, 1000000], got '" + text + "'");
+    }
     else if (flag == "--sort")
       options.sort = value();
     else if (flag == "--size")
@@ -403,6 +415,11 @@ Options ParseOptions(int argc, char* argv[])
     if (pixels <= 0.0 || pixels > 10000.0)
       throw UsageError(
         "--cull small:N expects a size in pixels in (0, 10000], got '" + c.substr(6) + "'");
+  }
+  if (options.pvsBudget > 0.0 && c != "pvs")
+  {
+    throw UsageError(
+      "--pvs-budget is the budget of --cull pvs's precompute (got --cull " + c + ")");
   }
   if ((!options.exportScene.empty() || options.exact) && options.command != "cull")
   {

@@ -55,6 +55,8 @@ struct Options
   std::string portals;     ///< --portals FILE.vtp
   std::string exportScene; ///< cull --export-scene PREFIX
   bool exact = false;      ///< cull --exact: compare with the ID-buffer visible set
+  /// --pvs-budget SECONDS: wall-clock budget of the PVS precompute of --cull pvs (0: none).
+  double pvsBudget = 0.0;
   int width = 800;
   int height = 600;
   int frames = 1;

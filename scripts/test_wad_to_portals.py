@@ -2,7 +2,8 @@
 """Tests of scripts/wad-to-portals.py on a tiny Doom map built here (standard library only):
 three sectors in a row: a room (floor 0, ceiling 128), a lower-ceiling room with a raised floor
 (16, 96) joined to it by an open two-sided line, and a shut door (16, 16) behind a closed one;
-a BSP of two nodes and three subsectors; player and deathmatch starts. And bad input (wrong magic,
+a BSP of two nodes and three subsectors; player and deathmatch starts. The model is watertight
+(no T-junctions) and the shut door, a closed sector, has no polygon. And bad input (wrong magic,
 a truncated file, a missing map, a Hexen map, extended nodes, a line naming a missing vertex)
 refused with one line and exit code 1.
 
@@ -100,6 +101,15 @@ def area_xy(polygon):
                for p, q in zip(polygon, polygon[1:] + polygon[:1])) / 2.0
 
 
+def area_3d(polygon):
+    n = [0.0, 0.0, 0.0]
+    for p, q in zip(polygon, polygon[1:] + polygon[:1]):
+        n[0] += (p[1] - q[1]) * (p[2] + q[2])
+        n[1] += (p[2] - q[2]) * (p[0] + q[0])
+        n[2] += (p[0] - q[0]) * (p[1] + q[1])
+    return sum(v * v for v in n) ** 0.5 / 2.0
+
+
 class ConverterTest(unittest.TestCase):
     def setUp(self):
         self.dir = tempfile.TemporaryDirectory()
@@ -124,24 +134,28 @@ class ConverterTest(unittest.TestCase):
         model = polygons(arrays)
         rooms = arrays["RoomId"]
         # Walls: 3 of room 0; the open line's lower (0..16) and upper (96..128) parts face room 0;
-        # 2 of room 1; the shut door's upper part (16..96) faces room 1; the door's own walls
-        # have no height. Then a floor and a ceiling per subsector.
-        self.assertIn('NumberOfPolys="14"', head)
-        walls = [(r, p) for r, p in zip(rooms, model) if len(set(q[2] for q in p)) == 2]
-        self.assertEqual(sorted(r for r, _ in walls), [0, 0, 0, 0, 0, 1, 1, 1])
+        # 2 of room 1; the shut door's line closes room 1 (16..96); the door itself, a closed
+        # sector, has no walls, floor or ceiling. Then a floor and a ceiling per subsector of
+        # rooms 0 and 1. The two walls of room 0 beside the open line get the corners of its
+        # lower and upper parts (no T-junctions) and are written as 6 triangles each: 22 cells.
+        self.assertIn('NumberOfPolys="22"', head)
+        walls = [(r, p) for r, p in zip(rooms, model) if len(set(q[2] for q in p)) > 1]
+        self.assertEqual(sorted(set(r for r, _ in walls)), [0, 1])
+        for room, area in ((0, 3 * 128 * 128 + 128 * 16 + 128 * 32), (1, 3 * 128 * 80)):
+            self.assertAlmostEqual(sum(area_3d(p) for r, p in walls if r == room), area, places=2)
         spans = sorted((r, min(q[2] for q in p), max(q[2] for q in p), p[0][0]) for r, p in walls
                        if p[0][0] == p[1][0] and p[0][0] in (128, 256))
         self.assertEqual(spans, [(0, 0, 16, 128), (0, 96, 128, 128), (1, 16, 96, 256)])
         flats = [(r, p) for r, p in zip(rooms, model) if len(set(q[2] for q in p)) == 1]
-        self.assertEqual(len(flats), 6)
+        self.assertEqual(len(flats), 4)
         for room, polygon in flats:
             floor, ceiling, _ = SECTORS[room]
-            width = {0: 128, 1: 128, 2: 32}[room]
+            width = {0: 128, 1: 128}[room]
             up = polygon[0][2] == floor and area_xy(polygon) > 0
             down = polygon[0][2] == ceiling and area_xy(polygon) < 0
             self.assertTrue(up or down, (room, polygon))  # floors face up, ceilings down
             self.assertAlmostEqual(abs(area_xy(polygon)), width * 128, places=3)
-        self.assertEqual(len(arrays["Colors"]), 4 * 14)
+        self.assertEqual(len(arrays["Colors"]), 4 * 22)
         head, arrays = read_vtp(self.path("portals.vtp"))
         self.assertIn('NumberOfPolys="1"', head)
         (portal,) = polygons(arrays)
@@ -159,6 +173,42 @@ class ConverterTest(unittest.TestCase):
         self.assertEqual(cameras[1]["up"], [0, 0, 1])
         self.assertEqual(cameras[1]["view_angle"], 90)
         self.assertEqual(cameras[1]["clipping_range"][0], 1)
+
+    def test_closed_sector_bounds_nothing(self):
+        # MAP12 lost 15 pixels of 8 shut doors to the ID buffer: a closed sector's floor and
+        # ceiling lie on the edge where the walls that close it meet, and depth ties showed them
+        # there, with no portal leading to them. A closed sector has no polygon at all.
+        self.assertEqual(self.convert(tiny_wad()).returncode, 0)
+        _, arrays = read_vtp(self.path("map.vtp"))
+        self.assertNotIn(2, arrays["RoomId"])
+        # Each room's walls stay within its own height range (nothing hangs below its floor).
+        for room, polygon in zip(arrays["RoomId"], polygons(arrays)):
+            floor, ceiling, _ = SECTORS[room]
+            self.assertTrue(all(floor <= p[2] <= ceiling for p in polygon), (room, polygon))
+
+    def test_watertight(self):
+        # MAP12 lost 6 pixels through T-junctions (a floor edge spanning two of its neighbour's,
+        # a wall's foot on a longer floor edge): no point of a polygon may lie inside another
+        # polygon's edge, so that every edge is drawn from the same two points on both sides.
+        result = self.convert(tiny_wad())
+        self.assertEqual(result.returncode, 0, result.stderr)
+        self.assertRegex(result.stdout, r" [1-9][0-9]* T-junctions closed")
+        model = polygons(read_vtp(self.path("map.vtp"))[1])
+        # And no three collinear points in a cell: VTK would triangulate them into a needle
+        # triangle with wrong depths (a one-pixel hole in a MAP12 wall).
+        for polygon in model:
+            for a, b, c in zip(polygon, polygon[1:] + polygon[:1], polygon[2:] + polygon[:2]):
+                self.assertGreater(area_3d([a, b, c]), 1e-6, polygon)
+        points = {p for polygon in model for p in polygon}
+        for polygon in model:
+            for a, b in zip(polygon, polygon[1:] + polygon[:1]):
+                d = [b[k] - a[k] for k in range(3)]
+                length2 = sum(v * v for v in d)
+                for q in points:
+                    t = sum((q[k] - a[k]) * d[k] for k in range(3)) / length2
+                    off = sum((a[k] + t * d[k] - q[k]) ** 2 for k in range(3))
+                    self.assertFalse(1e-9 < t < 1 - 1e-9 and off < 1e-12,
+                                     f"{q} lies inside the edge {a}-{b} of {polygon}")
 
     def test_all_things(self):
         with open(self.path("map.wad"), "wb") as f:

@@ -13,17 +13,25 @@ OUT.vtp: polygons with the cell arrays
   RoomId  (Int32) the sector whose volume the polygon bounds
   Colors  (UInt8 RGBA, opaque) a colour per kind of surface shaded by the sector's light level
   - one-sided lines: a wall quad from the floor to the ceiling of their sector;
-  - two-sided lines joining two sectors: the lower part (between the two floors; RoomId = the
-    sector with the lower floor, the one it faces) and the upper part (between the two ceilings;
-    the sector with the higher ceiling). Middle textures (grates, fences) are left out: they are
-    see-through;
+  - two-sided lines joining two sectors: per side, the part of that side's own height range
+    outside the opening: the lower part (from its floor up to the other floor) and the upper
+    part (from the other ceiling up to its ceiling), RoomId = that side's sector; where the
+    opening is shut, the side's whole range. Middle textures (grates, fences) are left out: they
+    are see-through;
   - floors and ceilings: each subsector of the map's own BSP as a convex polygon: the map's
     bounds clipped by the node partition lines down to the subsector, then by the lines of the
     linedefs its segs lie on (the linedefs' exact vertices, not the segs' rounded split points,
     so floors meet walls exactly). RoomId = the sector of the subsector's first seg.
+  - closed sectors (ceiling <= floor: shut doors, raised lifts) bound no volume and get no
+    polygon: their floors and ceilings would lie on the edges where the walls that close them
+    meet, seen there only through depth ties.
   The room's surfaces close its volume except at its portals, the portal scene format's
   assumption: along a two-sided line a sector's height range is covered by the lower part, the
-  opening and the upper part.
+  opening and the upper part. And the model is watertight: points within 1e-3 are welded, and
+  every point lying inside another polygon's edge is inserted into that edge (no T-junctions,
+  whose pixel cracks would show rooms no portal leads to); a polygon that got such points is
+  written as triangles from its centre (VTK's own triangulation of collinear points makes
+  needle triangles with wrong depths).
 
 OUT-portals.vtp: one vertical quad per two-sided line joining two different sectors, over the
 opening between the higher of the two floors and the lower of the two ceilings (integer cell
@@ -145,6 +153,89 @@ def clip(polygon, a, b, c):
     return out
 
 
+def make_watertight(polygons, weld=1e-3):
+    """Weld points closer than `weld` into one, then put every point that lies inside another
+    polygon's edge (within `weld`) into that edge, in place: T-junctions (a subsector's floor
+    edge spanning two of its neighbour's, a wall's foot spanning several floor edges, a lower
+    part's top corner on the vertical edge of the wall beside it) leave pixel cracks that the
+    rasterizer lets rays through, into rooms no portal leads to. Returns the points inserted and
+    the indices of the polygons that got some."""
+    cell = 64.0
+    welded, grid = [], {}
+
+    def key(p):
+        return (int(math.floor(p[0] / cell)), int(math.floor(p[1] / cell)))
+
+    def weld_point(p):
+        kx, ky = key(p)
+        for dx in (-1, 0, 1):
+            for dy in (-1, 0, 1):
+                for q in grid.get((kx + dx, ky + dy), ()):
+                    if max(abs(p[0] - q[0]), abs(p[1] - q[1]), abs(p[2] - q[2])) <= weld:
+                        return q
+        grid.setdefault((kx, ky), []).append(p)
+        welded.append(p)
+        return p
+
+    for polygon in polygons:
+        polygon[:] = [weld_point(tuple(float(v) for v in p)) for p in polygon]
+    inserted, changed = 0, []
+    for index, polygon in enumerate(polygons):
+        out = []
+        for i, a in enumerate(polygon):
+            b = polygon[(i + 1) % len(polygon)]
+            out.append(a)
+            d = (b[0] - a[0], b[1] - a[1], b[2] - a[2])
+            length2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2]
+            if length2 <= weld * weld:
+                continue
+            cells = set()
+            steps = int(math.sqrt(length2) / (cell / 2)) + 1
+            for k in range(steps + 1):
+                kx, ky = key((a[0] + d[0] * k / steps, a[1] + d[1] * k / steps))
+                cells.update((kx + dx, ky + dy) for dx in (-1, 0, 1) for dy in (-1, 0, 1))
+            between = []
+            for c in cells:
+                for q in grid.get(c, ()):
+                    if q is a or q is b:
+                        continue
+                    t = ((q[0] - a[0]) * d[0] + (q[1] - a[1]) * d[1] + (q[2] - a[2]) * d[2]) \
+                        / length2
+                    if t <= 0.0 or t >= 1.0:
+                        continue
+                    e = (a[0] + t * d[0] - q[0], a[1] + t * d[1] - q[1], a[2] + t * d[2] - q[2])
+                    if e[0] * e[0] + e[1] * e[1] + e[2] * e[2] <= weld * weld:
+                        between.append((t, q))
+            between.sort()
+            out.extend(q for _, q in between)
+            inserted += len(between)
+        if len(out) > len(polygon):
+            changed.append(index)
+        polygon[:] = out
+    return inserted, changed
+
+
+def fan_around_centre(polygons, rooms, kinds, changed):
+    """Replaces each polygon of `changed` (convex, with points on its edges) by triangles from its
+    centre to each edge, in place. VTK triangulates a polygon itself, and three collinear points
+    (an inserted point between two corners) become a needle triangle whose depth is wrong: MAP12
+    showed a floor 570 units behind a wall through a one-pixel hole in the wall."""
+    changed = set(changed)
+    out_polygons, out_rooms, out_kinds = [], [], []
+    for index, (polygon, room, kind) in enumerate(zip(polygons, rooms, kinds)):
+        if index not in changed:
+            out_polygons.append(polygon)
+            out_rooms.append(room)
+            out_kinds.append(kind)
+            continue
+        centre = tuple(sum(p[k] for p in polygon) / len(polygon) for k in range(3))
+        for i, a in enumerate(polygon):
+            out_polygons.append([centre, a, polygon[(i + 1) % len(polygon)]])
+            out_rooms.append(room)
+            out_kinds.append(kind)
+    polygons[:], rooms[:], kinds[:] = out_polygons, out_rooms, out_kinds
+
+
 def right_of(x0, y0, dx, dy):
     """Half-plane coefficients of the right side of the directed line (x0, y0) + t (dx, dy): the
     front of a node partition and the side of a seg's own sector in Doom."""
@@ -209,12 +300,17 @@ def convert(data, map_name, all_things=False):
             continue
         if sb == sa:
             continue
-        lo_room = sa if floor[sa] < floor[sb] else sb
-        hi_room = sa if ceiling[sa] > ceiling[sb] else sb
         top_floor = max(floor[sa], floor[sb])
         low_ceiling = min(ceiling[sa], ceiling[sb])
-        quad(min(floor[sa], floor[sb]), top_floor, lo_room, "lower")
-        quad(low_ceiling, max(ceiling[sa], ceiling[sb]), hi_room, "upper")
+        # Each side closes its own sector's height range only: the part below the other's floor
+        # ("lower") and above its ceiling ("upper"), or all of it where the opening is shut. A
+        # closed sector (ceiling <= floor: a shut door, a lift up) has no range and gets nothing.
+        for room, other in ((sa, sb), (sb, sa)):
+            if low_ceiling <= top_floor:
+                quad(floor[room], ceiling[room], room, "upper")
+                continue
+            quad(floor[room], floor[other], room, "lower")
+            quad(ceiling[other], ceiling[room], room, "upper")
         if low_ceiling > top_floor:
             portals.append([(x1, y1, top_floor), (x2, y2, top_floor), (x2, y2, low_ceiling),
                             (x1, y1, low_ceiling)])
@@ -294,12 +390,18 @@ def convert(data, map_name, all_things=False):
         if area < 0:
             cleaned.reverse()
         sector = seg_sector[ssectors[index][1]]
+        if ceiling[sector] <= floor[sector]:
+            continue  # a closed sector bounds no volume: its floor and ceiling can only be seen
+            # where they touch the walls that close it, through depth ties.
         polygons.append([(x, y, floor[sector]) for x, y in cleaned])  # faces up
         rooms.append(sector)
         kinds.append(("floor", sector))
         polygons.append([(x, y, ceiling[sector]) for x, y in reversed(cleaned)])  # faces down
         rooms.append(sector)
         kinds.append(("ceiling", sector))
+
+    t_junctions, changed = make_watertight(polygons)
+    fan_around_centre(polygons, rooms, kinds, changed)
 
     # Cameras: the sector a thing stands in, found by walking the BSP.
     def sector_at(x, y):
@@ -358,7 +460,8 @@ def convert(data, map_name, all_things=False):
             "portal_rooms": portal_rooms, "cameras": cameras, "thing_cameras": thing_cameras,
             "sectors": len(sectors),
             "lines": len(linedefs), "two_sided": two_sided, "closed": closed,
-            "subsectors": len(ssectors), "empty_subsectors": empty_subsectors}
+            "subsectors": len(ssectors), "empty_subsectors": empty_subsectors,
+            "t_junctions": t_junctions}
 
 
 def write_vtp(path, polygons, cell_arrays):
@@ -453,7 +556,8 @@ def main(argv):
           f"{len(scene['portals'])} portals ({scene['closed']} closed openings of "
           f"{scene['two_sided']} two-sided lines left out), {len(scene['polygons'])} polygons "
           f"from {scene['lines']} lines and {scene['subsectors']} subsectors "
-          f"({scene['empty_subsectors']} empty), {len(scene['cameras'])} start cameras"
+          f"({scene['empty_subsectors']} empty), {scene['t_junctions']} T-junctions closed, "
+          f"{len(scene['cameras'])} start cameras"
           + (f", {len(scene['thing_cameras'])} thing cameras" if things_path else ""))
     return 0
 

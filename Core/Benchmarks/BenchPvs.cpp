@@ -8,7 +8,8 @@
 //
 // A portal scene file instead of the maze (e.g. a Doom map converted by scripts/wad-to-portals.py):
 //
-//   build/bin/scenevis_pvs_bench --scene MAP.vtp --portals MAP-portals.vtp --cameras MAP-cameras.json
+//   build/bin/scenevis_pvs_bench --scene MAP.vtp --portals MAP-portals.vtp
+//     --cameras MAP-cameras.json
 //
 // times the portal-flow PVS of that scene (no oracle: the rooms' cells are not boxes; the PVS is
 // checked against the exact traversal from every camera instead, and `scenevis cull --exact`
@@ -17,9 +18,10 @@
 //
 // Options: --scene FILE.vtp --portals FILE.vtp --cameras FILE.json --room-array NAME (RoomId)
 // --rooms X,Y,FLOORS  --halls N (open halls per floor, default 6)
-// --hall-size N (largest hall side in rooms, default 12)  --seed N  --threads N (0 = all cores)  --budget S (flow budget,
-// 0 = none)  --old-seconds S (limit of the separating-plane run, 0 skips it)  --segments N
-// (oracle samples)  --frames N (traversal views).
+// --hall-size N (largest hall side in rooms, default 12)  --seed N  --threads N (0 = all cores)
+// --budget S (flow budget, 0 = none)  --max-steps N (flow steps per portal before it closes)
+// --old-seconds S (limit of the separating-plane run, 0 skips it)  --segments N (oracle samples)
+// --frames N (traversal views).
 #include "PortalSceneFile.h"
 #include "PortalSegmentOracle.h"
 
@@ -49,6 +51,8 @@ using namespace scenevis::portals;
 namespace
 {
 using Clock = std::chrono::steady_clock;
+/// --max-steps: flow steps per source portal before its flow closes its branches.
+std::size_t maxStepsPerPortal = scenevis::portals::PvsOptions().maxFlowStepsPerPortal;
 double since(Clock::time_point t)
 {
   return std::chrono::duration<double>(Clock::now() - t).count();
@@ -136,13 +140,15 @@ int benchSceneFile(const std::string& scene, const std::string& portalsFile,
   PvsOptions options;
   options.threads = threads;
   options.budgetSeconds = budget;
+  options.maxFlowStepsPerPortal = maxStepsPerPortal;
   PvsStats stats;
   t0 = Clock::now();
   const std::clock_t c0 = std::clock();
   const PortalPvs flow = PortalPvs::compute(graph, options, &stats);
-  std::printf("portal flow: %.2f s wall, %.2f s CPU, on %d threads (might-see %.2f s, flow %.2f s); "
-              "%zu directed portals, might-see %.1f and final %.1f portals each; %zu flow steps; "
-              "%zu degraded portals%s; PVS %.1f nodes per node (%zu entries)\n",
+  std::printf(
+    "portal flow: %.2f s wall, %.2f s CPU, on %d threads (might-see %.2f s, flow %.2f s); "
+    "%zu directed portals, might-see %.1f and final %.1f portals each; %zu flow steps; "
+    "%zu degraded portals%s; PVS %.1f nodes per node (%zu entries)\n",
     since(t0), cpuSince(c0), stats.threads, stats.mightSeeSeconds, stats.flowSeconds,
     stats.directedPortals, stats.averageMightSee, stats.averagePortalVis, stats.flowSteps,
     stats.degradedPortals, stats.budgetExceeded ? " (budget exceeded)" : "", stats.averageSetSize,
@@ -251,6 +257,10 @@ int main(int argc, char** argv)
     {
       budget = std::atof(value);
     }
+    else if (key == "--max-steps")
+    {
+      maxStepsPerPortal = std::strtoull(value, nullptr, 10);
+    }
     else if (key == "--old-seconds")
     {
       oldSeconds = std::atof(value);
@@ -281,8 +291,8 @@ int main(int argc, char** argv)
     }
     else
     {
-      std::fprintf(stderr, "scenevis_pvs_bench: unknown option or bad value: %s %s\n", argv[i],
-        value);
+      std::fprintf(
+        stderr, "scenevis_pvs_bench: unknown option or bad value: %s %s\n", argv[i], value);
       return 2;
     }
   }
@@ -310,17 +320,20 @@ int main(int argc, char** argv)
   PvsOptions options;
   options.threads = threads;
   options.budgetSeconds = budget;
+  options.maxFlowStepsPerPortal = maxStepsPerPortal;
   PvsStats stats;
   t0 = Clock::now();
   std::clock_t c0 = std::clock();
   const PortalPvs flow = PortalPvs::compute(graph, options, &stats);
   const double flowSeconds = since(t0);
-  std::printf("portal flow: %.2f s wall, %.2f s CPU, on %d threads (might-see %.2f s, flow %.2f s); %zu directed "
+  std::printf("portal flow: %.2f s wall, %.2f s CPU, on %d threads (might-see %.2f s, flow %.2f "
+              "s); %zu directed "
               "portals, might-see %.1f and final %.1f portals each; %zu flow steps; %zu degraded "
               "portals%s; PVS %.1f nodes per node (%zu entries)\n",
-    flowSeconds, cpuSince(c0), stats.threads, stats.mightSeeSeconds, stats.flowSeconds, stats.directedPortals,
-    stats.averageMightSee, stats.averagePortalVis, stats.flowSteps, stats.degradedPortals,
-    stats.budgetExceeded ? " (budget exceeded)" : "", stats.averageSetSize, entries(flow));
+    flowSeconds, cpuSince(c0), stats.threads, stats.mightSeeSeconds, stats.flowSeconds,
+    stats.directedPortals, stats.averageMightSee, stats.averagePortalVis, stats.flowSteps,
+    stats.degradedPortals, stats.budgetExceeded ? " (budget exceeded)" : "", stats.averageSetSize,
+    entries(flow));
   options.method = PvsMethod::MightSee;
   t0 = Clock::now();
   const PortalPvs might = PortalPvs::compute(graph, options, &stats);

@@ -3,6 +3,7 @@
 #include "scenevis/PortalGeometry.h"
 #include "scenevis/PortalPvs.h"
 
+#include "PortalFlowClip.h"
 #include "PortalPvsInternal.h"
 
 #include <glm/geometric.hpp>
@@ -10,9 +11,6 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
-#include <condition_variable>
-#include <limits>
-#include <mutex>
 #include <numeric>
 #include <thread>
 
@@ -23,176 +21,18 @@ namespace portals
 
 namespace
 {
-using Winding = std::vector<glm::dvec3>;
+using flow::bit;
+using flow::chop;
+using flow::chopAll;
+using flow::DirectedPortal;
+using flow::maxDistance;
+using flow::minDistance;
+using flow::popcount;
+using flow::runParallel;
+using flow::separators;
+using flow::setBit;
+using flow::Winding;
 using Clock = std::chrono::steady_clock;
-
-struct DirectedPortal
-{
-  std::int32_t from = 0;
-  std::int32_t to = 0;
-  glm::dvec4 plane{ 0.0 }; ///< Facing `to`; coordinates relative to the portals' centre.
-  Winding winding;         ///< The graph portal's hull, relative to the portals' centre.
-  glm::dvec3 centre{ 0.0 }; ///< Of a sphere around the winding (quick side tests).
-  double radius = 0.0;
-  bool usable = false;     ///< Planar with known sides: it may narrow the flow.
-};
-
-inline bool bit(const std::uint64_t* set, std::size_t i)
-{
-  return (set[i >> 6] >> (i & 63)) & 1u;
-}
-inline void setBit(std::uint64_t* set, std::size_t i)
-{
-  set[i >> 6] |= std::uint64_t(1) << (i & 63);
-}
-std::size_t popcount(const std::uint64_t* set, std::size_t words)
-{
-  std::size_t n = 0;
-  for (std::size_t w = 0; w < words; ++w)
-  {
-    n += static_cast<std::size_t>(__builtin_popcountll(set[w]));
-  }
-  return n;
-}
-
-double maxDistance(const Winding& w, const glm::dvec4& plane)
-{
-  double d = -std::numeric_limits<double>::infinity();
-  for (const auto& p : w)
-  {
-    d = std::max(d, geometry::planeDistance(plane, p));
-  }
-  return d;
-}
-double minDistance(const Winding& w, const glm::dvec4& plane)
-{
-  double d = std::numeric_limits<double>::infinity();
-  for (const auto& p : w)
-  {
-    d = std::min(d, geometry::planeDistance(plane, p));
-  }
-  return d;
-}
-
-/// Clips @p w in place to dot(plane, p) >= -slack (@p scratch is reused); false when < 3 points.
-bool chop(Winding& w, const glm::dvec4& plane, double slack, Winding& scratch,
-  bool* changed = nullptr)
-{
-  bool allIn = true;
-  for (const auto& p : w)
-  {
-    if (geometry::planeDistance(plane, p) < -slack)
-    {
-      allIn = false;
-      break;
-    }
-  }
-  if (allIn)
-  {
-    return w.size() >= 3;
-  }
-  if (changed)
-  {
-    *changed = true;
-  }
-  geometry::clipPolygon(w, plane, slack, scratch);
-  w.swap(scratch);
-  return w.size() >= 3;
-}
-
-/**
- * Appends to @p out the planes through an edge of @p source and a vertex of @p pass that have
- * the source behind and the pass in front, facing the pass: a line through both continues in
- * front. With @p flip (called with the two swapped) they face away from the first argument.
- * One plane per edge (the first found) is enough to be conservative.
- */
-void findSeparators(const Winding& source, const Winding& pass, bool flip, double on,
-  std::vector<glm::dvec4>& out)
-{
-  const std::size_t ns = source.size();
-  for (std::size_t i = 0; i < ns; ++i)
-  {
-    const glm::dvec3& a = source[i];
-    const std::size_t l = (i + 1) % ns;
-    const glm::dvec3 v1 = source[l] - a;
-    const double len1 = glm::length(v1);
-    if (len1 == 0.0)
-    {
-      continue;
-    }
-    for (const glm::dvec3& pj : pass)
-    {
-      const glm::dvec3 v2 = pj - a;
-      glm::dvec3 n = glm::cross(v1, v2);
-      const double len = glm::length(n);
-      if (!(len > 1e-7 * len1 * glm::length(v2)))
-      {
-        continue; // the vertex is (nearly) on the edge's line: no well-defined plane
-      }
-      n /= len;
-      glm::dvec4 plane(n, -glm::dot(n, a));
-      double lo = 0.0, hi = 0.0;
-      for (std::size_t k = 0; k < ns; ++k)
-      {
-        if (k == i || k == l)
-        {
-          continue;
-        }
-        const double d = geometry::planeDistance(plane, source[k]);
-        lo = std::min(lo, d);
-        hi = std::max(hi, d);
-      }
-      if (hi > on && lo < -on)
-      {
-        continue; // numerically not convex
-      }
-      if (hi <= on && lo >= -on)
-      {
-        continue; // in the source's plane
-      }
-      if (hi > on)
-      {
-        plane = -plane; // the source behind
-      }
-      bool front = false, behind = false;
-      for (const glm::dvec3& q : pass)
-      {
-        const double d = geometry::planeDistance(plane, q);
-        behind = behind || d < -on;
-        front = front || d > on;
-      }
-      if (behind || !front)
-      {
-        continue; // not separating
-      }
-      out.push_back(flip ? -plane : plane);
-      break;
-    }
-  }
-}
-
-/// The separating planes of (source, pass) and of (pass, source), each facing beyond the pass.
-void separators(const Winding& source, const Winding& pass, double on,
-  std::vector<glm::dvec4>& out)
-{
-  out.clear();
-  findSeparators(source, pass, false, on, out);
-  findSeparators(pass, source, true, on, out);
-}
-
-/// Clips @p target by @p planes in turn; false when nothing is left.
-bool chopAll(Winding& target, const std::vector<glm::dvec4>& planes, double slack,
-  Winding& scratch)
-{
-  for (const glm::dvec4& plane : planes)
-  {
-    if (!chop(target, plane, slack, scratch))
-    {
-      return false;
-    }
-  }
-  return true;
-}
 
 /// One level of a flow: the node reached, the portal passed into it and the clipped polygons.
 struct Level
@@ -221,7 +61,8 @@ struct Shared
   double on = 0.0, slack = 0.0;
   std::size_t maxSteps = 0;
   bool clipSource = false;
-  std::atomic<bool> stop{ false }, budgetHit{ false };
+  /// stop: cancelled (flows abort); closing: the budget ran out (flows close their branches).
+  std::atomic<bool> stop{ false }, closing{ false }, budgetHit{ false };
   std::atomic<std::size_t> totalSteps{ 0 }, degraded{ 0 };
 
   const std::uint64_t* mightOf(std::size_t p) const { return &this->mightSee[p * this->words]; }
@@ -296,8 +137,15 @@ struct Shared
     std::fill(rejected.begin(), rejected.end(), 0);
   }
 
-  /// The flow from directed portal @p s; false when stopped (budget, cancel).
-  bool flow(std::size_t s, std::vector<Level>& levels, Winding& scratch)
+  /**
+   * The flow from directed portal @p s; false when cancelled. After @p limit steps, or once
+   * the budget has run out, the flow closes instead of descending: a portal that passes the
+   * clipping is marked seen together with everything its branch might still see (the might
+   * bits of its level: the intersection of the might-see or final sets of the portals on the
+   * path), which bounds whatever lies beyond it. @p closed says whether that happened.
+   */
+  bool flow(
+    std::size_t s, std::vector<Level>& levels, Winding& scratch, std::size_t limit, bool& closed)
   {
     const DirectedPortal& src = this->portals[s];
     std::uint64_t* visS = this->visOf(s);
@@ -316,6 +164,7 @@ struct Shared
     root.separatorsReady = false;
     std::size_t depth = 0, steps = 0;
     bool ok = true;
+    bool closeNow = this->closing.load(std::memory_order_relaxed);
     for (;;)
     {
       Level& L = levels[depth];
@@ -344,19 +193,30 @@ struct Shared
         ? &this->vis[static_cast<std::size_t>(p) * W]
         : this->mightOf(p);
       N.might.resize(W);
-      std::uint64_t more = 0;
-      for (std::size_t w = 0; w < W; ++w)
+      // The bits beyond p: needed first only when p is already seen (nothing new: skip it);
+      // otherwise only for a p that survives the clipping.
+      const bool seenP = bit(visS, p);
+      auto intersect = [&]()
       {
-        N.might[w] = L2.might[w] & test[w];
-        more |= N.might[w] & ~visS[w];
-      }
-      if (!more && bit(visS, p))
+        std::uint64_t more = 0;
+        for (std::size_t w = 0; w < W; ++w)
+        {
+          N.might[w] = L2.might[w] & test[w];
+          more |= N.might[w] & ~visS[w];
+        }
+        return more != 0;
+      };
+      if (seenP && !intersect())
       {
         continue; // nothing new behind p
       }
       const DirectedPortal& dp = this->portals[p];
       if (!dp.usable)
       {
+        if (!seenP)
+        {
+          intersect();
+        }
         setBit(visS, p); // no narrowing through it: everything it may lead to
         for (std::size_t w = 0; w < W; ++w)
         {
@@ -405,73 +265,41 @@ struct Shared
           }
         }
       }
+      if (!seenP)
+      {
+        intersect();
+      }
       setBit(visS, p);
+      if (closeNow)
+      {
+        for (std::size_t w = 0; w < W; ++w)
+        {
+          visS[w] |= N.might[w];
+        }
+        continue;
+      }
       N.node = dp.to;
       N.next = 0;
       N.plane = dp.plane;
       N.separatorsReady = false;
       ++depth;
-      if ((++steps & 1023u) == 0 && this->stop.load(std::memory_order_relaxed))
+      if ((++steps & 1023u) == 0)
       {
-        ok = false;
-        break;
+        if (this->stop.load(std::memory_order_relaxed))
+        {
+          ok = false;
+          break;
+        }
+        closeNow = closeNow || this->closing.load(std::memory_order_relaxed);
       }
-      if (this->maxSteps && steps > this->maxSteps)
-      {
-        ok = false;
-        break;
-      }
+      closeNow = closeNow || (limit && steps >= limit);
     }
     this->totalSteps.fetch_add(steps, std::memory_order_relaxed);
+    closed = closeNow;
     return ok;
   }
 };
 
-/// Runs @p work(i) for i in [0, count) on @p threads threads, calling @p tick about every 50 ms
-/// on this thread; tick returns false to ask the workers to stop (they check Shared::stop).
-template <class Work, class Tick>
-void runParallel(std::size_t count, int threads, Work work, Tick tick)
-{
-  std::atomic<std::size_t> next{ 0 }, finished{ 0 };
-  std::mutex m;
-  std::condition_variable cv;
-  auto worker = [&]()
-  {
-    for (;;)
-    {
-      const std::size_t i = next.fetch_add(1);
-      if (i >= count)
-      {
-        break;
-      }
-      work(i);
-      if (finished.fetch_add(1) + 1 == count)
-      {
-        std::lock_guard<std::mutex> lock(m);
-        cv.notify_all();
-      }
-    }
-  };
-  std::vector<std::thread> pool;
-  for (int t = 0; t < threads; ++t)
-  {
-    pool.emplace_back(worker);
-  }
-  {
-    std::unique_lock<std::mutex> lock(m);
-    while (finished.load() < count)
-    {
-      cv.wait_for(lock, std::chrono::milliseconds(50));
-      lock.unlock();
-      tick(finished.load());
-      lock.lock();
-    }
-  }
-  for (auto& t : pool)
-  {
-    t.join();
-  }
-}
 } // namespace
 
 PortalPvs computePortalFlow(const PortalGraph& g, const PvsOptions& options, PvsStats& stats)
@@ -636,8 +464,23 @@ PortalPvs computePortalFlow(const PortalGraph& g, const PvsOptions& options, Pvs
       if (budget > 0.0 && std::chrono::duration<double>(Clock::now() - flowStart).count() > budget)
       {
         sh.budgetHit = true;
-        sh.stop = true;
+        sh.closing = true;
       }
+    };
+    // With a budget, each flow gets an even share of the time left, in steps at the rate
+    // measured so far, so that the budget narrows every portal a little rather than leaving
+    // the last ones (the most expensive: most might-see) with nothing.
+    auto stepLimit = [&](std::size_t left) -> std::size_t
+    {
+      const double elapsed = std::chrono::duration<double>(Clock::now() - flowStart).count();
+      const std::size_t done = sh.totalSteps.load(std::memory_order_relaxed);
+      if (!(budget > 0.0) || elapsed < 0.25 || done == 0)
+      {
+        return sh.maxSteps;
+      }
+      const double share = (budget - elapsed) * (double(done) / elapsed) / double(left);
+      const auto steps = static_cast<std::size_t>(std::max(256.0, share));
+      return sh.maxSteps ? std::min(sh.maxSteps, steps) : steps;
     };
     runParallel(
       order.size(), threads,
@@ -647,11 +490,14 @@ PortalPvs computePortalFlow(const PortalGraph& g, const PvsOptions& options, Pvs
         thread_local Winding scratch;
         const std::uint32_t s = order[i];
         overBudget();
-        if (sh.stop.load(std::memory_order_relaxed) || !sh.flow(s, levels, scratch))
+        bool closed = false;
+        const std::size_t limit = stepLimit(order.size() - i);
+        if (sh.stop.load(std::memory_order_relaxed) || !sh.flow(s, levels, scratch, limit, closed))
         {
           std::copy(sh.mightOf(s), sh.mightOf(s) + sh.words, sh.visOf(s));
-          sh.degraded.fetch_add(1);
+          closed = true;
         }
+        sh.degraded.fetch_add(closed ? 1 : 0);
         sh.done[s].store(1, std::memory_order_release);
         weight.fetch_add(mightCount[s], std::memory_order_relaxed);
       },

@@ -142,16 +142,16 @@ public:
   ///@}
 
   ///@{
-  /// Wall-clock budget of the portal flow in seconds (0, the default: none). Portals whose flow
-  /// is not done by then keep their conservative might-see sets; GetPVSDegradedPortals() says
-  /// how many.
+  /// Wall-clock budget of the portal flow in seconds (0, the default: none). Each portal's flow
+  /// gets a share of it and then closes: what its open branches might still see is kept whole
+  /// (conservative, looser); GetPVSDegradedPortals() says how many closed early.
   vtkSetClampMacro(PVSBudgetSeconds, double, 0.0, VTK_DOUBLE_MAX);
   vtkGetMacro(PVSBudgetSeconds, double);
   ///@}
 
   ///@{
-  /// The last computed PVS: milliseconds, mean rooms per set, directed portals that kept their
-  /// might-see set (budget), and whether the budget ran out.
+  /// The last computed PVS: milliseconds, mean rooms per set, directed portals whose flow closed
+  /// early (budget), and whether the budget ran out.
   vtkGetMacro(PVSComputeTime, double);
   vtkGetMacro(PVSAverageSetSize, double);
   vtkGetMacro(PVSDegradedPortals, vtkIdType);

@@ -33,13 +33,18 @@
  *  3. PVS(X) = X, its neighbours, and the node behind every portal the flows of X's portals
  *     reached. Coordinates are taken relative to the centre of the portals; clipping keeps a
  *     slack of 1e3 graph tolerances (conservative: polygons only grow).
- *  Over PvsOptions::budgetSeconds, or maxFlowStepsPerPortal steps for one portal, a portal's
- *  flow stops and its might-see set stands in for it (conservative; PvsStats says how many).
+ *  After maxFlowStepsPerPortal steps for one portal, or once PvsOptions::budgetSeconds has run
+ *  out, a flow closes instead of descending: each portal still passing the clipping is taken
+ *  with everything its branch might see (the intersection of the might-see or final sets along
+ *  the path: conservative, and tighter than the source's might-see set). With a budget, every
+ *  flow gets an even share of the time left (in steps, at the rate measured so far), so the
+ *  budget narrows all portals rather than leaving the last, most expensive ones un-narrowed.
+ *  PvsStats::degradedPortals counts the flows that closed.
  *  With several threads a portal may be bounded by another's final set or by its might-see set
  *  depending on timing, so two runs may differ in a few extra nodes (both supersets of the exact
  *  PVS); threads = 1 is deterministic.
  *
- * MightSee: step 1 alone (what the budget degrades to).
+ * MightSee: step 1 alone (the loosest a closed flow can be).
  *
  * SeparatingPlanes (the first method, kept to compare): walks all portal sequences from X
  * depth-first (explicit stack) and drops a sequence only when one of these necessary conditions
@@ -85,11 +90,11 @@ struct PvsOptions
   std::size_t maxSequencesPerNode = 2'000'000;
   /// PortalFlow: worker threads; 0 = std::thread::hardware_concurrency().
   int threads = 0;
-  /// PortalFlow: wall-clock budget of the flow step in seconds (0 = none). Portals not finished
-  /// by then keep their might-see set (conservative).
+  /// PortalFlow: wall-clock budget of the flow step in seconds (0 = none): flows get even shares
+  /// of it and close when theirs is used (conservative, see the file comment).
   double budgetSeconds = 0.0;
-  /// PortalFlow: flow steps (portals passed) for one source portal before it gives up and keeps
-  /// its might-see set (0 = no limit).
+  /// PortalFlow: flow steps (portals passed) for one source portal before its flow closes
+  /// (0 = no limit).
   std::size_t maxFlowStepsPerPortal = 50'000'000;
   /// PortalFlow: also clip the source by the separating planes of (next portal, previous pass).
   /// Off as in Quake's vis: on a 588-room maze it made the flow 1.6x slower for sets 0.4 %
@@ -115,7 +120,7 @@ struct PvsStats
   double averagePortalVis = 0.0;    ///< Mean final count per directed portal.
   std::size_t flowSteps = 0;        ///< Portals passed by all flows.
   std::size_t unknownPortals = 0;   ///< Graph portals without a usable side (no narrowing).
-  /// Directed portals whose flow was stopped (time or step budget): their might-see set stands.
+  /// Directed portals whose flow closed early (time or step budget): conservative, looser.
   std::size_t degradedPortals = 0;
   bool budgetExceeded = false;      ///< budgetSeconds ran out before every flow finished.
   int threads = 1;                  ///< Threads the flow ran on.
