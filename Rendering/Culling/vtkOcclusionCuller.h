@@ -82,7 +82,8 @@ public:
   }
   vtkIdType GetNumberOfOcclusionTests() const { return this->NumberOfOcclusionTests; }
   vtkIdType GetNumberOfOccludersDrawn() const { return this->NumberOfOccludersDrawn; }
-  /// Visible opaque props not rasterized by OccluderMinimumPixelsPerTriangle.
+  /// Visible props not rasterized by OccluderMinimumPixelsPerTriangle (the selection comes
+  /// first, so translucent props that would not occlude anyway are counted too).
   vtkIdType GetNumberOfOccludersSkipped() const { return this->NumberOfOccludersSkipped; }
   vtkIdType GetNumberOfOccluderTriangles() const { return this->NumberOfOccluderTriangles; }
   /// Milliseconds spent rasterizing occluders (part of GetCullTime()).
