@@ -29,7 +29,7 @@
  * that culler kept, which it maps onto its hierarchy without rebuilding it; but that culler's
  * per-prop cost remains and it culls props with uninitialized bounds itself.
  *
- * vtkCuller contract: props that are culled are moved to the end of the list (the drawn ones
+ * vtkCuller contract (vtkCompactingCuller): props that are culled are moved to the end of the list (the drawn ones
  * keep their relative order unless SortingStyle says otherwise) and listLength is shortened;
  * when @p initialized is set the drawn props' render-time multipliers are kept (multiplied by
  * 1), otherwise set to 1; initialized is set to 1. Culled props' multipliers are not touched
@@ -95,18 +95,18 @@
 #define vtkOctreeCuller_h
 
 #include "SceneVisRenderingCullingModule.h" // For export macro
-#include "vtkCuller.h"
+#include "vtkCompactingCuller.h"
 
 #include <cstddef> // For std::size_t
 #include <memory>  // For std::unique_ptr
 
 class vtkProp;
 
-class SCENEVISRENDERINGCULLING_EXPORT vtkOctreeCuller : public vtkCuller
+class SCENEVISRENDERINGCULLING_EXPORT vtkOctreeCuller : public vtkCompactingCuller
 {
 public:
   static vtkOctreeCuller* New();
-  vtkTypeMacro(vtkOctreeCuller, vtkCuller);
+  vtkTypeMacro(vtkOctreeCuller, vtkCompactingCuller);
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
   double Cull(vtkRenderer* ren, vtkProp** propList, int& listLength, int& initialized) override;

@@ -86,7 +86,7 @@ public:
   std::string Report;
   sp::PortalPvs Pvs;
   sp::PortalTraversal Traversal;
-  std::vector<vtkProp*> Culled;
+  std::vector<unsigned char> Keep; // per list entry: drawn
   std::string Fallback;
   bool WarnedNoPortals = false;
   bool WarnedArrays = false;
@@ -323,8 +323,7 @@ double vtkPortalCuller::Cull(
   }
 
   // --- 3. Drawn props first (relative order kept), culled ones after. ------------------------
-  in.Culled.clear();
-  std::size_t kept = 0;
+  in.Keep.resize(n);
   for (std::size_t i = 0; i < n; ++i)
   {
     vtkProp* prop = propList[i];
@@ -356,41 +355,16 @@ double vtkPortalCuller::Cull(
       }
     }
     this->NumberOfTrianglesTotal += triangles;
-    if (visible)
-    {
-      propList[kept++] = prop;
-      this->NumberOfTrianglesDrawn += triangles;
-    }
-    else
-    {
-      in.Culled.push_back(prop);
-    }
+    in.Keep[i] = visible ? 1 : 0;
+    this->NumberOfTrianglesDrawn += visible ? triangles : 0;
   }
-  std::copy(in.Culled.begin(), in.Culled.end(), propList + kept);
-  this->NumberOfPropsCulled = static_cast<int>(in.Culled.size());
-  this->NumberOfPropsDrawn = static_cast<int>(kept);
-  listLength = static_cast<int>(kept);
+  const int kept = this->CompactPropList(propList, listLength, in.Keep.data());
+  this->NumberOfPropsCulled = listLength - kept;
+  this->NumberOfPropsDrawn = kept;
+  listLength = kept;
 
   // --- 4. Render-time multipliers (vtkCuller contract). ------------------------------------
-  double total = 0.0;
-  for (std::size_t i = 0; i < kept; ++i)
-  {
-    if (!initialized)
-    {
-      propList[i]->SetRenderTimeMultiplier(1.0);
-      total += 1.0;
-    }
-    else
-    {
-      total += propList[i]->GetRenderTimeMultiplier();
-    }
-  }
-  initialized = 1;
-  // The renderer divides by the total: never 0 (or NaN) while props remain.
-  if (kept > 0 && !(total > 0.0 && std::isfinite(total)))
-  {
-    total = static_cast<double>(kept);
-  }
+  const double total = this->SumRenderTimeMultipliers(ren, propList, kept, initialized);
   this->LastCullTime =
     std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   return total;

@@ -28,7 +28,7 @@
  * touches the building's bounds (warned once; a parallel view from outside the building is
  * traversed like a perspective one, entering through the exterior portals), unusable camera.
  *
- * vtkCuller contract (as vtkFrustumCoverageCuller): culled props are moved to the end of the
+ * vtkCuller contract (vtkCompactingCuller): culled props are moved to the end of the
  * list, which is shortened; drawn props keep their order; with @p initialized set their
  * render-time multipliers are kept (multiplied by 1), otherwise set to 1; initialized is set to
  * 1; the returned total is never 0 while props remain. 2D props and props with uninitialized
@@ -53,7 +53,7 @@
 #define vtkPortalCuller_h
 
 #include "SceneVisRenderingPortalsModule.h" // For export macro
-#include "vtkCuller.h"
+#include "vtkCompactingCuller.h" // For the superclass
 
 #include <memory> // For std::unique_ptr
 #include <string> // For std::string
@@ -61,11 +61,11 @@
 class vtkPolyData;
 class vtkProp;
 
-class SCENEVISRENDERINGPORTALS_EXPORT vtkPortalCuller : public vtkCuller
+class SCENEVISRENDERINGPORTALS_EXPORT vtkPortalCuller : public vtkCompactingCuller
 {
 public:
   static vtkPortalCuller* New();
-  vtkTypeMacro(vtkPortalCuller, vtkCuller);
+  vtkTypeMacro(vtkPortalCuller, vtkCompactingCuller);
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
   double Cull(vtkRenderer* ren, vtkProp** propList, int& listLength, int& initialized) override;
