@@ -96,6 +96,9 @@ public:
   /// The camera as the core's cull parameters; false (warned once) if it or the viewport is
   /// unusable, and nothing is culled.
   bool ViewOf(vtkRenderer* ren, vtkOctreeCuller* self, scenevis::culling::CullParams& params);
+  /// Sorts Placements (visible placements of the instanced actor whose first slot is @p head) by
+  /// depth as SortKept sorts props: they are drawn in that order.
+  void SortPlacements(std::uint32_t head, const sc::CullParams& params, int style);
   /// Sorts the @p kept props at the head of the list by depth (SortingStyle @p style, 2D /
   /// unbounded props first as VTK does), KeptSlots with them.
   void SortKept(
@@ -569,6 +572,29 @@ void vtkOctreeCuller::vtkInternals::SortKept(
 
 
 //------------------------------------------------------------------------------
+void vtkOctreeCuller::vtkInternals::SortPlacements(
+  std::uint32_t head, const sc::CullParams& params, int style)
+{
+  this->Keyed.clear();
+  for (const vtkIdType k : this->Placements)
+  {
+    const Slot& slot = this->Slots[head + static_cast<std::uint32_t>(k)];
+    double key = -VTK_DOUBLE_MAX;
+    if (slot.Kind == SlotKind::Tree)
+    {
+      key = glm::dot(ToBox(slot.Bounds).center() - params.eye, params.viewDirection);
+    }
+    this->Keyed.emplace_back(style == 1 ? key : -key, static_cast<std::uint32_t>(k));
+  }
+  std::stable_sort(this->Keyed.begin(), this->Keyed.end(),
+    [](const auto& a, const auto& b) { return a.first < b.first; });
+  for (std::size_t i = 0; i < this->Keyed.size(); ++i)
+  {
+    this->Placements[i] = static_cast<vtkIdType>(this->Keyed[i].second);
+  }
+}
+
+//------------------------------------------------------------------------------
 vtkOctreeCuller::vtkOctreeCuller()
   : Internals(new vtkInternals)
 {
@@ -703,6 +729,10 @@ double vtkOctreeCuller::Cull(
         {
           in.Placements.push_back(static_cast<vtkIdType>(k));
         }
+      }
+      if (this->SortingStyle != 0 && usable)
+      {
+        in.SortPlacements(s, params, this->SortingStyle);
       }
       static_cast<vtkInstancedActor*>(propList[i])
         ->SetVisiblePlacements(in.Placements.data(), static_cast<vtkIdType>(in.Placements.size()));

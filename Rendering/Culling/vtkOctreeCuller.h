@@ -74,7 +74,9 @@
  * SortingStyle as in vtkFrustumCoverageCuller (VTK_CULLER_SORT_*): front-to-back by the depth of
  * the bounds' centre, for early depth rejection of opaque geometry (translucent props are drawn
  * in their own pass; their relative order matters only with plain alpha blending, where
- * BACK_TO_FRONT is the right choice). 2D props stay first in their original order.
+ * BACK_TO_FRONT is the right choice). 2D props stay first in their original order. The visible
+ * placements of a vtkInstancedActor are handed to it in the same depth order, which it draws them
+ * in.
  *
  * Statistics of the last Cull(): nodes visited, props tested / culled (by reason) / drawn,
  * triangles drawn (polygons of the props' polydata).

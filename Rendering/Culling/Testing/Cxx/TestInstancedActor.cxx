@@ -15,6 +15,7 @@
 #include <vtkActor.h>
 #include <vtkCamera.h>
 #include <vtkCullerCollection.h>
+#include <vtkFrustumCoverageCuller.h> // VTK_CULLER_SORT_*
 #include <vtkImageData.h>
 #include <vtkLogger.h>
 #include <vtkMatrix4x4.h>
@@ -26,6 +27,7 @@
 #include <vtkSphereSource.h>
 #include <vtkTransform.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <iostream>
@@ -289,6 +291,52 @@ bool TestPlacementsChange()
   return ok;
 }
 
+/// With SortingStyle, the visible placements of an instanced actor are drawn in depth order too
+/// (front to back: each nearer one first, for the depth test; back to front: the reverse).
+bool TestPlacementsInDepthOrder()
+{
+  bool ok = true;
+  Scene scene;
+  Build(scene, true, 1);
+  auto* culler = vtkOctreeCuller::SafeDownCast(scene.Renderer->GetCullers()->GetItemAsObject(0));
+  SetCamera(scene.Renderer, 0);
+  vtkCamera* cam = scene.Renderer->GetActiveCamera();
+  double eye[3], dop[3];
+  cam->GetPosition(eye);
+  cam->GetDirectionOfProjection(dop);
+  auto depths = [&]()
+  {
+    std::vector<double> d;
+    for (vtkIdType k = 0; k < scene.Instanced->GetNumberOfVisiblePlacements(); ++k)
+    {
+      double b[6];
+      scene.Instanced->GetPlacementBounds(scene.Instanced->GetVisiblePlacement(k), b);
+      d.push_back((0.5 * (b[0] + b[1]) - eye[0]) * dop[0] +
+        (0.5 * (b[2] + b[3]) - eye[1]) * dop[1] + (0.5 * (b[4] + b[5]) - eye[2]) * dop[2]);
+    }
+    return d;
+  };
+  culler->SetSortingStyle(VTK_CULLER_SORT_FRONT_TO_BACK);
+  scene.Window->Render();
+  std::vector<double> d = depths();
+  ok &= Check(d.size() > 10 && std::is_sorted(d.begin(), d.end()),
+    "front to back: " + std::to_string(d.size()) + " visible placements, nearest first");
+  culler->SetSortingStyle(VTK_CULLER_SORT_BACK_TO_FRONT);
+  scene.Window->Render();
+  d = depths();
+  ok &= Check(d.size() > 10 && std::is_sorted(d.rbegin(), d.rend()), "back to front: farthest first");
+  culler->SetSortingStyle(VTK_CULLER_SORT_NONE);
+  scene.Window->Render();
+  bool indexOrder = true;
+  for (vtkIdType k = 1; k < scene.Instanced->GetNumberOfVisiblePlacements(); ++k)
+  {
+    indexOrder = indexOrder &&
+      scene.Instanced->GetVisiblePlacement(k - 1) < scene.Instanced->GetVisiblePlacement(k);
+  }
+  ok &= Check(indexOrder, "no sorting: in placement order");
+  return ok;
+}
+
 bool TestBadInput()
 {
   bool ok = true;
@@ -347,6 +395,7 @@ int TestInstancedActor(int, char*[])
   vtkOutput.ExpectWarning("non-finite bounds");
   bool ok = TestSameImages();
   ok &= TestPlacementsChange();
+  ok &= TestPlacementsInDepthOrder();
   ok &= TestOwnTransform();
   ok &= TestBadInput();
   return vtkOutput.ExitCode(ok ? EXIT_SUCCESS : EXIT_FAILURE);
