@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
 
 namespace scenevis
@@ -45,7 +46,13 @@ float roundUp(double value)
   float f = static_cast<float>(value);
   if (static_cast<double>(f) < value)
   {
-    f = std::nextafter(f, kNoOccluder);
+    // std::nextafter(f, +inf) without the library call (one per tile update): f is finite here
+    // (below value, so neither +inf nor NaN); the next float up is one step of its bits away
+    // from zero when positive, towards zero when negative, the smallest positive one from +-0.
+    std::uint32_t bits;
+    std::memcpy(&bits, &f, sizeof bits);
+    bits = f == 0.0f ? 1u : ((bits >> 31) == 0u ? bits + 1u : bits - 1u);
+    std::memcpy(&f, &bits, sizeof f);
   }
   return f;
 }
@@ -607,9 +614,12 @@ bool MaskedDepthBuffer::hidden(
 
 bool MaskedDepthBuffer::behindTiles(int tx0, int ty0, int tx1, int ty1, double depth)
 {
-  for (int by = ty0 / kBlockTiles; by <= ty1 / kBlockTiles; ++by)
+  // Tile indices are never negative: the block bounds once, by shifts.
+  static_assert(kBlockTiles == 4, "blocks of 4 x 4 tiles");
+  const int bx0 = tx0 >> 2, bx1 = tx1 >> 2, by0 = ty0 >> 2, by1 = ty1 >> 2;
+  for (int by = by0; by <= by1; ++by)
   {
-    for (int bx = tx0 / kBlockTiles; bx <= tx1 / kBlockTiles; ++bx)
+    for (int bx = bx0; bx <= bx1; ++bx)
     {
       float& bound = blockZ0_[static_cast<std::size_t>(by) * blocksX_ + bx];
       if (std::isnan(bound))
