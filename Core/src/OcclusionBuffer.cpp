@@ -514,12 +514,14 @@ void MaskedDepthBuffer::drawFrontTriangle(const glm::dvec3& a, const glm::dvec3&
   // Per edge, over a tile's 8 x 4 pixel centres: value = value at the first centre + i gx + j gy;
   // its extremes are at corners (offsets below). Decisions within `slack` of the threshold are
   // made by the exact (canonical) evaluation.
-  double loOffset[3], hiOffset[3];
+  double loOffset[3], hiOffset[3], emptyBelow[3], fullAbove[3];
   for (int k = 0; k < 3; ++k)
   {
     const EdgeTest& e = edges[k];
     loOffset[k] = std::min(0.0, (kTileWidth - 1) * e.gx) + std::min(0.0, (kTileHeight - 1) * e.gy);
     hiOffset[k] = std::max(0.0, (kTileWidth - 1) * e.gx) + std::max(0.0, (kTileHeight - 1) * e.gy);
+    emptyBelow[k] = e.threshold - e.slack;
+    fullAbove[k] = e.threshold + e.slack;
   }
   const double zOffset =
     std::max(0.0, (kTileWidth - 1) * zx) + std::max(0.0, (kTileHeight - 1) * zy);
@@ -527,6 +529,8 @@ void MaskedDepthBuffer::drawFrontTriangle(const glm::dvec3& a, const glm::dvec3&
   for (int ty = ty0; ty <= ty1; ++ty)
   {
     const double y0 = ty * kTileHeight + 0.5;
+    const double rowTerm[3] = { edges[0].dx * (y0 - edges[0].py), edges[1].dx * (y0 - edges[1].py),
+      edges[2].dx * (y0 - edges[2].py) };
     // The tiles a convex triangle touches in a row are contiguous: stop after the last one.
     bool inRow = false;
     for (int tx = tx0; tx <= tx1; ++tx)
@@ -545,13 +549,13 @@ void MaskedDepthBuffer::drawFrontTriangle(const glm::dvec3& a, const glm::dvec3&
       for (int k = 0; k < 3; ++k)
       {
         const EdgeTest& e = edges[k];
-        v[k] = e.value(x0, y0);
-        if (v[k] + hiOffset[k] < e.threshold - e.slack)
+        v[k] = e.sign * (rowTerm[k] - e.dy * (x0 - e.px)); // e.value(x0, y0), same operations
+        if (v[k] + hiOffset[k] < emptyBelow[k])
         {
           empty = true;
           break;
         }
-        if (!(v[k] + loOffset[k] > e.threshold + e.slack))
+        if (!(v[k] + loOffset[k] > fullAbove[k]))
         {
           full = false;
           partial |= 1u << k;
