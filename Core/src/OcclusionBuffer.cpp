@@ -46,9 +46,10 @@ float roundUp(double value)
   float f = static_cast<float>(value);
   if (static_cast<double>(f) < value)
   {
-    // std::nextafter(f, +inf) without the library call (one per tile update): f is finite here
-    // (below value, so neither +inf nor NaN); the next float up is one step of its bits away
-    // from zero when positive, towards zero when negative, the smallest positive one from +-0.
+    // std::nextafter(f, +inf) without the library call (one per tile update): f is below value,
+    // so neither +inf nor NaN; the next float up is one step of its bits away from zero when
+    // positive, towards zero when negative (-inf gives the lowest finite float, as nextafter
+    // does), the smallest positive one from +-0.
     std::uint32_t bits;
     std::memcpy(&bits, &f, sizeof bits);
     bits = f == 0.0f ? 1u : ((bits >> 31) == 0u ? bits + 1u : bits - 1u);
