@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
 
 namespace scenevis
@@ -45,7 +46,14 @@ float roundUp(double value)
   float f = static_cast<float>(value);
   if (static_cast<double>(f) < value)
   {
-    f = std::nextafter(f, kNoOccluder);
+    // std::nextafter(f, +inf) without the library call (one per tile update): f is below value,
+    // so neither +inf nor NaN; the next float up is one step of its bits away from zero when
+    // positive, towards zero when negative (-inf gives the lowest finite float, as nextafter
+    // does), the smallest positive one from +-0.
+    std::uint32_t bits;
+    std::memcpy(&bits, &f, sizeof bits);
+    bits = f == 0.0f ? 1u : ((bits >> 31) == 0u ? bits + 1u : bits - 1u);
+    std::memcpy(&f, &bits, sizeof f);
   }
   return f;
 }
@@ -507,12 +515,14 @@ void MaskedDepthBuffer::drawFrontTriangle(const glm::dvec3& a, const glm::dvec3&
   // Per edge, over a tile's 8 x 4 pixel centres: value = value at the first centre + i gx + j gy;
   // its extremes are at corners (offsets below). Decisions within `slack` of the threshold are
   // made by the exact (canonical) evaluation.
-  double loOffset[3], hiOffset[3];
+  double loOffset[3], hiOffset[3], emptyBelow[3], fullAbove[3];
   for (int k = 0; k < 3; ++k)
   {
     const EdgeTest& e = edges[k];
     loOffset[k] = std::min(0.0, (kTileWidth - 1) * e.gx) + std::min(0.0, (kTileHeight - 1) * e.gy);
     hiOffset[k] = std::max(0.0, (kTileWidth - 1) * e.gx) + std::max(0.0, (kTileHeight - 1) * e.gy);
+    emptyBelow[k] = e.threshold - e.slack;
+    fullAbove[k] = e.threshold + e.slack;
   }
   const double zOffset =
     std::max(0.0, (kTileWidth - 1) * zx) + std::max(0.0, (kTileHeight - 1) * zy);
@@ -520,6 +530,8 @@ void MaskedDepthBuffer::drawFrontTriangle(const glm::dvec3& a, const glm::dvec3&
   for (int ty = ty0; ty <= ty1; ++ty)
   {
     const double y0 = ty * kTileHeight + 0.5;
+    const double rowTerm[3] = { edges[0].dx * (y0 - edges[0].py), edges[1].dx * (y0 - edges[1].py),
+      edges[2].dx * (y0 - edges[2].py) };
     // The tiles a convex triangle touches in a row are contiguous: stop after the last one.
     bool inRow = false;
     for (int tx = tx0; tx <= tx1; ++tx)
@@ -538,13 +550,13 @@ void MaskedDepthBuffer::drawFrontTriangle(const glm::dvec3& a, const glm::dvec3&
       for (int k = 0; k < 3; ++k)
       {
         const EdgeTest& e = edges[k];
-        v[k] = e.value(x0, y0);
-        if (v[k] + hiOffset[k] < e.threshold - e.slack)
+        v[k] = e.sign * (rowTerm[k] - e.dy * (x0 - e.px)); // e.value(x0, y0), same operations
+        if (v[k] + hiOffset[k] < emptyBelow[k])
         {
           empty = true;
           break;
         }
-        if (!(v[k] + loOffset[k] > e.threshold + e.slack))
+        if (!(v[k] + loOffset[k] > fullAbove[k]))
         {
           full = false;
           partial |= 1u << k;
@@ -607,9 +619,12 @@ bool MaskedDepthBuffer::hidden(
 
 bool MaskedDepthBuffer::behindTiles(int tx0, int ty0, int tx1, int ty1, double depth)
 {
-  for (int by = ty0 / kBlockTiles; by <= ty1 / kBlockTiles; ++by)
+  // Tile indices are never negative: the block bounds once, by shifts.
+  static_assert(kBlockTiles == 4, "blocks of 4 x 4 tiles");
+  const int bx0 = tx0 >> 2, bx1 = tx1 >> 2, by0 = ty0 >> 2, by1 = ty1 >> 2;
+  for (int by = by0; by <= by1; ++by)
   {
-    for (int bx = tx0 / kBlockTiles; bx <= tx1 / kBlockTiles; ++bx)
+    for (int bx = bx0; bx <= bx1; ++bx)
     {
       float& bound = blockZ0_[static_cast<std::size_t>(by) * blocksX_ + bx];
       if (std::isnan(bound))
