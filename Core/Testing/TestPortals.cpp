@@ -562,6 +562,30 @@ TEST(PortalTraversal, EntryPlanesSkipTheWayBackAndAReusedTraversalMatchesAFreshO
   }
 }
 
+TEST(PortalTraversal, AGraphRebuiltInPlaceWithMorePortalsIsNotReadThroughTheOldOnesCache)
+{
+  // vtkPortalCuller keeps its graph and its traversal side by side and rebuilds the graph in
+  // place: the same address and node count, but here four more portals than the traversal's
+  // per-portal cache was sized for.
+  BoxRooms fewer = corridor();
+  fewer.portals.resize(1);
+  PortalGraph g = PortalGraph::build(fewer.finish());
+  const PortalView view = lookAt({ 2.5, 2, 1.5 }, { 30, 2, 1.5 });
+  PortalTraversal reused;
+  reused.run(g, view, TraversalOptions());
+  EXPECT_EQ(visibleSet(reused), (std::set<std::int32_t>{ 0, 1 }));
+  BoxRooms more = corridor();
+  const PortalGraph other = PortalGraph::build(more.finish());
+  ASSERT_EQ(other.nodeCount(), g.nodeCount());
+  ASSERT_GT(other.portals().size(), g.portals().size());
+  g = other;
+  reused.run(g, view, TraversalOptions());
+  PortalTraversal fresh;
+  fresh.run(g, view, TraversalOptions());
+  EXPECT_EQ(visibleSet(reused), visibleSet(fresh));
+  EXPECT_EQ(visibleSet(fresh).count(3), 1u); // down the corridor, through the new portals
+}
+
 TEST(PortalTraversal, CyclesTerminateAndARoomReachedTwiceGetsBothRegions)
 {
   BoxRooms s = ring();

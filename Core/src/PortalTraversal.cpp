@@ -93,8 +93,11 @@ bool PortalTraversal::begin(const PortalGraph& graph, const PortalView& view,
   const TraversalOptions& options)
 {
   const auto nodes = static_cast<std::size_t>(graph.nodeCount());
-  if (this->LastGraph == &graph && this->LastNodes == nodes && this->NodeRegions.size() >= nodes &&
-    this->NodeGeneration.size() >= nodes)
+  // The same graph as the previous frame's: the same address is not enough, a caller may rebuild
+  // its graph in place (vtkPortalCuller does), and the per-portal cache must fit its portals.
+  if (this->LastGraph == &graph && this->LastFingerprint == graph.fingerprint() &&
+    this->LastNodes == nodes && this->NodeRegions.size() >= nodes &&
+    this->NodeGeneration.size() >= nodes && this->Clipped.size() == graph.portals().size())
   {
     // Only the nodes the previous frame reached have regions: reset those, not every node.
     for (const std::int32_t n : this->Visible)
@@ -118,6 +121,7 @@ bool PortalTraversal::begin(const PortalGraph& graph, const PortalView& view,
     this->Frame = 0;
   }
   this->LastGraph = &graph;
+  this->LastFingerprint = graph.fingerprint();
   this->LastNodes = nodes;
   if (++this->Frame == 0)
   {

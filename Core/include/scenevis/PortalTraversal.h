@@ -245,8 +245,10 @@ private:
   std::vector<ClippedPortal> Clipped;
   std::vector<glm::dvec3> ClippedVertices;
   std::uint32_t Frame = 0;
-  /// The graph of the previous frame and its node count: only the nodes it visited are reset.
+  /// The graph of the previous frame (address, fingerprint and node count): when it is the same
+  /// graph, only the nodes it visited are reset.
   const PortalGraph* LastGraph = nullptr;
+  std::uint64_t LastFingerprint = 0;
   std::size_t LastNodes = 0;
 };
 

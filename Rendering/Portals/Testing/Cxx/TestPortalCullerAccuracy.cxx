@@ -12,6 +12,7 @@
 #include "scenevis/PortalGraph.h"
 #include "scenevis/Scenes.h"
 #include "scenevis/testing/IdBuffer.h"
+#include "scenevis/testing/ImageCompare.h"
 #include "scenevis/testing/RenderWindow.h"
 #include "scenevis/testing/Scenes.h"
 #include "scenevis/testing/StrictVtkOutput.h"
@@ -89,8 +90,12 @@ int TestPortalCullerAccuracy(int, char*[])
   const int rooms = static_cast<int>(b.rooms.size());
   const int outsideNode = rooms;
 
-  // Portals through a VTK XML file, as any tool would provide them.
-  const std::filesystem::path tempDir = std::filesystem::temp_directory_path();
+  // Portals through a VTK XML file, as any tool would provide them. In this build tree's
+  // Testing/Temporary, not the system's temporary directory: the files' names are fixed, and
+  // another checkout's run of this test must not write them while this one reads them.
+  const std::filesystem::path tempDir = st::TemporaryDirectory();
+  std::error_code ignored;
+  std::filesystem::create_directories(tempDir, ignored);
   const std::string portalFile = (tempDir / "scenevis-test-building-portals.vtp").string();
   const std::string pvsFile = (tempDir / "scenevis-test-building.pvs").string();
   {
