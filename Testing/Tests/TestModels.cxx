@@ -3,6 +3,7 @@
 // tool and tests rely on: nullptr and one line instead of an empty output, no output-window text,
 // NaN/Inf cells kept (the tool removes and counts them itself).
 #include "scenevis/testing/GTestSupport.h"
+#include "scenevis/testing/ImageCompare.h" // WriteTemporaryFile
 #include "scenevis/testing/Models.h"
 
 #include <vtkPolyData.h>
@@ -19,9 +20,7 @@ namespace
 {
 std::string WriteText(const std::string& name, const std::string& text)
 {
-  const auto path = std::filesystem::temp_directory_path() / name;
-  std::ofstream(path) << text;
-  return path.string();
+  return scenevis::testing::WriteTemporaryFile(name, text);
 }
 } // namespace
 

@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
 #include <sstream>
 #include <system_error>
 
@@ -298,6 +299,16 @@ std::string BaselineDirectory()
 std::string TemporaryDirectory()
 {
   return Env("SCENEVIS_TEMPORARY_DIR", SCENEVIS_DEFAULT_TEMPORARY_DIR);
+}
+
+std::string WriteTemporaryFile(const std::string& name, const std::string& bytes)
+{
+  const std::filesystem::path directory(TemporaryDirectory());
+  std::error_code ignored;
+  std::filesystem::create_directories(directory, ignored);
+  const std::filesystem::path path = directory / name;
+  std::ofstream(path, std::ios::binary) << bytes;
+  return path.string();
 }
 
 std::string CompareWithBaseline(vtkImageData* image,

@@ -5,6 +5,7 @@
 #include "vtkSceneVisModelReader.h"
 
 #include "scenevis/testing/Expect.h"
+#include "scenevis/testing/ImageCompare.h" // WriteTemporaryFile
 #include "scenevis/testing/Models.h"
 
 #include "vtkCellData.h"
@@ -69,9 +70,7 @@ nan 0 0
 
 std::string WriteText(const std::string& name, const std::string& text)
 {
-  const auto path = std::filesystem::temp_directory_path() / name;
-  std::ofstream(path) << text;
-  return path.string();
+  return scenevis::testing::WriteTemporaryFile(name, text);
 }
 
 /// Distinct RGBA values of the "Colors" cell scalars.

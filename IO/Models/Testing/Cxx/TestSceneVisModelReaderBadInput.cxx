@@ -11,6 +11,7 @@
 #include "vtkSceneVisModelReader.h"
 
 #include "scenevis/testing/Expect.h"
+#include "scenevis/testing/ImageCompare.h" // WriteTemporaryFile
 
 #include "vtkCommand.h"
 #include "vtkErrorCode.h"
@@ -91,9 +92,7 @@ POLYGONS 1 4
 
 std::string WriteText(const std::string& name, const std::string& text)
 {
-  const auto path = std::filesystem::temp_directory_path() / name;
-  std::ofstream(path, std::ios::binary) << text;
-  return path.string();
+  return scenevis::testing::WriteTemporaryFile(name, text);
 }
 
 /// Reads @p path and checks the bad-input contract; @p reason must be in the message.

@@ -100,6 +100,11 @@ std::string BaselineDirectory();
 /// Directory for test outputs (build tree Testing/Temporary, or $SCENEVIS_TEMPORARY_DIR).
 std::string TemporaryDirectory();
 
+/// Writes @p bytes to the file @p name in TemporaryDirectory() (created if needed) and returns
+/// its path. Not /tmp: a fixed name there is shared by every checkout on the machine, and two
+/// test runs at once would rewrite the file the other is reading.
+std::string WriteTemporaryFile(const std::string& name, const std::string& bytes);
+
 /**
  * Compare @p image with the baseline PNG @p baselineName (a file name in BaselineDirectory()).
  * On failure writes `<stem>.actual.png` and `<stem>.diff.png` into TemporaryDirectory().
