@@ -82,6 +82,19 @@ std::size_t entries(const PortalPvs& pvs)
   return n;
 }
 
+/// The portal flow's line: its wall and CPU seconds, then what PortalPvs::compute reported.
+void PrintFlow(double wallSeconds, double cpuSeconds, const PvsStats& stats, const PortalPvs& flow)
+{
+  std::printf(
+    "portal flow: %.2f s wall, %.2f s CPU, on %d threads (might-see %.2f s, flow %.2f s); "
+    "%zu directed portals, might-see %.1f and final %.1f portals each; %zu flow steps; "
+    "%zu degraded portals%s; PVS %.1f nodes per node (%zu entries)\n",
+    wallSeconds, cpuSeconds, stats.threads, stats.mightSeeSeconds, stats.flowSeconds,
+    stats.directedPortals, stats.averageMightSee, stats.averagePortalVis, stats.flowSteps,
+    stats.degradedPortals, stats.budgetExceeded ? " (budget exceeded)" : "", stats.averageSetSize,
+    entries(flow));
+}
+
 /// Pairs (rooms) the oracle proved visible that @p pvs lacks.
 std::size_t lost(const testing_support::PortalSegmentOracle& oracle, const PortalPvs& pvs)
 {
@@ -153,14 +166,7 @@ int benchSceneFile(const std::string& scene, const std::string& portalsFile,
   t0 = Clock::now();
   const std::clock_t c0 = std::clock();
   const PortalPvs flow = PortalPvs::compute(graph, options, &stats);
-  std::printf(
-    "portal flow: %.2f s wall, %.2f s CPU, on %d threads (might-see %.2f s, flow %.2f s); "
-    "%zu directed portals, might-see %.1f and final %.1f portals each; %zu flow steps; "
-    "%zu degraded portals%s; PVS %.1f nodes per node (%zu entries)\n",
-    since(t0), cpuSince(c0), stats.threads, stats.mightSeeSeconds, stats.flowSeconds,
-    stats.directedPortals, stats.averageMightSee, stats.averagePortalVis, stats.flowSteps,
-    stats.degradedPortals, stats.budgetExceeded ? " (budget exceeded)" : "", stats.averageSetSize,
-    entries(flow));
+  PrintFlow(since(t0), cpuSince(c0), stats, flow);
 
   // Each camera: the median of its repeats; then the median and the 90th percentile over cameras.
   std::vector<double> exactMs, pvsMs;
@@ -430,14 +436,7 @@ int main(int argc, char** argv)
   std::clock_t c0 = std::clock();
   const PortalPvs flow = PortalPvs::compute(graph, options, &stats);
   const double flowSeconds = since(t0);
-  std::printf("portal flow: %.2f s wall, %.2f s CPU, on %d threads (might-see %.2f s, flow %.2f "
-              "s); %zu directed "
-              "portals, might-see %.1f and final %.1f portals each; %zu flow steps; %zu degraded "
-              "portals%s; PVS %.1f nodes per node (%zu entries)\n",
-    flowSeconds, cpuSince(c0), stats.threads, stats.mightSeeSeconds, stats.flowSeconds,
-    stats.directedPortals, stats.averageMightSee, stats.averagePortalVis, stats.flowSteps,
-    stats.degradedPortals, stats.budgetExceeded ? " (budget exceeded)" : "", stats.averageSetSize,
-    entries(flow));
+  PrintFlow(flowSeconds, cpuSince(c0), stats, flow);
   options.method = PvsMethod::MightSee;
   t0 = Clock::now();
   const PortalPvs might = PortalPvs::compute(graph, options, &stats);
