@@ -128,6 +128,12 @@ double HeapInUseBytes()
   return static_cast<double>(info.uordblks) + static_cast<double>(info.hblkhd);
 }
 
+/// Bytes malloc holds free in its arenas (glibc mallinfo2 fordblks): RSS that no live object uses.
+double HeapFreeBytes()
+{
+  return static_cast<double>(mallinfo2().fordblks);
+}
+
 /// The kinds of view a jump goes to.
 enum ViewKind
 {
@@ -314,9 +320,11 @@ struct SoakResult
 };
 
 /// Renders @p path in @p renderer (already holding the scene) in a new window; @p drawn reports
-/// what the last frame drew.
+/// what the last frame drew, @p caches (optional) the bytes the culler's own caches hold (shown
+/// in the progress lines, so that their part of the heap is seen apart).
 SoakResult Soak(const std::string& mode, vtkRenderer* renderer, const double bounds[6],
-  const std::vector<Pose>& path, const Options& o, const std::function<double()>& drawn)
+  const std::vector<Pose>& path, const Options& o, const std::function<double()>& drawn,
+  const std::function<double()>& caches = nullptr)
 {
   SoakResult r;
   r.mode = mode;
@@ -357,9 +365,16 @@ SoakResult Soak(const std::string& mode, vtkRenderer* renderer, const double bou
       r.windowRss.push_back(ResidentBytes());
       r.windowHeap.push_back(HeapInUseBytes());
       // Progress of a long run, on stderr so that stdout keeps only the figures.
-      std::fprintf(stderr, "[%s] %zu frames in %.0f s, RSS %.1f MiB, heap in use %.1f MiB\n",
+      std::fprintf(stderr,
+        "[%s] %zu frames in %.0f s, RSS %.1f MiB, heap in use %.1f MiB, free in malloc's arenas "
+        "%.1f MiB",
         mode.c_str(), f + 1, 1e-3 * Milliseconds(start), r.windowRss.back() / kMiB,
-        r.windowHeap.back() / kMiB);
+        r.windowHeap.back() / kMiB, HeapFreeBytes() / kMiB);
+      if (caches)
+      {
+        std::fprintf(stderr, ", of it the culler's caches %.1f MiB", caches() / kMiB);
+      }
+      std::fprintf(stderr, "\n");
     }
   }
   r.rssEnd = ResidentBytes();
@@ -611,8 +626,14 @@ int main(int argc, char* argv[])
         culler = ours;
       }
       renderer->AddCuller(culler);
-      r = Soak(mode, renderer, bounds, path, o,
-        [octree] { return octree ? static_cast<double>(octree->GetNumberOfPropsDrawn()) : 0.0; });
+      auto* occlusion = vtkOcclusionCuller::SafeDownCast(octree);
+      r = Soak(
+        mode, renderer, bounds, path, o,
+        [octree] { return octree ? static_cast<double>(octree->GetNumberOfPropsDrawn()) : 0.0; },
+        occlusion ? std::function<double()>([occlusion] {
+          return static_cast<double>(occlusion->GetOccluderCacheBytes());
+        })
+                  : nullptr);
       r.drawnUnit = octree ? "props" : "(not counted by VTK's culler)";
       renderer->GetCullers()->RemoveAllItems();
       if (--actorModesLeft == 0)
