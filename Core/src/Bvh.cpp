@@ -588,6 +588,13 @@ inline double nearness(const CullParams& p, const glm::dvec3& lo, const glm::dve
 }
 } // namespace
 
+bool Bvh::worthDrawing(const OcclusionCull& occlusion, std::uint32_t p) const
+{
+  return !occlusion.worthDrawing ||
+    occlusion.worthDrawing(glm::dvec3(boxes_.minX[p], boxes_.minY[p], boxes_.minZ[p]),
+      glm::dvec3(boxes_.maxX[p], boxes_.maxY[p], boxes_.maxZ[p]), triangles_[p]);
+}
+
 void Bvh::drawOnce(OcclusionFrame& of, std::uint32_t p)
 {
   if (!of.occlusion.drawOccluder || occluderStamp_[p] == occlusionFrame_)
@@ -595,10 +602,7 @@ void Bvh::drawOnce(OcclusionFrame& of, std::uint32_t p)
     return;
   }
   occluderStamp_[p] = occlusionFrame_;
-  const OcclusionCull& occlusion = of.occlusion;
-  if (!occlusion.worthDrawing ||
-    occlusion.worthDrawing(glm::dvec3(boxes_.minX[p], boxes_.minY[p], boxes_.minZ[p]),
-      glm::dvec3(boxes_.maxX[p], boxes_.maxY[p], boxes_.maxZ[p]), triangles_[p]))
+  if (worthDrawing(of.occlusion, p))
   {
     of.occlusion.drawOccluder(id_[p]);
     ++of.base.stats.occludersDrawn;
@@ -643,7 +647,12 @@ void Bvh::cullOccluded(const CullParams& params,
       {
         continue;
       }
-      drawOnce(frame, p);
+      occluderStamp_[p] = occlusionFrame_;
+      if (worthDrawing(occlusion, p))
+      {
+        occlusion.drawOccluder(id);
+        ++local.occludersDrawn;
+      }
     }
   }
   if (!nodes_.empty())

@@ -242,7 +242,7 @@ bool vtkOccluderRasterizer::WorthDrawing(const double lo[3], const double hi[3],
   return true;
 }
 
-void vtkOccluderRasterizer::Draw(vtkProp* prop, const double* placement)
+void vtkOccluderRasterizer::Draw(vtkProp* prop, const double bounds[6], const double* placement)
 {
   // dynamic_cast, not SafeDownCast: this runs for every visible prop, and SafeDownCast compares
   // class names along the hierarchy.
@@ -262,7 +262,18 @@ void vtkOccluderRasterizer::Draw(vtkProp* prop, const double* placement)
     return;
   }
   const auto start = std::chrono::steady_clock::now();
+  // Occluder selection first: most visible props of a wide view are skipped by it, before the
+  // actor's matrix (which may recompute it) is asked for.
   Mesh* mesh = this->MeshOf(data);
+  if (this->MinimumPixelsPerTriangle > 0.0 && !mesh->Triangles.empty() &&
+    this->ScreenArea(bounds) <
+      this->MinimumPixelsPerTriangle * static_cast<double>(mesh->Triangles.size() / 3))
+  {
+    ++this->OccludersSkipped;
+    this->DrawSeconds +=
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return;
+  }
   double model[16];
   if (placement)
   {

@@ -46,11 +46,11 @@ public:
   /// Viewport size in pixels and the camera's clip-from-world matrix (VTK's row-major, as
   /// vtkCamera::GetCompositeProjectionTransformMatrix(aspect, -1, 1) returns it).
   void BeginFrame(int width, int height, const double clipFromWorldRowMajor[16]);
-  /// Rasterize @p prop if it is an opaque occluder (see the class comment); @p placement: the
-  /// model-to-world matrix to draw it with (16 values, row-major; a vtkInstancedActor's
-  /// placement), instead of the actor's own. Occluder selection is not repeated here: ask
-  /// WorthDrawing() first.
-  void Draw(vtkProp* prop, const double* placement = nullptr);
+  /// Rasterize @p prop if it is an opaque occluder (see the class comment); @p bounds: its world
+  /// bounds as the culler knows them (for occluder selection); @p placement: the model-to-world
+  /// matrix to draw it with (16 values, row-major; a vtkInstancedActor's placement), instead of
+  /// the actor's own.
+  void Draw(vtkProp* prop, const double bounds[6], const double* placement = nullptr);
   /// Occluder selection alone, before any question to the actor, its mapper or its data (in a
   /// wide view nearly every prop is visible and most are too small to occlude; this is what such
   /// a prop costs): false, and counted in OccludersSkipped, if a prop with world bounds [lo, hi]

@@ -133,7 +133,7 @@ public:
         const bool placed = slot.Placement >= 0 &&
           static_cast<vtkInstancedActor*>(slot.Prop.GetPointer())
             ->GetPlacementModelMatrix(slot.Placement, model);
-        raster.Draw(slot.Prop, placed ? model : nullptr);
+        raster.Draw(slot.Prop, slot.Bounds, placed ? model : nullptr);
       }
     };
     occlusion.worthDrawing = [&raster](const glm::dvec3& lo, const glm::dvec3& hi,

@@ -204,8 +204,9 @@ private:
   void cullNode(Frame& frame, std::uint32_t node, std::uint8_t mask) const;
   struct OcclusionFrame;
   void cullNodeOccluded(OcclusionFrame& frame, std::uint32_t node, std::uint8_t mask);
-  /// Hands the object at position @p p to drawOccluder once per cull, if worthDrawing (when
-  /// given) says it is worth it.
+  /// OcclusionCull::worthDrawing of the object at position @p p (true without one).
+  bool worthDrawing(const OcclusionCull& occlusion, std::uint32_t p) const;
+  /// Hands the object at position @p p to drawOccluder once per cull (if worthDrawing).
   void drawOnce(OcclusionFrame& frame, std::uint32_t p);
   bool nodePasses(Frame& frame, std::uint32_t node, std::uint8_t& mask) const;
   bool objectPasses(Frame& frame, std::uint32_t position, std::uint8_t mask) const;

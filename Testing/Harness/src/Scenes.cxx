@@ -10,7 +10,6 @@
 #include <vtkCellArray.h>
 #include <vtkCellData.h>
 #include <vtkCubeSource.h>
-#include <vtkFieldData.h>
 #include <vtkIntArray.h>
 #include <vtkNew.h>
 #include <vtkPoints.h>
@@ -154,22 +153,6 @@ vtkSmartPointer<vtkPolyData> MakeRoomPolyData(
   pd->SetPolys(polys);
   pd->GetCellData()->AddArray(node);
   return pd;
-}
-
-vtkSmartPointer<vtkActor> MakeRoomActor(
-  const scenevis::scenes::BuildingScene& building, int room, int outsideNode)
-{
-  vtkSmartPointer<vtkPolyData> pd = MakeRoomPolyData(building, room, outsideNode);
-  vtkNew<vtkIntArray> id;
-  id->SetName("RoomId");
-  id->InsertNextValue(room);
-  pd->GetFieldData()->AddArray(id);
-  vtkNew<vtkPolyDataMapper> mapper;
-  mapper->SetInputData(pd);
-  mapper->ScalarVisibilityOff();
-  auto actor = vtkSmartPointer<vtkActor>::New();
-  actor->SetMapper(mapper);
-  return actor;
 }
 
 vtkSmartPointer<vtkActor> MakeTranslucentActor(

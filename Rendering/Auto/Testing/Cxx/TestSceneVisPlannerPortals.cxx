@@ -21,7 +21,9 @@
 
 #include <vtkCamera.h>
 #include <vtkCullerCollection.h>
+#include <vtkFieldData.h>
 #include <vtkFrustumCoverageCuller.h>
+#include <vtkIntArray.h>
 #include <vtkNew.h>
 #include <vtkRenderWindow.h>
 #include <vtkRenderer.h>
@@ -59,7 +61,16 @@ int TestSceneVisPlannerPortals(int, char*[])
   std::vector<vtkSmartPointer<vtkActor>> actors; // actors[r + 1]: room r (-1: outside)
   for (int r = -1; r < rooms; ++r)
   {
-    vtkSmartPointer<vtkActor> actor = st::MakeRoomActor(b, r, outsideNode);
+    auto pd = st::MakeRoomPolyData(b, r, outsideNode);
+    vtkNew<vtkIntArray> id;
+    id->SetName("RoomId");
+    id->InsertNextValue(r);
+    pd->GetFieldData()->AddArray(id);
+    vtkNew<vtkPolyDataMapper> mapper;
+    mapper->SetInputData(pd);
+    mapper->ScalarVisibilityOff();
+    auto actor = vtkSmartPointer<vtkActor>::New();
+    actor->SetMapper(mapper);
     renderer->AddActor(actor);
     actors.push_back(actor);
   }

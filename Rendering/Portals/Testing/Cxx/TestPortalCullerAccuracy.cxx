@@ -24,9 +24,12 @@
 #include <vtkCamera.h>
 #include <vtkCellArray.h>
 #include <vtkCellData.h>
+#include <vtkFieldData.h>
+#include <vtkIntArray.h>
 #include <vtkNew.h>
 #include <vtkPoints.h>
 #include <vtkPolyData.h>
+#include <vtkPolyDataMapper.h>
 #include <vtkProperty.h>
 #include <vtkRenderWindow.h>
 #include <vtkRenderer.h>
@@ -116,7 +119,16 @@ int TestPortalCullerAccuracy(int, char*[])
   std::vector<vtkProp*> props;
   for (int r = -1; r < rooms; ++r)
   {
-    vtkSmartPointer<vtkActor> actor = st::MakeRoomActor(b, r, outsideNode); // room: field data
+    auto pd = st::MakeRoomPolyData(b, r, outsideNode);
+    vtkNew<vtkIntArray> id; // the actor's room, as field data
+    id->SetName("RoomId");
+    id->InsertNextValue(r);
+    pd->GetFieldData()->AddArray(id);
+    vtkNew<vtkPolyDataMapper> mapper;
+    mapper->SetInputData(pd);
+    mapper->ScalarVisibilityOff();
+    auto actor = vtkSmartPointer<vtkActor>::New();
+    actor->SetMapper(mapper);
     actor->GetProperty()->SetColor(0.4 + 0.6 * ((r * 37 + 50) % 100) / 100.0, 0.7, 0.5);
     renderer->AddActor(actor);
     actors.push_back(actor);

@@ -72,12 +72,6 @@ vtkSmartPointer<vtkPolyData> MakePortalPolyData(const scenevis::scenes::Building
 vtkSmartPointer<vtkPolyData> MakeRoomPolyData(
   const scenevis::scenes::BuildingScene& building, int room, int outsideNode);
 
-/// An actor per room as vtkPortalCuller expects them: MakeRoomPolyData(building, room,
-/// outsideNode) with the room (-1: outside) as an integer field-data array "RoomId", drawn
-/// without scalar colours.
-vtkSmartPointer<vtkActor> MakeRoomActor(
-  const scenevis::scenes::BuildingScene& building, int room, int outsideNode);
-
 /// An actor drawing @p source's output in colour (r, g, b) at @p opacity, without specular.
 vtkSmartPointer<vtkActor> MakeTranslucentActor(
   vtkAlgorithm* source, double r, double g, double b, double opacity);
