@@ -208,21 +208,28 @@ int benchSceneFile(const std::string& scene, const std::string& portalsFile,
       b.push_back(1e3 * since(s));
     }
     pvsRooms += t.visibleNodes().size();
+    // The traversal's start rooms: the eye's, and those of portals within the near plane's
+    // corner distance; the oracles below walk rays from each of them.
+    const double halfTan = std::tan(glm::radians(angle) / 2.0);
+    const EyeLocation loc =
+      graph.locate(eye, zNear * std::sqrt(1.0 + 2.0 * halfTan * halfTan), topt.outside);
+    const glm::dmat4 worldFromClip = glm::inverse(view.clipFromWorld);
+    // The unit direction from the eye through the point (x, y) of normalized device coordinates.
+    const auto rayThrough = [&](double x, double y)
+    {
+      const glm::dvec4 far = worldFromClip * glm::dvec4(x, y, 1.0, 1.0);
+      return glm::normalize(glm::dvec3(far) / far.w - eye);
+    };
     if (rayOracle > 0)
     {
       // The PVS against rays: every room a ray from the eye enters through portals (RayWalk)
       // must be in the PVS of the rooms the traversal starts from.
-      const double halfTan = std::tan(glm::radians(angle) / 2.0);
-      const EyeLocation loc =
-        graph.locate(eye, zNear * std::sqrt(1.0 + 2.0 * halfTan * halfTan), topt.outside);
-      const glm::dmat4 worldFromClip = glm::inverse(view.clipFromWorld);
       std::vector<char> missed(static_cast<std::size_t>(graph.nodeCount()), 0);
       for (std::size_t i = 0; i < rayOracle * rayOracle; ++i)
       {
         const double x = -1.0 + 2.0 * (static_cast<double>(i % rayOracle) + 0.5) / rayOracle;
         const double y = -1.0 + 2.0 * (static_cast<double>(i / rayOracle) + 0.5) / rayOracle;
-        const glm::dvec4 far = worldFromClip * glm::dvec4(x, y, 1.0, 1.0);
-        const glm::dvec3 d = glm::normalize(glm::dvec3(far) / far.w - eye);
+        const glm::dvec3 d = rayThrough(x, y);
         for (const std::int32_t start : loc.nodes)
         {
           bench::RayWalk(graph, portalsOf, start, eye, d,
@@ -253,12 +260,6 @@ int benchSceneFile(const std::string& scene, const std::string& portalsFile,
       // How much of the view the exact traversal saw such a room through: its largest region
       // rectangle in pixels of a 1024-pixel square image (an upper bound of the region).
       t.run(graph, view, topt);
-      // The traversal's start rooms: the eye's, and those of portals within the near plane's
-      // corner distance.
-      const double halfTan = std::tan(glm::radians(angle) / 2.0);
-      const EyeLocation loc =
-        graph.locate(eye, zNear * std::sqrt(1.0 + 2.0 * halfTan * halfTan), topt.outside);
-      const glm::dmat4 worldFromClip = glm::inverse(view.clipFromWorld);
       for (const std::int32_t node : outside)
       {
         bool seen = false;
@@ -273,8 +274,7 @@ int benchSceneFile(const std::string& scene, const std::string& portalsFile,
           {
             const double x = r.x + (r.z - r.x) * ((i % 32) + 0.5) / 32.0;
             const double y = r.y + (r.w - r.y) * ((i / 32) + 0.5) / 32.0;
-            const glm::dvec4 far = worldFromClip * glm::dvec4(x, y, 1.0, 1.0);
-            const glm::dvec3 d = glm::normalize(glm::dvec3(far) / far.w - eye);
+            const glm::dvec3 d = rayThrough(x, y);
             for (const std::int32_t start : loc.nodes)
             {
               seen = seen || bench::RayReaches(graph, portalsOf, start, node, eye, d);
