@@ -86,6 +86,7 @@ enum class Mode
   BSPSortedMapperFullUploads, // the same with PartialIndexUploadsOff(): the whole index buffer
   BSPTranslucentPass,
   BSPTranslucentPassPerActor,
+  BSPTranslucentPassTwoLevels, // the same with TwoLevelOrderOn()
   // Why the mapper costs more than unsorted alpha: the same two without the RGBA cell colours
   // (property colour, opacity 0.3), so the mapper need not give every fragment its own vertices.
   UnsortedAlphaPropertyColor,
@@ -140,8 +141,38 @@ void StartCamera(vtkRenderer* renderer)
 enum class Scene
 {
   SphereGrid,
-  Engine
+  Engine,
+  SpreadSpheres // multi-actor modes only: 64 actors of one sphere input, 2.5 radii apart
 };
+
+/// 64 actors drawing one sphere input of about @p triangles / 64 triangles, 2 units apart
+/// (radius 0.8), turned differently: separable instances.
+std::vector<vtkSmartPointer<vtkActor>> AddSpreadSphereActors(
+  vtkRenderer* renderer, vtkIdType triangles, double opacity)
+{
+  const int resolution =
+    std::max(8, static_cast<int>(std::sqrt(static_cast<double>(triangles) / 64.0 / 2.0)) + 1);
+  vtkNew<vtkSphereSource> sphere;
+  sphere->SetRadius(0.8);
+  sphere->SetThetaResolution(resolution);
+  sphere->SetPhiResolution(resolution);
+  std::vector<vtkSmartPointer<vtkActor>> actors;
+  for (int n = 0; n < 64; ++n)
+  {
+    const int i = n % 4, j = (n / 4) % 4, k = n / 16;
+    vtkNew<vtkPolyDataMapper> sphereMapper;
+    sphereMapper->SetInputConnection(sphere->GetOutputPort());
+    auto sphereActor = vtkSmartPointer<vtkActor>::New();
+    sphereActor->SetMapper(sphereMapper);
+    sphereActor->SetPosition(2.0 * i, 2.0 * j, 2.0 * k);
+    sphereActor->SetOrientation(10.0 * n, 7.0 * n, 0.0);
+    sphereActor->GetProperty()->SetColor(0.2 + 0.8 * i / 3, 0.2 + 0.8 * j / 3, 0.2 + 0.8 * k / 3);
+    sphereActor->GetProperty()->SetOpacity(opacity);
+    renderer->AddActor(sphereActor);
+    actors.push_back(sphereActor);
+  }
+  return actors;
+}
 
 /// Opacity of part @p part of the engine: 0.35, 0.5, 0.65, 0.8, 0.35, ... by PartId.
 double EngineOpacity(vtkIdType part)
@@ -273,15 +304,21 @@ void Frame(benchmark::State& state, Mode mode, Scene scene)
   {
     case Mode::BSPTranslucentPass:
     case Mode::BSPTranslucentPassPerActor:
+    case Mode::BSPTranslucentPassTwoLevels:
+      bspPass->SetTwoLevelOrder(mode == Mode::BSPTranslucentPassTwoLevels);
       if (engine)
       {
         state.counters["actors"] = static_cast<double>(AddPartActors(renderer, engine).size());
+      }
+      else if (scene == Scene::SpreadSpheres)
+      {
+        AddSpreadSphereActors(renderer, triangles, 0.3);
       }
       else
       {
         AddSphereActors(renderer, triangles, 0.3, false);
       }
-      bspPass->SetBatching(mode == Mode::BSPTranslucentPass);
+      bspPass->SetBatching(mode != Mode::BSPTranslucentPassPerActor);
       steps->SetTranslucentPass(bspPass);
       renderer->SetPass(steps);
       break;
@@ -326,8 +363,8 @@ void Frame(benchmark::State& state, Mode mode, Scene scene)
       }
       break;
   }
-  const bool multiActor =
-    mode == Mode::BSPTranslucentPass || mode == Mode::BSPTranslucentPassPerActor;
+  const bool multiActor = mode == Mode::BSPTranslucentPass ||
+    mode == Mode::BSPTranslucentPassPerActor || mode == Mode::BSPTranslucentPassTwoLevels;
   const bool sortedMapper =
     mode == Mode::BSPSortedMapper || mode == Mode::BSPSortedMapperPropertyColor ||
     mode == Mode::BSPSortedMapperFullUploads;
@@ -399,6 +436,57 @@ void Frame(benchmark::State& state, Mode mode, Scene scene)
     state.counters["batches"] = static_cast<double>(bspPass->GetNumberOfBatchGroups());
     state.counters["build_s"] = bspPass->GetLastBuildTime();
   }
+  window->RemoveRenderer(renderer);
+}
+
+void MovingActorFrame(benchmark::State& state, bool twoLevels, Scene scene)
+{
+  vtkSmartPointer<vtkRenderWindow> window = scenevis::testing::MakeRenderWindow(512, 512);
+  vtkNew<vtkRenderer> renderer;
+  window->AddRenderer(renderer);
+  std::vector<vtkSmartPointer<vtkActor>> actors;
+  if (scene == Scene::Engine)
+  {
+    vtkPolyData* engine = TranslucentEngine();
+    if (!engine)
+    {
+      state.SkipWithError("engine-glb not fetched (scripts/fetch-data.sh)");
+      return;
+    }
+    actors = AddPartActors(renderer, engine);
+  }
+  else if (scene == Scene::SpreadSpheres)
+  {
+    actors = AddSpreadSphereActors(renderer, state.range(0), 0.3);
+  }
+  else
+  {
+    actors = AddSphereActors(renderer, state.range(0), 0.3, false);
+  }
+  vtkNew<vtkOrderedTranslucentPass> steps;
+  vtkNew<vtkBSPTranslucentPass> pass;
+  pass->SetTwoLevelOrder(twoLevels);
+  steps->SetTranslucentPass(pass);
+  renderer->SetPass(steps);
+  StartCamera(renderer);
+  window->Render(); // the first build: not timed
+  const vtkIdType builds = pass->GetNumberOfTreeBuilds();
+  double trees = 0.0;
+  int frame = 0;
+  for (auto _ : state)
+  {
+    vtkActor* moving = actors[static_cast<std::size_t>(frame) % actors.size()];
+    double* p = moving->GetPosition();
+    const double step = frame % 2 ? -0.01 : 0.01;
+    moving->SetPosition(p[0] + step, p[1], p[2]);
+    window->Render();
+    trees += pass->GetLastBuildTreeCount();
+    ++frame;
+  }
+  state.counters["builds"] = static_cast<double>(pass->GetNumberOfTreeBuilds() - builds);
+  state.counters["bsp_trees_per_frame"] = trees / std::max(frame, 1);
+  state.counters["fragments"] = static_cast<double>(pass->GetNumberOfFragments());
+  state.counters["groups"] = pass->GetNumberOfPartGroups();
   window->RemoveRenderer(renderer);
 }
 
@@ -543,6 +631,52 @@ SCENEVIS_FRAME(BSPSortedMapper, Mode::BSPSortedMapper, 10);
 SCENEVIS_FRAME(BSPSortedMapperFullUploads, Mode::BSPSortedMapperFullUploads, 10);
 SCENEVIS_FRAME(BSPTranslucentPass, Mode::BSPTranslucentPass, 10);
 SCENEVIS_FRAME(BSPTranslucentPassPerActor, Mode::BSPTranslucentPassPerActor, 5);
+SCENEVIS_FRAME(BSPTranslucentPassTwoLevels, Mode::BSPTranslucentPassTwoLevels, 10);
+
+// One actor moves every frame (the camera stays): the multi-actor pass with one tree over every
+// actor (rebuilt each frame) against the two-level order (the top level, and the shared tree of
+// the group the actor is in). Scenes: the 64 overlapping spheres (one group), the engine's 115
+// parts (one group), and 64 copies of one sphere 2.5 radii apart (64 groups, one input tree).
+BENCHMARK_CAPTURE(MovingActorFrame, Grid, false, Scene::SphereGrid)
+  ->Name("Moving/OneTree/Grid")
+  ->Arg(100000)
+  ->Iterations(5)
+  ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(MovingActorFrame, Grid2, true, Scene::SphereGrid)
+  ->Name("Moving/TwoLevels/Grid")
+  ->Arg(100000)
+  ->Iterations(5)
+  ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(MovingActorFrame, Engine, false, Scene::Engine)
+  ->Name("Moving/OneTree/Engine")
+  ->Arg(0)
+  ->Iterations(5)
+  ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(MovingActorFrame, Engine2, true, Scene::Engine)
+  ->Name("Moving/TwoLevels/Engine")
+  ->Arg(0)
+  ->Iterations(5)
+  ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(MovingActorFrame, Spread, false, Scene::SpreadSpheres)
+  ->Name("Moving/OneTree/Spread")
+  ->Arg(100000)
+  ->Iterations(5)
+  ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(MovingActorFrame, Spread2, true, Scene::SpreadSpheres)
+  ->Name("Moving/TwoLevels/Spread")
+  ->Arg(100000)
+  ->Iterations(5)
+  ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(Frame, Spread, Mode::BSPTranslucentPass, Scene::SpreadSpheres)
+  ->Name("Frame/BSPTranslucentPassSpread")
+  ->Arg(100000)
+  ->Iterations(10)
+  ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(Frame, Spread2, Mode::BSPTranslucentPassTwoLevels, Scene::SpreadSpheres)
+  ->Name("Frame/BSPTranslucentPassTwoLevelsSpread")
+  ->Arg(100000)
+  ->Iterations(10)
+  ->Unit(benchmark::kMillisecond);
 
 BENCHMARK_CAPTURE(Frame, WhyUnsorted, Mode::UnsortedAlphaPropertyColor, Scene::SphereGrid)
   ->Name("Why/UnsortedAlphaPropertyColor")

@@ -61,6 +61,13 @@ bool finite(const glm::dmat4& m)
   return true;
 }
 
+/// @p p placed by @p m, divided by w when @p m is projective (not finite when w is 0).
+glm::dvec3 toWorld(const glm::dmat4& m, const glm::dvec3& p)
+{
+  const glm::dvec4 w = m * glm::dvec4(p, 1.0);
+  return w.w == 1.0 ? glm::dvec3(w) : glm::dvec3(w) / w.w;
+}
+
 /// An affine matrix (bottom row 0 0 0 1) whose linear part is far from singular, and its inverse.
 bool invertibleAffine(const glm::dmat4& m, glm::dmat4& inverse)
 {
@@ -217,9 +224,7 @@ void buildShape(Shape& shape, const Group& group, const std::vector<Part>& parts
     const auto base = static_cast<std::uint32_t>(mesh.points.size());
     for (const glm::dvec3& q : source.points)
     {
-      // An isolated part's matrix may be projective (bottom row not 0 0 0 1).
-      const glm::dvec4 w = shapeFrom[member] * glm::dvec4(q, 1.0);
-      mesh.points.push_back(w.w == 1.0 ? glm::dvec3(w) : glm::dvec3(w) / w.w);
+      mesh.points.push_back(toWorld(shapeFrom[member], q)); // the matrix may be projective
     }
     for (std::uint32_t i = 0; i < source.polygonCount(); ++i)
     {
@@ -254,16 +259,20 @@ Tree build(const std::vector<const PolygonMesh*>& meshes, const std::vector<Part
   std::vector<char> usedKnown(meshes.size(), 0);
   std::vector<Extent> extents(n);
   std::vector<char> valid(n, 0);
+  std::vector<char> affine(n, 0); // has a model frame: an invertible affine matrix
   Box world;
   double largest = 0.0;
   for (std::size_t i = 0; i < n; ++i)
   {
     const Part& part = parts[i];
-    if (part.mesh >= meshes.size() || !meshes[part.mesh] ||
-      !invertibleAffine(part.worldFromModel, tree.modelFromWorld[i]))
+    if (part.mesh >= meshes.size() || !meshes[part.mesh] || !finite(part.worldFromModel))
+    {
+      continue;
+    }
+    affine[i] = invertibleAffine(part.worldFromModel, tree.modelFromWorld[i]) ? 1 : 0;
+    if (!affine[i])
     {
       tree.modelFromWorld[i] = glm::dmat4(1.0);
-      continue;
     }
     if (!usedKnown[part.mesh])
     {
@@ -276,7 +285,7 @@ Tree build(const std::vector<const PolygonMesh*>& meshes, const std::vector<Part
     bool any = false;
     for (const std::uint32_t id : used[part.mesh])
     {
-      const glm::dvec3 w(part.worldFromModel * glm::dvec4(meshes[part.mesh]->points[id], 1.0));
+      const glm::dvec3 w = toWorld(part.worldFromModel, meshes[part.mesh]->points[id]);
       if (!std::isfinite(w.x) || !std::isfinite(w.y) || !std::isfinite(w.z))
       {
         continue;
@@ -295,7 +304,9 @@ Tree build(const std::vector<const PolygonMesh*>& meshes, const std::vector<Part
     if (!any)
     {
       tree.modelFromWorld[i] = glm::dmat4(1.0);
+      affine[i] = 0;
     }
+    tree.statistics.worldFrameParts += valid[i] && !affine[i] ? 1 : 0;
   }
   tree.tolerance = config.relativeTolerance * world.diagonal() + 16.0 * DBL_EPSILON * largest;
   tree.statistics.tolerance = tree.tolerance;
@@ -385,7 +396,7 @@ Tree build(const std::vector<const PolygonMesh*>& meshes, const std::vector<Part
   {
     Group& group = tree.groups[g];
     const bool isolated = g < tree.isolatedGroups;
-    if (group.parts.size() == 1 && !isolated)
+    if (group.parts.size() == 1 && !isolated && affine[group.parts.front()])
     {
       ++tree.statistics.singlePartGroups;
       continue;
@@ -397,8 +408,15 @@ Tree build(const std::vector<const PolygonMesh*>& meshes, const std::vector<Part
     }
     else
     {
-      group.worldFromShape = parts[group.parts.front()].worldFromModel;
-      group.shapeFromWorld = tree.modelFromWorld[group.parts.front()];
+      // The frame: the first member's model coordinates, or the world's when no member has an
+      // invertible affine matrix.
+      const auto framed = std::find_if(
+        group.parts.begin(), group.parts.end(), [&](std::uint32_t p) { return affine[p] != 0; });
+      if (framed != group.parts.end())
+      {
+        group.worldFromShape = parts[*framed].worldFromModel;
+        group.shapeFromWorld = tree.modelFromWorld[*framed];
+      }
       shapeKey(group, parts, key);
       shapeFrom = key.memberMatrices;
       std::uint32_t found = findShape(tree.shapes, built[key.memberMeshes], key);

@@ -3,6 +3,7 @@
 #include "vtkBSPSortUtilities.h"
 
 #include "vtkBSPFragmentSet.h"
+#include "vtkBSPPassOrder.h"
 #include "vtkBSPSortedPolyDataMapper.h"
 
 #include "vtkActor.h"
@@ -237,9 +238,9 @@ struct vtkBSPTranslucentPass::Internals
   std::vector<std::pair<vtkSmartPointer<vtkBSPSortedPolyDataMapper>, vtkSmartPointer<vtkActor>>>
     BatchHelpers;
 
-  std::unique_ptr<bsp::Tree> Tree;
-  std::unique_ptr<bsp::IncrementalOrder> Order;
-  std::vector<std::uint32_t> FragmentActor; // global fragment -> entry
+  vtkBSPPassOrder Source; // the fragments and their order
+  bool Built = false;
+  bool TwoLevels = true;
   std::vector<std::uint32_t> FragmentGroup; // global fragment -> group
   std::vector<std::uint32_t> FragmentLocal; // global fragment -> fragment id within its group
   std::vector<Run> Runs;
@@ -268,9 +269,8 @@ struct vtkBSPTranslucentPass::Internals
     this->Entries.clear();
     this->Groups.clear();
     this->BatchHelpers.clear();
-    this->Order.reset();
-    this->Tree.reset();
-    this->FragmentActor.clear();
+    this->Source.Clear();
+    this->Built = false;
     this->FragmentGroup.clear();
     this->FragmentLocal.clear();
     this->Runs.clear();
@@ -421,26 +421,15 @@ void vtkBSPTranslucentPass::Internals::BakeColors(Group& group)
 void vtkBSPTranslucentPass::Internals::Build(std::vector<Group> groups)
 {
   const auto start = std::chrono::steady_clock::now();
-  this->Order.reset();
-  this->Tree.reset();
   this->RunsValid = false;
   this->HaveView = false;
-
-  // One world-space polygon soup; actor k owns points [pointStart[k], pointStart[k+1]) and
-  // polygons [polygonStart[k], polygonStart[k+1]).
-  scenevis::PolygonMesh mesh;
-  std::vector<vtkIdType> cellOf;
-  std::vector<std::uint32_t> pointStart{ 0 };
-  std::vector<std::uint32_t> polygonStart{ 0 };
-  vtkNew<vtkMatrix4x4> matrix;
-  for (Entry& entry : this->Entries)
+  std::vector<vtkBSPPassOrder::Actor> actors;
+  for (const Entry& entry : this->Entries)
   {
-    matrix->DeepCopy(entry.Matrix.data());
-    vtkBSPSortUtilities::AppendPolygons(entry.Input, matrix, mesh, cellOf);
-    pointStart.push_back(static_cast<std::uint32_t>(mesh.points.size()));
-    polygonStart.push_back(static_cast<std::uint32_t>(mesh.polygonCount()));
+    actors.push_back({ entry.Input, entry.InputMTime, entry.Matrix });
   }
-  auto tree = std::make_unique<bsp::Tree>(bsp::build(mesh, vtkBSPFragmentSet::BuildConfig()));
+  this->Source.Build(actors, this->TwoLevels);
+  this->Built = true;
 
   // The geometry every group draws: an actor's own input, or for a batch the world-space points
   // (and normals) of its actors one after the other, with baked colours.
@@ -547,19 +536,9 @@ void vtkBSPTranslucentPass::Internals::Build(std::vector<Group> groups)
   }
   this->BatchHelpers.resize(batches);
 
-  // Which actor every point belongs to, and its id within its group's fragment set.
-  const std::size_t inputPoints = tree->inputPointCount;
-  std::vector<std::uint32_t> pointActor(tree->points.size());
-  std::vector<std::uint32_t> pointLocal(tree->points.size());
-  for (std::size_t k = 0; k < this->Entries.size(); ++k)
-  {
-    const auto offset = static_cast<std::uint32_t>(this->Entries[k].PointOffset);
-    for (std::uint32_t p = pointStart[k]; p < pointStart[k + 1]; ++p)
-    {
-      pointActor[p] = static_cast<std::uint32_t>(k);
-      pointLocal[p] = p - pointStart[k] + offset;
-    }
-  }
+  // Every group's fragment set: its actors' split points after its input points (an actor's
+  // point id p becomes PointOffset + p below its input's count, else its split's id here), and
+  // the fragments in global order.
   std::vector<std::shared_ptr<vtkBSPFragmentSet>> sets(groups.size());
   for (std::size_t g = 0; g < groups.size(); ++g)
   {
@@ -567,39 +546,44 @@ void vtkBSPTranslucentPass::Internals::Build(std::vector<Group> groups)
     sets[g]->Input =
       groups[g].Batched ? groups[g].Points.Get() : this->Entries[groups[g].Members[0]].Input;
   }
-  for (std::size_t s = 0; s < tree->splitPoints.size(); ++s)
+  const vtkBSPPassOrder& source = this->Source;
+  std::vector<vtkIdType> splitBase(this->Entries.size());
+  for (std::size_t k = 0; k < this->Entries.size(); ++k)
   {
-    const bsp::SplitPoint& split = tree->splitPoints[s];
-    const std::size_t id = inputPoints + s;
-    // A split point lies on an edge of one polygon, so both ends belong to the same actor.
-    const std::uint32_t k = pointActor[split.a];
-    vtkBSPFragmentSet& set = *sets[this->Entries[k].Group];
-    pointActor[id] = k;
-    pointLocal[id] = static_cast<std::uint32_t>(
-      static_cast<std::size_t>(set.Input->GetNumberOfPoints()) + set.Splits.size());
-    set.Splits.push_back({ pointLocal[split.a], pointLocal[split.b], split.t });
+    const Entry& entry = this->Entries[k];
+    vtkBSPFragmentSet& set = *sets[entry.Group];
+    const vtkIdType inputPoints = entry.Input->GetNumberOfPoints();
+    splitBase[k] = set.Input->GetNumberOfPoints() + static_cast<vtkIdType>(set.Splits.size());
+    const auto toSet = [&](std::uint32_t p)
+    {
+      return static_cast<std::uint32_t>(
+        p < inputPoints ? entry.PointOffset + p : splitBase[k] + (p - inputPoints));
+    };
+    for (const bsp::SplitPoint& split : source.ActorSplits[k])
+    {
+      set.Splits.push_back({ toSet(split.a), toSet(split.b), split.t });
+    }
   }
-  const std::size_t fragmentCount = tree->fragments.size();
-  this->FragmentActor.resize(fragmentCount);
+  const std::size_t fragmentCount = source.FragmentCount();
   this->FragmentGroup.resize(fragmentCount);
   this->FragmentLocal.resize(fragmentCount);
   for (std::size_t f = 0; f < fragmentCount; ++f)
   {
-    const bsp::Fragment& fragment = tree->fragments[f];
-    const auto k = static_cast<std::uint32_t>(
-      std::upper_bound(polygonStart.begin(), polygonStart.end(), fragment.source) -
-      polygonStart.begin() - 1);
-    const auto g = static_cast<std::uint32_t>(this->Entries[k].Group);
+    const std::uint32_t k = source.FragmentActor[f];
+    const Entry& entry = this->Entries[k];
+    const auto g = static_cast<std::uint32_t>(entry.Group);
     vtkBSPFragmentSet& set = *sets[g];
-    this->FragmentActor[f] = k;
+    const vtkIdType inputPoints = entry.Input->GetNumberOfPoints();
     this->FragmentGroup[f] = g;
     this->FragmentLocal[f] = static_cast<std::uint32_t>(set.FragmentCount());
-    for (std::uint32_t v = 0; v < fragment.count; ++v)
+    for (std::uint32_t v = source.Offsets[f]; v < source.Offsets[f + 1]; ++v)
     {
-      set.Vertices.push_back(pointLocal[tree->fragmentVertices[fragment.first + v]]);
+      const std::uint32_t p = source.Vertices[v];
+      set.Vertices.push_back(static_cast<std::uint32_t>(
+        p < inputPoints ? entry.PointOffset + p : splitBase[k] + (p - inputPoints)));
     }
     set.Offsets.push_back(static_cast<std::uint32_t>(set.Vertices.size()));
-    set.Cells.push_back(cellOf[fragment.source]);
+    set.Cells.push_back(source.Cells[f]);
   }
   this->Groups = std::move(groups);
   for (std::size_t g = 0; g < this->Groups.size(); ++g)
@@ -612,8 +596,6 @@ void vtkBSPTranslucentPass::Internals::Build(std::vector<Group> groups)
       this->BakeColors(group);
     }
   }
-  this->Tree = std::move(tree);
-  this->Order = std::make_unique<bsp::IncrementalOrder>(*this->Tree, bsp::Direction::BackToFront);
   ++this->TreeBuilds;
   this->LastBuildTime = SecondsSince(start);
 }
@@ -629,7 +611,7 @@ void vtkBSPTranslucentPass::Internals::UpdateRuns()
   this->Runs.clear();
   const std::size_t none = static_cast<std::size_t>(-1);
   std::size_t current = none;
-  for (std::uint32_t f : this->Order->order())
+  for (std::uint32_t f : this->Source.Order())
   {
     const std::uint32_t g = this->FragmentGroup[f];
     Group& group = this->Groups[g];
@@ -732,7 +714,7 @@ void vtkBSPTranslucentPass::Render(const vtkRenderState* s)
   }
 
   // Rebuild only when the set of actors, a matrix, an input or the grouping changed.
-  bool rebuild = sorted.size() != internal.Entries.size() || !internal.Tree;
+  bool rebuild = sorted.size() != internal.Entries.size() || !internal.Built;
   std::vector<bool> mapperChanged(sorted.size(), false);
   std::vector<Internals::Entry> entries;
   entries.reserve(sorted.size());
@@ -843,9 +825,9 @@ void vtkBSPTranslucentPass::Render(const vtkRenderState* s)
     : scenevis::View::perspective({ position[0], position[1], position[2] });
   if (!internal.HaveView || view.eye != internal.LastView.eye)
   {
-    const auto& stats = internal.Order->update(view);
+    const bool changed = internal.Source.Update(view);
     ++internal.OrderUpdates;
-    if (!internal.HaveView || stats.nodesFlipped > 0 || stats.fragmentsMoved > 0)
+    if (!internal.HaveView || changed)
     {
       internal.RunsValid = false;
     }
@@ -941,12 +923,37 @@ vtkActor* vtkBSPTranslucentPass::GetSortedActor(int index) const
 
 vtkIdType vtkBSPTranslucentPass::GetNumberOfFragments() const
 {
-  return this->Internal->Tree ? static_cast<vtkIdType>(this->Internal->Tree->fragments.size()) : 0;
+  return static_cast<vtkIdType>(this->Internal->Source.FragmentCount());
 }
 
 vtkIdType vtkBSPTranslucentPass::GetNumberOfSplits() const
 {
-  return this->Internal->Tree ? static_cast<vtkIdType>(this->Internal->Tree->statistics.splits) : 0;
+  return static_cast<vtkIdType>(this->Internal->Source.Splits());
+}
+
+int vtkBSPTranslucentPass::GetLastBuildTreeCount() const
+{
+  return static_cast<int>(this->Internal->Source.TreesBuilt());
+}
+
+int vtkBSPTranslucentPass::GetNumberOfPartGroups() const
+{
+  return static_cast<int>(this->Internal->Source.Groups());
+}
+
+void vtkBSPTranslucentPass::SetTwoLevelOrder(bool twoLevels)
+{
+  if (this->Internal->TwoLevels != twoLevels)
+  {
+    this->Internal->TwoLevels = twoLevels;
+    this->Internal->Built = false; // the next render builds the other way
+    this->Modified();
+  }
+}
+
+bool vtkBSPTranslucentPass::GetTwoLevelOrder() const
+{
+  return this->Internal->TwoLevels;
 }
 
 vtkIdType vtkBSPTranslucentPass::GetNumberOfDrawCalls() const
@@ -993,18 +1000,43 @@ void vtkBSPTranslucentPass::GetOrderedFragments(vtkPolyData* output) const
 {
   output->Initialize();
   const Internals& internal = *this->Internal;
-  if (!internal.Tree || !internal.Order || internal.Order->order().empty())
+  const vtkBSPPassOrder& source = internal.Source;
+  if (source.Order().empty())
   {
     return;
   }
-  const bsp::Tree& tree = *internal.Tree;
+  // Every actor's points in world coordinates (its input's, then its split points), one actor
+  // after the other.
   vtkNew<vtkPoints> points;
   points->SetDataTypeToDouble();
-  points->SetNumberOfPoints(static_cast<vtkIdType>(tree.points.size()));
-  for (std::size_t i = 0; i < tree.points.size(); ++i)
+  std::vector<vtkIdType> base;
+  for (std::size_t k = 0; k < internal.Entries.size(); ++k)
   {
-    points->SetPoint(
-      static_cast<vtkIdType>(i), tree.points[i].x, tree.points[i].y, tree.points[i].z);
+    const Internals::Entry& entry = internal.Entries[k];
+    base.push_back(points->GetNumberOfPoints());
+    std::vector<std::array<double, 3>> local;
+    for (vtkIdType i = 0; i < entry.Input->GetNumberOfPoints(); ++i)
+    {
+      std::array<double, 3> p;
+      entry.Input->GetPoint(i, p.data());
+      local.push_back(p);
+    }
+    for (const bsp::SplitPoint& split : source.ActorSplits[k])
+    {
+      const std::array<double, 3> a = local[split.a];
+      const std::array<double, 3> b = local[split.b];
+      local.push_back({ a[0] + split.t * (b[0] - a[0]), a[1] + split.t * (b[1] - a[1]),
+        a[2] + split.t * (b[2] - a[2]) });
+    }
+    const double* m = entry.Matrix.data();
+    for (const std::array<double, 3>& p : local)
+    {
+      double w = m[12] * p[0] + m[13] * p[1] + m[14] * p[2] + m[15];
+      w = w != 0.0 ? 1.0 / w : 1.0;
+      points->InsertNextPoint((m[0] * p[0] + m[1] * p[1] + m[2] * p[2] + m[3]) * w,
+        (m[4] * p[0] + m[5] * p[1] + m[6] * p[2] + m[7]) * w,
+        (m[8] * p[0] + m[9] * p[1] + m[10] * p[2] + m[11]) * w);
+    }
   }
   vtkNew<vtkCellArray> polys;
   vtkNew<vtkIntArray> actorIndex;
@@ -1012,14 +1044,17 @@ void vtkBSPTranslucentPass::GetOrderedFragments(vtkPolyData* output) const
   vtkNew<vtkIdTypeArray> fragmentId;
   fragmentId->SetName("FragmentId");
   std::vector<vtkIdType> ids;
-  for (std::uint32_t g : internal.Order->order())
+  for (std::uint32_t f : source.Order())
   {
-    const bsp::Fragment& fragment = tree.fragments[g];
-    ids.assign(tree.fragmentVertices.begin() + fragment.first,
-      tree.fragmentVertices.begin() + fragment.first + fragment.count);
+    const std::uint32_t k = source.FragmentActor[f];
+    ids.clear();
+    for (std::uint32_t v = source.Offsets[f]; v < source.Offsets[f + 1]; ++v)
+    {
+      ids.push_back(base[k] + source.Vertices[v]);
+    }
     polys->InsertNextCell(static_cast<vtkIdType>(ids.size()), ids.data());
-    actorIndex->InsertNextValue(static_cast<int>(internal.FragmentActor[g]));
-    fragmentId->InsertNextValue(g);
+    actorIndex->InsertNextValue(static_cast<int>(k));
+    fragmentId->InsertNextValue(f);
   }
   output->SetPoints(points);
   output->SetPolys(polys);
@@ -1037,4 +1072,6 @@ void vtkBSPTranslucentPass::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "NumberOfBatchGroups: " << this->GetNumberOfBatchGroups() << "\n";
   os << indent << "Batching: " << this->GetBatching() << "\n";
   os << indent << "NumberOfTreeBuilds: " << this->GetNumberOfTreeBuilds() << "\n";
+  os << indent << "TwoLevelOrder: " << this->GetTwoLevelOrder() << "\n";
+  os << indent << "NumberOfPartGroups: " << this->GetNumberOfPartGroups() << "\n";
 }

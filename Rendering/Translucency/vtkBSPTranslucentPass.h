@@ -9,8 +9,13 @@
  *
  * 1. collects the translucent actors of the renderer that can be sorted (vtkActor, polydata
  *    mapper, surface representation without edges, visible, currently translucent);
- * 2. builds ONE BSP tree over their polygons in world coordinates (each fragment remembers its
- *    actor); fragments of an actor split by another actor's plane get interpolated attributes;
+ * 2. orders their polygons (each fragment remembers its actor) in two levels (the default,
+ *    scenevis/PartTree.h): actors that a plane separates from the others are ordered as wholes,
+ *    each by a BSP of its own input in the input's coordinates (built once per input and shared
+ *    by the actors that draw it), and only actors that no plane separates share one BSP over
+ *    their polygons, so an actor's polygons are split only by the actors it cannot be separated
+ *    from; fragments of an actor split by another actor's plane get interpolated attributes.
+ *    SetTwoLevelOrder(false): ONE BSP over every polygon in world coordinates;
  * 3. gives every actor (or every batch of actors, see below) a helper vtkBSPSortedPolyDataMapper
  *    whose vertex buffers hold its fragments (built once per tree) and whose index buffer holds
  *    them in the global order;
@@ -37,8 +42,11 @@
  * normals and colours (world coordinates) next to their own buffers.
  *
  * Work per frame:
- * - the set of sorted actors, an actor's matrix, an actor's input or mapper changed: the tree is
- *   rebuilt (GetNumberOfTreeBuilds(), GetLastBuildTime());
+ * - the set of sorted actors, an actor's matrix, an actor's input or mapper changed: the order
+ *   is rebuilt (GetNumberOfTreeBuilds(), GetLastBuildTime()); with two levels only the top level
+ *   and the BSP trees of what changed: a changed input's tree and the shared tree of the actors
+ *   a moved actor cannot be separated from (GetLastBuildTreeCount()); trees of unchanged inputs
+ *   are kept, at the cost of a copy of each input's polygons in double precision;
  * - the colour, opacity or lookup table of a batched actor changed: the colours of its group are
  *   baked again and the group's vertex buffers rebuilt; no tree rebuild
  *   (GetNumberOfColorBakes());
@@ -111,6 +119,27 @@ public:
    * Empty when nothing was sorted.
    */
   void GetOrderedFragments(vtkPolyData* output) const;
+
+  ///@{
+  /**
+   * Two-level order (default on): actors that a plane separates from the others are ordered as
+   * wholes, each by a tree of its own input in the input's coordinates, and only actors that no
+   * plane separates share a tree (scenevis/PartTree.h). The trees of inputs are kept while the
+   * inputs are unchanged and shared by the actors that draw one input, so moving an actor or
+   * adding an instance rebuilds only the top level and the shared trees it leaves or joins,
+   * and one actor's polygons are not split by the planes of an actor it does not touch. Off:
+   * one world-space tree over every actor, built again when any actor moves (the behaviour
+   * before two levels; a scene whose actors all overlap costs the same either way).
+   * GetNumberOfPartGroups(): groups of the last build (0 when off); GetLastBuildTreeCount():
+   * BSP trees the last build had to make (off: 1).
+   */
+  void SetTwoLevelOrder(bool twoLevels);
+  bool GetTwoLevelOrder() const;
+  void TwoLevelOrderOn() { this->SetTwoLevelOrder(true); }
+  void TwoLevelOrderOff() { this->SetTwoLevelOrder(false); }
+  int GetNumberOfPartGroups() const;
+  int GetLastBuildTreeCount() const;
+  ///@}
 
   ///@{
   /**

@@ -36,11 +36,13 @@
  * (largest absolute world coordinate), as in bsp::build: parts that overlap by less than that
  * count as touching.
  *
- * Bad input: a part whose mesh id is out of range, whose matrix is not finite, not affine or
- * not invertible, or whose mesh has no finite vertex is not separated from anything: it is drawn
- * through a group of its own whose shape is in world coordinates (a projective matrix divides
- * by w; the BSP builder drops and counts degenerate or non-finite polygons), placed before every
- * other group, and counted in Statistics::isolatedParts.
+ * Matrices that are finite but not an invertible affine map (a scale of 0 flattens a part, a
+ * projective matrix divides by w) give a part no model frame: it is separated like any other,
+ * but ordered by a shape in world coordinates (Statistics::worldFrameParts). Bad input: a part
+ * whose mesh id is out of range, whose matrix is not finite, or that has no finite vertex is not
+ * separated from anything: it is drawn through a group of its own whose shape is in world
+ * coordinates (the BSP builder drops and counts degenerate or non-finite polygons), placed
+ * before every other group, and counted in Statistics::isolatedParts.
  */
 
 #include "scenevis/BspBuilder.h"
@@ -100,10 +102,10 @@ struct Group
 {
   std::vector<std::uint32_t> parts; ///< Ascending part ids.
   /// bsp::kNone: the group's one part is ordered by its mesh's own tree. Otherwise (two or more
-  /// parts, or an isolated part) the index of its Shape in Tree::shapes.
+  /// parts, or one without a model frame or isolated) the index of its Shape in Tree::shapes.
   std::uint32_t shape = bsp::kNone;
-  /// The shape's coordinates: those of the first part's model (the identity for an isolated
-  /// part, whose shape is in world coordinates).
+  /// The shape's coordinates: those of the first part's model that has a frame (the identity
+  /// when none has, and for an isolated part: then the shape is in world coordinates).
   glm::dmat4 worldFromShape{ 1.0 };
   glm::dmat4 shapeFromWorld{ 1.0 };
 
@@ -117,6 +119,7 @@ struct Statistics
   std::size_t singlePartGroups = 0;
   std::size_t largestGroup = 0;     ///< Parts in the largest group.
   std::size_t isolatedParts = 0;    ///< Bad input parts (see the file comment).
+  std::size_t worldFrameParts = 0;  ///< Valid parts without a model frame (file comment).
   std::size_t separatingPlanes = 0; ///< Inner nodes.
   std::size_t depth = 0;            ///< Longest root-to-leaf path, in nodes.
   std::size_t shapes = 0;           ///< Distinct shapes of the groups of several parts.
@@ -131,7 +134,7 @@ struct Statistics
 struct Tree
 {
   std::vector<Part> parts;
-  std::vector<glm::dmat4> modelFromWorld; ///< Per part (identity for isolated parts).
+  std::vector<glm::dmat4> modelFromWorld; ///< Per part (identity for parts without a frame).
   std::vector<Node> nodes;
   std::vector<Group> groups; ///< The isolated parts' groups first, then the leaves'.
   std::vector<Shape> shapes;
