@@ -11,6 +11,7 @@
 #   SCENEVIS_FUZZ_BUILD_DIR   fuzzer build directory (default <repo>/build-fuzz)
 #   SCENEVIS_FUZZ_SECONDS     length of the fuzz run (default 60; 0 skips fuzzing)
 #   SCENEVIS_FUZZ_OCCLUSION_SECONDS  length of the occlusion fuzz run after it (default 30)
+#   SCENEVIS_FUZZ_PART_ORDER_SECONDS length of the two-level order fuzz run after that (default 20)
 #   SCENEVIS_SANITIZE_CXX     compiler for the ASan build (default: CMake's default, g++ on Debian)
 #
 # Only SceneVis' own code is instrumented (CMake option SCENEVIS_SANITIZE); VTK, GoogleTest and the
@@ -22,6 +23,7 @@ build=${SCENEVIS_ASAN_BUILD_DIR:-$root/build-asan}
 fuzzbuild=${SCENEVIS_FUZZ_BUILD_DIR:-$root/build-fuzz}
 fuzzseconds=${SCENEVIS_FUZZ_SECONDS:-60}
 occlusionseconds=${SCENEVIS_FUZZ_OCCLUSION_SECONDS:-30}
+partorderseconds=${SCENEVIS_FUZZ_PART_ORDER_SECONDS:-20}
 jobs=$(nproc)
 start=$(date +%s)
 
@@ -46,7 +48,7 @@ export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
 
 # gtest_discover_tests runs the test binary at build time, so the options above already apply.
 cmake --build "$build" -j"$jobs" --target scenevis_core_tests scenevis_fuzz_bsp_replay \
-  scenevis_fuzz_occlusion_replay scenevis_split_parts_tests scenevis_instances_tests \
+  scenevis_fuzz_occlusion_replay scenevis_fuzz_part_order_replay scenevis_split_parts_tests scenevis_instances_tests \
   scenevis_huge_pages_tests \
   SceneVisFiltersSortingCxxTests SceneVisFiltersSortingRenderingCxxTests \
   SceneVisFiltersSourcesCxxTests SceneVisIOModelsCxxTests SceneVisRenderingCullingCxxTests \
@@ -95,7 +97,8 @@ cmake -S "$root" -B "$fuzzbuild" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   -DSCENEVIS_BUILD_FUZZERS=ON -DSCENEVIS_SANITIZE=address,undefined \
   -DBUILD_TESTING=OFF -DSCENEVIS_BUILD_BENCHMARKS=OFF -DSCENEVIS_BUILD_EXAMPLES=OFF \
   -DSCENEVIS_WRAP_PYTHON=OFF >"$fuzzbuild.configure.log" 2>&1 || { cat "$fuzzbuild.configure.log"; exit 1; }
-cmake --build "$fuzzbuild" -j"$jobs" --target scenevis_fuzz_bsp scenevis_fuzz_occlusion
+cmake --build "$fuzzbuild" -j"$jobs" --target scenevis_fuzz_bsp scenevis_fuzz_occlusion \
+  scenevis_fuzz_part_order
 # New inputs go to a scratch directory; the committed seed corpus is only read.
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
@@ -120,5 +123,18 @@ if [ "$occlusionseconds" != "0" ]; then
   }
   grep -E '^(#[0-9]+ +DONE|stat::number_of_executed_units)' "$work/occlusion.log" || true
 fi
-echo "sanitize: fuzzing ${fuzzseconds} s + occlusion ${occlusionseconds} s passed (build+run $(( $(date +%s) - fuzzstart )) s)"
+# The two-level order against the order oracle (Core/Fuzz/FuzzPartOrder.cpp).
+if [ "$partorderseconds" != "0" ]; then
+  mkdir -p "$work/part-order"
+  (cd "$work/part-order" && "$fuzzbuild/bin/scenevis_fuzz_part_order" \
+    -max_total_time="$partorderseconds" -timeout=20 -rss_limit_mb=2048 -print_final_stats=1 \
+    "$work/part-order" "$root/Core/Fuzz/part-order-corpus" 2>"$work/part-order.log") || {
+    tail -n 40 "$work/part-order.log"
+    echo "sanitize: the two-level order fuzzer failed; reproducer:"
+    ls -l "$work"/part-order/crash-* 2>/dev/null || true
+    exit 1
+  }
+  grep -E '^(#[0-9]+ +DONE|stat::number_of_executed_units)' "$work/part-order.log" || true
+fi
+echo "sanitize: fuzzing ${fuzzseconds} s + occlusion ${occlusionseconds} s + two-level order ${partorderseconds} s passed (build+run $(( $(date +%s) - fuzzstart )) s)"
 echo "sanitize: done in $(( $(date +%s) - start )) s"

@@ -119,7 +119,7 @@ struct Separation
 };
 
 Separation separate(std::vector<std::uint32_t>& set, const std::vector<Extent>& extents,
-  double tolerance, std::vector<std::uint32_t>& scratch)
+  double relativeTolerance, std::vector<std::uint32_t>& scratch)
 {
   Separation best;
   std::size_t bestImbalance = std::numeric_limits<std::size_t>::max();
@@ -133,10 +133,22 @@ Separation separate(std::vector<std::uint32_t>& set, const std::vector<Extent>& 
           (extents[a].lo[d] == extents[b].lo[d] && a < b);
       });
     double farthest = -std::numeric_limits<double>::infinity();
+    std::uint32_t farthestPart = 0;
     for (std::size_t k = 0; k + 1 < m; ++k)
     {
-      farthest = std::max(farthest, extents[scratch[k]].hi[d]);
-      const double next = extents[scratch[k + 1]].lo[d];
+      if (extents[scratch[k]].hi[d] > farthest)
+      {
+        farthest = extents[scratch[k]].hi[d];
+        farthestPart = scratch[k];
+      }
+      const Extent& after = extents[scratch[k + 1]];
+      const double next = after.lo[d];
+      // The two parts at the gap may overlap by their tolerance (file comment): relative to the
+      // smaller of them, since every part after the gap overlaps the one before by no more.
+      const double tolerance = relativeTolerance *
+          std::min(
+            extents[farthestPart].hi[d] - extents[farthestPart].lo[d], after.hi[d] - after.lo[d]) +
+        16.0 * DBL_EPSILON * std::max(std::abs(farthest), std::abs(next));
       const std::size_t imbalance = 2 * (k + 1) > m ? 2 * (k + 1) - m : m - 2 * (k + 1);
       if (farthest <= next + tolerance && imbalance < bestImbalance)
       {
@@ -260,8 +272,6 @@ Tree build(const std::vector<const PolygonMesh*>& meshes, const std::vector<Part
   std::vector<Extent> extents(n);
   std::vector<char> valid(n, 0);
   std::vector<char> affine(n, 0); // has a model frame: an invertible affine matrix
-  Box world;
-  double largest = 0.0;
   for (std::size_t i = 0; i < n; ++i)
   {
     const Part& part = parts[i];
@@ -291,8 +301,6 @@ Tree build(const std::vector<const PolygonMesh*>& meshes, const std::vector<Part
         continue;
       }
       any = true;
-      world.extend(w);
-      largest = std::max({ largest, std::abs(w.x), std::abs(w.y), std::abs(w.z) });
       for (int d = 0; d < kDirections; ++d)
       {
         const double s = glm::dot(directions()[d], w);
@@ -308,8 +316,6 @@ Tree build(const std::vector<const PolygonMesh*>& meshes, const std::vector<Part
     }
     tree.statistics.worldFrameParts += valid[i] && !affine[i] ? 1 : 0;
   }
-  tree.tolerance = config.relativeTolerance * world.diagonal() + 16.0 * DBL_EPSILON * largest;
-  tree.statistics.tolerance = tree.tolerance;
 
   // Isolated parts first: a group each (see the file comment).
   for (std::uint32_t i = 0; i < n; ++i)
@@ -353,7 +359,7 @@ Tree build(const std::vector<const PolygonMesh*>& meshes, const std::vector<Part
     stack.pop_back();
     tree.statistics.depth = std::max(tree.statistics.depth, w.depth);
     const Separation s =
-      w.set.size() > 1 ? separate(w.set, extents, tree.tolerance, scratch) : Separation{};
+      w.set.size() > 1 ? separate(w.set, extents, config.relativeTolerance, scratch) : Separation{};
     if (s.split == 0)
     {
       std::sort(w.set.begin(), w.set.end());

@@ -32,9 +32,10 @@
  * (13 sorts of the parts per level) and the shapes of the groups it leaves or joins (see
  * `previous` below); the parts' own trees never.
  *
- * Tolerance: Tree::tolerance = relativeTolerance * (world bounds diagonal) + 16 * DBL_EPSILON *
- * (largest absolute world coordinate), as in bsp::build: parts that overlap by less than that
- * count as touching.
+ * Tolerance: two parts at a gap count as touching when they overlap along the direction by at
+ * most relativeTolerance * (the smaller of their two extents along it) + 16 * DBL_EPSILON * (the
+ * larger magnitude of the two interval ends), as bsp::build's plane tolerance, but local: a part
+ * far away or huge (1e30) does not make every other gap look closed (found by the fuzzer).
  *
  * Matrices that are finite but not an invertible affine map (a scale of 0 flattens a part, a
  * projective matrix divides by w) give a part no model frame: it is separated like any other,
@@ -71,7 +72,7 @@ struct Part
 
 /// One top-level partition, or a leaf (`group != bsp::kNone`). For inner nodes `plane` = (n, d):
 /// every part of the `front` subtree has dot(n, p) + d >= -tolerance at all its vertices, every
-/// part of `back` <= +tolerance.
+/// part of `back` <= +tolerance (the tolerance of the two parts at the gap, see the file comment).
 struct Node
 {
   glm::dvec4 plane{ 0.0 };
@@ -127,7 +128,6 @@ struct Statistics
   std::size_t mergedFragments = 0;  ///< Fragments drawn for the groups with a shape (a shared
                                     ///< shape counts once per group).
   std::size_t reusedShapes = 0;     ///< Shapes taken from the previous tree, not built.
-  double tolerance = 0.0;
   double buildSeconds = 0.0;
 };
 
@@ -140,7 +140,6 @@ struct Tree
   std::vector<Shape> shapes;
   std::uint32_t isolatedGroups = 0; ///< How many groups come first, before every view's order.
   std::uint32_t root = bsp::kNone;  ///< kNone when no part is valid.
-  double tolerance = 0.0;
   Statistics statistics;
 
   bool empty() const { return groups.empty(); }
@@ -150,7 +149,7 @@ struct BuildConfig
 {
   /// For the shapes' trees.
   bsp::BuildConfig shapeConfig;
-  /// Plane tolerance relative to the diagonal of the world bounds (see the file comment).
+  /// Overlap tolerance of two parts relative to their extent (see the file comment).
   double relativeTolerance = 1e-10;
 };
 
