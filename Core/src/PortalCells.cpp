@@ -306,6 +306,7 @@ void addToCell(CellComplex& out, std::uint32_t cell, const Poly& poly, const glm
   out.volume[cell] += area * glm::dot(outward, c) / 3.0;
   out.centroid[cell] += area * c;
   out.boundaryArea[cell] += area;
+  out.vertices[cell].insert(out.vertices[cell].end(), poly.begin(), poly.end());
 }
 
 } // namespace
@@ -361,6 +362,7 @@ CellComplex buildCellComplex(const bsp::Tree& tree, const Box& box)
   out.volume.assign(out.cellCount, 0.0);
   out.centroid.assign(out.cellCount, glm::dvec3(0.0));
   out.boundaryArea.assign(out.cellCount, 0.0);
+  out.vertices.assign(out.cellCount, {});
   if (tree.empty())
   {
     return out;
@@ -464,6 +466,104 @@ CellComplex buildCellComplex(const bsp::Tree& tree, const Box& box)
     }
   }
   return out;
+}
+
+std::size_t splitCellsAtOpenings(bsp::Tree& tree, const CellComplex& cx)
+{
+  const double tol = tree.tolerance;
+  const std::size_t nodes = tree.nodes.size();
+  std::vector<std::uint32_t> parent(nodes, kNone);
+  std::vector<int> parentSide(nodes, 0);
+  for (std::uint32_t n = 0; n < nodes; ++n)
+  {
+    for (int s = 0; s < 2; ++s)
+    {
+      const std::uint32_t child = s == 0 ? tree.nodes[n].front : tree.nodes[n].back;
+      if (child != kNone)
+      {
+        parent[child] = n;
+        parentSide[child] = s;
+      }
+    }
+  }
+  struct Candidate
+  {
+    Poly poly;
+    Box bounds;
+    glm::dvec4 plane;
+  };
+  std::vector<Candidate> fragments;
+  for (std::uint32_t n = 0; n < nodes; ++n)
+  {
+    const bsp::Node& node = tree.nodes[n];
+    for (std::uint32_t k = 0; k < node.fragmentCount; ++k)
+    {
+      Candidate c;
+      c.poly = fragmentPolygon(tree, tree.fragments[node.firstFragment + k]);
+      c.bounds = boundsOf(c.poly);
+      c.plane = node.plane;
+      fragments.push_back(std::move(c));
+    }
+  }
+  std::vector<std::pair<std::uint32_t, glm::dvec4>> splits;
+  Poly clipped, work;
+  for (std::uint32_t cell = 0; cell < cx.cellCount; ++cell)
+  {
+    const auto& vertices = cx.vertices[cell];
+    if (!cx.isCell[cell] || vertices.empty())
+    {
+      continue;
+    }
+    Box bounds;
+    for (const glm::dvec3& v : vertices)
+    {
+      bounds.extend(v);
+    }
+    for (const Candidate& f : fragments)
+    {
+      if (!overlap(bounds, f.bounds, tol))
+      {
+        continue;
+      }
+      double lo = 0.0, hi = 0.0;
+      for (const glm::dvec3& v : vertices)
+      {
+        const double d = distance(f.plane, v);
+        lo = std::min(lo, d);
+        hi = std::max(hi, d);
+      }
+      if (lo >= -tol || hi <= tol)
+      {
+        continue; // the plane does not cross the cell
+      }
+      // Does the polygon touch the cell (its closure, within tolerance)?
+      work = f.poly;
+      const std::uint32_t node = cell / 2;
+      glm::dvec4 half = (cell % 2) == 0 ? tree.nodes[node].plane : -tree.nodes[node].plane;
+      portals::geometry::clipPolygon(work, half, tol, clipped);
+      for (std::uint32_t m = node; !clipped.empty() && parent[m] != kNone; m = parent[m])
+      {
+        const glm::dvec4& p = tree.nodes[parent[m]].plane;
+        std::swap(work, clipped);
+        portals::geometry::clipPolygon(work, parentSide[m] == 0 ? p : -p, tol, clipped);
+      }
+      if (!clipped.empty())
+      {
+        splits.emplace_back(cell, f.plane);
+        break;
+      }
+    }
+  }
+  for (const auto& [cell, plane] : splits)
+  {
+    bsp::Node node;
+    node.plane = plane;
+    const auto id = static_cast<std::uint32_t>(tree.nodes.size());
+    bsp::Node& owner = tree.nodes[cell / 2];
+    (cell % 2 == 0 ? owner.front : owner.back) = id;
+    tree.nodes.push_back(node);
+  }
+  return splits.size();
 }
 
 std::uint32_t locateCell(const bsp::Tree& tree, const glm::dvec3& p)

@@ -58,6 +58,7 @@ struct CellComplex
   std::vector<double> volume;
   std::vector<glm::dvec3> centroid; ///< Area-weighted mean of its faces' centroids (inside it).
   std::vector<double> boundaryArea;
+  std::vector<std::vector<glm::dvec3>> vertices; ///< Per cell: the vertices of its faces.
 };
 
 /**
@@ -66,6 +67,16 @@ struct CellComplex
  * dropped (a crack that thin is closed).
  */
 CellComplex buildCellComplex(const bsp::Tree& tree, const Box& box);
+
+/**
+ * Splits cells that straddle an opening. A BSP cuts along a wall's plane only inside the region
+ * of the node that holds the wall, so a cell may reach from a room through a doorway into the
+ * next room when the wall's node lies elsewhere. Each cell that a polygon touches (within
+ * tolerance, e.g. along the lintel of a door) and whose interior that polygon's plane crosses is
+ * split by that plane (a new node without fragments). Returns the number of splits; call again
+ * on the new complex until it returns 0.
+ */
+std::size_t splitCellsAtOpenings(bsp::Tree& tree, const CellComplex& cx);
 
 /// The cell containing local point @p p (on a plane: the front side).
 std::uint32_t locateCell(const bsp::Tree& tree, const glm::dvec3& p);

@@ -321,7 +321,11 @@ GeneratedPortals generatePortals(const GenerationInput& input, const GenerationC
   }
   stats.blockingPolygons = blocking.polygonCount();
   const auto bspStart = Clock::now();
-  const bsp::Tree tree = bsp::build(blocking, config.bsp);
+  // Free planes are off: a free plane through a wall's plane would leave the wall's polygons to a
+  // descendant node in the same plane, and the free node's faces would look open.
+  bsp::BuildConfig bspConfig = config.bsp;
+  bspConfig.allowFreePlanes = false;
+  bsp::Tree tree = bsp::build(blocking, bspConfig);
   stats.bspSeconds = secondsSince(bspStart);
   stats.bspNodes = tree.nodes.size();
   stats.droppedPolygons = tree.statistics.degeneratePolygons + tree.statistics.invalidPolygons;
@@ -346,7 +350,17 @@ GeneratedPortals generatePortals(const GenerationInput& input, const GenerationC
   const glm::dvec3 grow(config.margin * diagonal + 1e3 * tree.tolerance);
   box.lo -= grow;
   box.hi += grow;
-  const CellComplex cx = detail::buildCellComplex(tree, box);
+  CellComplex cx = detail::buildCellComplex(tree, box);
+  for (int round = 0; round < 64; ++round)
+  {
+    const std::size_t splits = detail::splitCellsAtOpenings(tree, cx);
+    stats.openingSplits += splits;
+    if (splits == 0)
+    {
+      break;
+    }
+    cx = detail::buildCellComplex(tree, box);
+  }
   const std::size_t cells = cx.cellCount;
   stats.faces = cx.faces.size();
   stats.openFaces = cx.open.size();

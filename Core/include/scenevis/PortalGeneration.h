@@ -16,7 +16,11 @@
  *    and split there, so each piece separates exactly one cell in front from one behind. The
  *    node's own fragments (the polygons in that plane) are subtracted from each piece: what
  *    remains is open (air can pass), the rest is wall. The six box faces are pushed the same way
- *    to find the cells that touch the scene box.
+ *    to find the cells that touch the scene box. A BSP cuts along a wall's plane only inside the
+ *    region of the node holding the wall, so a cell may reach through a doorway from one room
+ *    into the next: each cell that a polygon touches (e.g. along a lintel) and whose interior
+ *    the polygon's plane crosses is split by that plane, until none is (Statistics::
+ *    openingSplits). Every opening is then a set of faces in its wall's plane.
  * 3. Air: a cell in front of a polygon (on the side its normal points to) or touching the box is
  *    air, and so is every cell reached from one through open faces; the other cells are solid
  *    (inside thick walls, inside closed furniture). Only open faces between air cells matter.
@@ -45,8 +49,12 @@
  * in `leakPoints`: the room behind such a gap is merged into the outside, which a portal culler
  * treats conservatively (outside geometry is drawn whenever the outside is seen).
  *
- * Polygons: each gets the room of the cell just in front of its centroid; polygons facing into
- * solid space, outside or dropped (invalid) get kOutsideRoom.
+ * Polygons: each gets the room its fragments face into over the largest area (see-through ones:
+ * the room just in front of their centroid); polygons facing into solid space (hidden faces,
+ * counted in polygonsWithoutRoom), the outside, or dropped (invalid) get kOutsideRoom.
+ *
+ * Cost: the BSP, then per round of opening splits the cells and faces again (a few rounds);
+ * the demo building (2,250 polygons, 24 rooms) takes about 0.7 s.
  */
 
 #include "scenevis/BspBuilder.h"
@@ -76,7 +84,8 @@ struct GenerationConfig
   double passageThickness = 0.5;
   /// Growth of the scene box around the input bounds, as a fraction of their diagonal.
   double margin = 0.1;
-  /// The BSP over the blocking polygons (free planes are fine: their faces are all open).
+  /// The BSP over the blocking polygons. allowFreePlanes is ignored (always off): every node's
+  /// plane must hold all the polygons in it that its region contains.
   bsp::BuildConfig bsp;
 };
 
@@ -102,6 +111,7 @@ struct GenerationStatistics
   std::size_t blockingPolygons = 0; ///< Polygons given to the BSP (not see-through).
   std::size_t droppedPolygons = 0;  ///< Degenerate or invalid (the BSP's counts).
   std::size_t bspNodes = 0;
+  std::size_t openingSplits = 0; ///< Cells split because they straddled an opening.
   std::size_t cells = 0; ///< Empty child slots of the BSP.
   std::size_t airCells = 0;
   std::size_t faces = 0;               ///< Cell faces on node planes.
