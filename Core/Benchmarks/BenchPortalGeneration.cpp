@@ -1,0 +1,266 @@
+// Rooms and portals generated from a model (PortalGeneration.h), written in the portal scene
+// format and compared with authored ones when given. A thin driver: it reads, calls the core,
+// prints figures, writes.
+//
+//   scenevis_portal_gen_bench --scene MODEL.vtp [--out PREFIX] [--room-array RoomId]
+//                             [--authored-portals PORTALS.vtp] [--depth D]
+//   scenevis_portal_gen_bench --building FLOORS,X,Y,SEED [--out PREFIX]
+//
+// --out writes PREFIX.vtp (the model with the generated RoomId) and PREFIX-portals.vtp (RoomA,
+// RoomB), which scenevis_pvs_bench and `scenevis cull` read; with --building also the hand-made
+// rooms and portals as PREFIX-authored.vtp and PREFIX-authored-portals.vtp, to compare. With the
+// model's own room array and its authored portals, it reports how authored rooms map onto generated
+// ones (by polygon area) and whether each authored portal between two different generated rooms
+// lies inside a generated portal joining them (moved at most D along the generated portal's
+// normal).
+#include "PortalSceneFile.h"
+#include "PortalSceneWriter.h"
+#include "scenevis/PortalGeneration.h"
+#include "scenevis/PortalGeometry.h"
+#include "scenevis/Scenes.h"
+
+#include <glm/geometric.hpp>
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <exception>
+#include <map>
+#include <string>
+#include <vector>
+
+using namespace scenevis;
+using namespace scenevis::portals;
+
+namespace
+{
+
+bool inside(const PortalDesc& portal, const std::vector<glm::dvec3>& polygon, double depth)
+{
+  const glm::dvec3 n = glm::normalize(geometry::newellOf(portal.polygon));
+  const std::vector<glm::dvec3> hull = planarConvexHull(portal.polygon, n);
+  const double tol = 1e-6 * (1.0 + glm::length(hull[0]));
+  for (const glm::dvec3& p : polygon)
+  {
+    const double h = glm::dot(n, p - hull[0]);
+    if (std::abs(h) > depth + tol || !geometry::insideConvex(hull, n, p - h * n, tol))
+    {
+      return false;
+    }
+  }
+  return true;
+}
+
+void compare(const PolygonMesh& mesh, const std::vector<std::int64_t>& authoredRoom,
+  const std::vector<PortalDesc>& authoredPortals, const GeneratedPortals& g, double depth)
+{
+  std::map<std::int64_t, std::map<std::int32_t, double>> areas;
+  for (std::size_t i = 0; i < authoredRoom.size(); ++i)
+  {
+    const glm::dvec3 n = newellNormal(mesh.points.data(), mesh.polygon(i), mesh.polygonSize(i));
+    areas[authoredRoom[i]][g.roomOfPolygon[i]] += 0.5 * glm::length(n);
+  }
+  std::map<std::int64_t, std::int32_t> roomOf;
+  std::map<std::int32_t, std::size_t> authoredPer;
+  std::size_t toOutside = 0;
+  for (const auto& [authored, generated] : areas)
+  {
+    double best = -1.0;
+    for (const auto& [room, area] : generated)
+    {
+      if (room >= 0 && area > best)
+      {
+        best = area;
+        roomOf[authored] = room;
+      }
+    }
+    if (authored >= 0 && best < 0.0)
+    {
+      roomOf[authored] = kOutsideRoom;
+      ++toOutside;
+    }
+    if (authored >= 0)
+    {
+      ++authoredPer[roomOf[authored]];
+    }
+  }
+  std::size_t separating = 0, covered = 0;
+  for (const PortalDesc& a : authoredPortals)
+  {
+    const auto ia = roomOf.find(a.roomA), ib = roomOf.find(a.roomB);
+    const std::int32_t ra = a.roomA < 0 || ia == roomOf.end() ? kOutsideRoom : ia->second;
+    const std::int32_t rb = a.roomB < 0 || ib == roomOf.end() ? kOutsideRoom : ib->second;
+    if (ra == rb)
+    {
+      continue;
+    }
+    ++separating;
+    for (const PortalDesc& p : g.portals)
+    {
+      if (((p.roomA == ra && p.roomB == rb) || (p.roomA == rb && p.roomB == ra)) &&
+        inside(p, a.polygon, depth))
+      {
+        ++covered;
+        break;
+      }
+    }
+  }
+  std::size_t largest = 0;
+  for (const auto& [room, count] : authoredPer)
+  {
+    largest = room >= 0 ? std::max(largest, count) : largest;
+  }
+  std::printf("authored: %zu rooms -> %zu generated rooms (up to %zu authored in one; %zu with "
+              "no polygon in a room); %zu portals, %zu between different generated rooms, %zu "
+              "of those inside a generated portal joining them\n",
+    areas.size() - areas.count(-1), authoredPer.size() - authoredPer.count(kOutsideRoom), largest,
+    toOutside, authoredPortals.size(), separating, covered);
+}
+
+void print(const GeneratedPortals& g)
+{
+  const GenerationStatistics& s = g.statistics;
+  std::printf("generated: status %d%s%s; %zu polygons (%zu blocking, %zu dropped), %zu BSP nodes "
+              "+ %zu opening splits, %zu cells (%zu air), %zu faces, %zu open (%zu in openings); "
+              "rooms %zu (%zu before %zu passages merged); portals %zu (%zu exterior); leak "
+              "cells %zu; polygons facing solid %zu; %.2f s (BSP %.2f s)\n",
+    static_cast<int>(g.status), g.message.empty() ? "" : ": ", g.message.c_str(), s.inputPolygons,
+    s.blockingPolygons, s.droppedPolygons, s.bspNodes, s.openingSplits, s.cells, s.airCells,
+    s.faces, s.openFaces, s.openingFaces, s.rooms, s.roomsBeforePassages, s.passagesMerged,
+    s.portals, s.exteriorPortals, s.leakCells, s.polygonsWithoutRoom, s.totalSeconds, s.bspSeconds);
+  for (std::size_t k = 0; k < g.leakPoints.size() && k < 8; ++k)
+  {
+    std::printf(
+      "  leak near %.3f %.3f %.3f\n", g.leakPoints[k].x, g.leakPoints[k].y, g.leakPoints[k].z);
+  }
+}
+
+std::vector<PortalDesc> readPortals(const std::string& path)
+{
+  const bench::RawPolyData raw = bench::readRawVtp(path);
+  std::vector<PortalDesc> out;
+  std::int64_t start = 0;
+  for (std::size_t c = 0; c < raw.offsets.size(); ++c)
+  {
+    PortalDesc p;
+    for (std::int64_t k = start; k < raw.offsets[c]; ++k)
+    {
+      p.polygon.push_back(raw.points.at(static_cast<std::size_t>(raw.connectivity.at(k))));
+    }
+    start = raw.offsets[c];
+    p.roomA = static_cast<std::int32_t>(raw.cellInts.at("RoomA").at(c));
+    p.roomB = static_cast<std::int32_t>(raw.cellInts.at("RoomB").at(c));
+    out.push_back(std::move(p));
+  }
+  return out;
+}
+
+} // namespace
+
+int main(int argc, char** argv)
+{
+  std::string scene, out, roomArray = "RoomId", authoredPortals, building;
+  double depth = 0.0;
+  for (int i = 1; i + 1 < argc; i += 2)
+  {
+    const std::string key = argv[i], value = argv[i + 1];
+    if (key == "--scene")
+      scene = value;
+    else if (key == "--out")
+      out = value;
+    else if (key == "--room-array")
+      roomArray = value;
+    else if (key == "--authored-portals")
+      authoredPortals = value;
+    else if (key == "--depth")
+      depth = std::atof(value.c_str());
+    else if (key == "--building")
+      building = value;
+    else
+    {
+      std::fprintf(stderr, "unknown option %s (see the file comment)\n", key.c_str());
+      return 2;
+    }
+  }
+  try
+  {
+    PolygonMesh mesh;
+    GenerationInput input;
+    std::vector<std::int64_t> authoredRoom;
+    std::vector<PortalDesc> authored;
+    CellSceneInput authoredScene;
+    if (!building.empty())
+    {
+      int f = 2, x = 4, y = 3, seed = 1;
+      std::sscanf(building.c_str(), "%d,%d,%d,%d", &f, &x, &y, &seed);
+      const scenes::BuildingScene b = scenes::building(f, x, y, static_cast<std::uint64_t>(seed));
+      mesh = b.mesh;
+      for (std::size_t i = 0; i < b.part.size(); ++i)
+      {
+        input.seeThrough.push_back(b.parts[b.part[i]].name == "glass");
+        authoredRoom.push_back(b.room[i]);
+      }
+      for (const scenes::Portal& p : b.portals)
+      {
+        authored.push_back(PortalDesc{ p.polygon, p.roomA, p.roomB });
+      }
+      depth = depth > 0.0 ? depth : 0.5 * scenes::kSlabThickness;
+      authoredScene = cellSceneOf(b);
+    }
+    else if (!scene.empty())
+    {
+      const bench::RawPolyData raw = bench::readRawVtp(scene);
+      mesh.points = raw.points;
+      std::int64_t start = 0;
+      std::vector<std::uint32_t> ids;
+      for (const std::int64_t end : raw.offsets)
+      {
+        ids.clear();
+        for (std::int64_t k = start; k < end; ++k)
+        {
+          ids.push_back(static_cast<std::uint32_t>(raw.connectivity.at(k)));
+        }
+        start = end;
+        mesh.addPolygon(ids.data(), ids.size());
+      }
+      const auto rooms = raw.cellInts.find(roomArray);
+      if (rooms != raw.cellInts.end())
+      {
+        authoredRoom = rooms->second;
+      }
+      if (!authoredPortals.empty())
+      {
+        authored = readPortals(authoredPortals);
+      }
+    }
+    else
+    {
+      std::fprintf(stderr, "give --scene MODEL.vtp or --building F,X,Y,SEED\n");
+      return 2;
+    }
+    input.mesh = &mesh;
+    const GeneratedPortals g = generatePortals(input);
+    print(g);
+    if (authoredRoom.size() == mesh.polygonCount())
+    {
+      compare(mesh, authoredRoom, authored, g, depth);
+    }
+    if (!out.empty())
+    {
+      bench::writePortalScene(
+        out + ".vtp", out + "-portals.vtp", roomArray, mesh, g.cellScene(mesh));
+      std::printf("wrote %s.vtp and %s-portals.vtp\n", out.c_str(), out.c_str());
+      if (!authoredScene.roomOfPolygon.empty())
+      {
+        bench::writePortalScene(
+          out + "-authored.vtp", out + "-authored-portals.vtp", roomArray, mesh, authoredScene);
+      }
+    }
+    return g.status == GenerationStatus::Ok ? 0 : 1;
+  }
+  catch (const std::exception& e)
+  {
+    std::fprintf(stderr, "%s\n", e.what());
+    return 1;
+  }
+}
