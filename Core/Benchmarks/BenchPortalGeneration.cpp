@@ -120,14 +120,16 @@ void compare(const PolygonMesh& mesh, const std::vector<std::int64_t>& authoredR
 void print(const GeneratedPortals& g)
 {
   const GenerationStatistics& s = g.statistics;
-  std::printf("generated: status %d%s%s; %zu polygons (%zu blocking, %zu dropped), %zu BSP nodes "
-              "+ %zu opening splits, %zu cells (%zu air), %zu faces, %zu open (%zu in openings); "
-              "rooms %zu (%zu before %zu passages merged); portals %zu (%zu exterior); leak "
-              "cells %zu; polygons facing solid %zu; %.2f s (BSP %.2f s)\n",
+  std::printf(
+    "generated: status %d%s%s; %zu polygons (%zu blocking, %zu dropped), %zu BSP nodes "
+    "+ %zu opening splits, %zu cells (%zu air), %zu faces, %zu open (%zu in openings); "
+    "rooms %zu (%zu before %zu passages merged); portals %zu (%zu exterior); leak "
+    "cells %zu; polygons facing solid %zu; %.2f s (BSP %.2f s, cells %.2f s, openings %.2f s)\n",
     static_cast<int>(g.status), g.message.empty() ? "" : ": ", g.message.c_str(), s.inputPolygons,
     s.blockingPolygons, s.droppedPolygons, s.bspNodes, s.openingSplits, s.cells, s.airCells,
     s.faces, s.openFaces, s.openingFaces, s.rooms, s.roomsBeforePassages, s.passagesMerged,
-    s.portals, s.exteriorPortals, s.leakCells, s.polygonsWithoutRoom, s.totalSeconds, s.bspSeconds);
+    s.portals, s.exteriorPortals, s.leakCells, s.polygonsWithoutRoom, s.totalSeconds, s.bspSeconds,
+    s.cellSeconds, s.openingSeconds);
   for (std::size_t k = 0; k < g.leakPoints.size() && k < 8; ++k)
   {
     std::printf(

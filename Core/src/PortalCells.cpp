@@ -2,6 +2,8 @@
 
 #include "scenevis/PortalGeometry.h"
 
+#include <glm/common.hpp>
+#include <glm/ext/vector_int3.hpp>
 #include <glm/geometric.hpp>
 #include <glm/vec4.hpp>
 
@@ -505,6 +507,43 @@ std::size_t splitCellsAtOpenings(bsp::Tree& tree, const CellComplex& cx)
       fragments.push_back(std::move(c));
     }
   }
+  // A uniform grid over the fragments' boxes (about one fragment per grid cell), so that each
+  // cell looks only at the fragments near it.
+  Box all;
+  for (const Candidate& f : fragments)
+  {
+    all.extend(f.bounds);
+  }
+  const glm::dvec3 extent = glm::max(all.hi - all.lo, glm::dvec3(1e-300));
+  const double cellSize = std::cbrt(extent.x * extent.y * extent.z /
+    static_cast<double>(std::max<std::size_t>(fragments.size(), 1)));
+  glm::ivec3 dims;
+  for (int k = 0; k < 3; ++k)
+  {
+    dims[k] = std::clamp(static_cast<int>(extent[k] / std::max(cellSize, 1e-300)), 1, 256);
+  }
+  auto range = [&](const Box& b, glm::ivec3& lo, glm::ivec3& hi)
+  {
+    for (int k = 0; k < 3; ++k)
+    {
+      lo[k] = std::clamp(
+        static_cast<int>((b.lo[k] - tol - all.lo[k]) / extent[k] * dims[k]), 0, dims[k] - 1);
+      hi[k] = std::clamp(
+        static_cast<int>((b.hi[k] + tol - all.lo[k]) / extent[k] * dims[k]), 0, dims[k] - 1);
+    }
+  };
+  std::vector<std::vector<std::uint32_t>> grid(static_cast<std::size_t>(dims.x) * dims.y * dims.z);
+  for (std::uint32_t i = 0; i < fragments.size(); ++i)
+  {
+    glm::ivec3 lo, hi;
+    range(fragments[i].bounds, lo, hi);
+    for (int z = lo.z; z <= hi.z; ++z)
+      for (int y = lo.y; y <= hi.y; ++y)
+        for (int x = lo.x; x <= hi.x; ++x)
+          grid[(static_cast<std::size_t>(z) * dims.y + y) * dims.x + x].push_back(i);
+  }
+  std::vector<std::uint32_t> seen(fragments.size(), kNone), near;
+
   std::vector<std::pair<std::uint32_t, glm::dvec4>> splits;
   Poly clipped, work;
   for (std::uint32_t cell = 0; cell < cx.cellCount; ++cell)
@@ -519,20 +558,37 @@ std::size_t splitCellsAtOpenings(bsp::Tree& tree, const CellComplex& cx)
     {
       bounds.extend(v);
     }
-    for (const Candidate& f : fragments)
+    near.clear();
+    glm::ivec3 lo, hi;
+    range(bounds, lo, hi);
+    for (int z = lo.z; z <= hi.z; ++z)
+      for (int y = lo.y; y <= hi.y; ++y)
+        for (int x = lo.x; x <= hi.x; ++x)
+          for (const std::uint32_t i :
+            grid[(static_cast<std::size_t>(z) * dims.y + y) * dims.x + x])
+          {
+            if (seen[i] != cell)
+            {
+              seen[i] = cell;
+              near.push_back(i);
+            }
+          }
+    std::sort(near.begin(), near.end()); // the first in input order wins: deterministic
+    for (const std::uint32_t i : near)
     {
+      const Candidate& f = fragments[i];
       if (!overlap(bounds, f.bounds, tol))
       {
         continue;
       }
-      double lo = 0.0, hi = 0.0;
+      double below = 0.0, above = 0.0;
       for (const glm::dvec3& v : vertices)
       {
         const double d = distance(f.plane, v);
-        lo = std::min(lo, d);
-        hi = std::max(hi, d);
+        below = std::min(below, d);
+        above = std::max(above, d);
       }
-      if (lo >= -tol || hi <= tol)
+      if (below >= -tol || above <= tol)
       {
         continue; // the plane does not cross the cell
       }

@@ -350,6 +350,7 @@ GeneratedPortals generatePortals(const GenerationInput& input, const GenerationC
   const glm::dvec3 grow(config.margin * diagonal + 1e3 * tree.tolerance);
   box.lo -= grow;
   box.hi += grow;
+  const auto cellsStart = Clock::now();
   CellComplex cx = detail::buildCellComplex(tree, box);
   for (int round = 0; round < 64; ++round)
   {
@@ -361,6 +362,7 @@ GeneratedPortals generatePortals(const GenerationInput& input, const GenerationC
     }
     cx = detail::buildCellComplex(tree, box);
   }
+  stats.cellSeconds = secondsSince(cellsStart);
   const std::size_t cells = cx.cellCount;
   stats.faces = cx.faces.size();
   stats.openFaces = cx.open.size();
@@ -408,10 +410,13 @@ GeneratedPortals generatePortals(const GenerationInput& input, const GenerationC
     }
   }
 
+  const auto openingsStart = Clock::now();
   UnionFind regions(cx.open.size());
   const double step = std::max(1e-4 * diagonal, 100.0 * tree.tolerance);
   const std::vector<std::uint8_t> opening =
     findOpenings(tree, cx, airPieces, config.openingEnclosure, step, regions);
+
+  stats.openingSeconds = secondsSince(openingsStart);
 
   // Rooms: air cells joined across everything that is not an opening.
   UnionFind rooms(cells);

@@ -125,6 +125,8 @@ struct GenerationStatistics
   std::size_t leakCells = 0;
   std::size_t polygonsWithoutRoom = 0; ///< Valid polygons whose front is solid (inside-out).
   double bspSeconds = 0.0;
+  double cellSeconds = 0.0;    ///< Cells, faces and the splits at openings.
+  double openingSeconds = 0.0; ///< Classifying open regions.
   double totalSeconds = 0.0;
 };
 
