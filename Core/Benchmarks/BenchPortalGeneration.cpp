@@ -4,6 +4,7 @@
 //
 //   scenevis_portal_gen_bench --scene MODEL.vtp [--out PREFIX] [--room-array RoomId]
 //                             [--authored-portals PORTALS.vtp] [--depth D]
+//                             [--tolerance R] [--enclosure E]   (GenerationConfig)
 //   scenevis_portal_gen_bench --building FLOORS,X,Y,SEED [--out PREFIX]
 //
 // --out writes PREFIX.vtp (the model with the generated RoomId) and PREFIX-portals.vtp (RoomA,
@@ -163,6 +164,7 @@ int main(int argc, char** argv)
 {
   std::string scene, out, roomArray = "RoomId", authoredPortals, building;
   double depth = 0.0;
+  GenerationConfig config;
   for (int i = 1; i + 1 < argc; i += 2)
   {
     const std::string key = argv[i], value = argv[i + 1];
@@ -176,6 +178,10 @@ int main(int argc, char** argv)
       authoredPortals = value;
     else if (key == "--depth")
       depth = std::atof(value.c_str());
+    else if (key == "--tolerance")
+      config.bsp.relativeTolerance = std::atof(value.c_str());
+    else if (key == "--enclosure")
+      config.openingEnclosure = std::atof(value.c_str());
     else if (key == "--building")
       building = value;
     else
@@ -241,7 +247,7 @@ int main(int argc, char** argv)
       return 2;
     }
     input.mesh = &mesh;
-    const GeneratedPortals g = generatePortals(input);
+    const GeneratedPortals g = generatePortals(input, config);
     print(g);
     if (authoredRoom.size() == mesh.polygonCount())
     {

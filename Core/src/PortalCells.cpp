@@ -2,8 +2,6 @@
 
 #include "scenevis/PortalGeometry.h"
 
-#include <glm/common.hpp>
-#include <glm/ext/vector_int3.hpp>
 #include <glm/geometric.hpp>
 #include <glm/vec4.hpp>
 
@@ -470,6 +468,81 @@ CellComplex buildCellComplex(const bsp::Tree& tree, const Box& box)
   return out;
 }
 
+BoxGrid::BoxGrid(const std::vector<Box>& boxes, double tolerance)
+  : Tolerance(tolerance)
+{
+  for (const Box& b : boxes)
+  {
+    this->All.extend(b);
+  }
+  if (boxes.empty())
+  {
+    this->All.extend(glm::dvec3(0.0));
+  }
+  const glm::dvec3 extent = this->All.hi - this->All.lo;
+  const double volume =
+    std::max(extent.x, 1e-300) * std::max(extent.y, 1e-300) * std::max(extent.z, 1e-300);
+  const double size =
+    std::cbrt(volume / static_cast<double>(std::max<std::size_t>(boxes.size(), 1)));
+  for (int k = 0; k < 3; ++k)
+  {
+    this->Dims[k] =
+      extent[k] > 0.0 && size > 0.0 ? std::clamp(static_cast<int>(extent[k] / size), 1, 256) : 1;
+  }
+  this->Cells.resize(static_cast<std::size_t>(this->Dims[0]) * this->Dims[1] * this->Dims[2]);
+  for (std::uint32_t i = 0; i < boxes.size(); ++i)
+  {
+    int lo[3], hi[3];
+    this->range(boxes[i], lo, hi);
+    for (int z = lo[2]; z <= hi[2]; ++z)
+      for (int y = lo[1]; y <= hi[1]; ++y)
+        for (int x = lo[0]; x <= hi[0]; ++x)
+          this->Cells[(static_cast<std::size_t>(z) * this->Dims[1] + y) * this->Dims[0] + x]
+            .push_back(i);
+  }
+  this->Seen.assign(boxes.size(), kNone);
+}
+
+void BoxGrid::range(const Box& b, int lo[3], int hi[3]) const
+{
+  for (int k = 0; k < 3; ++k)
+  {
+    const double extent = this->All.hi[k] - this->All.lo[k];
+    if (!(extent > 0.0))
+    {
+      lo[k] = hi[k] = 0;
+      continue;
+    }
+    const double scale = this->Dims[k] / extent;
+    const double a = std::floor((b.lo[k] - this->Tolerance - this->All.lo[k]) * scale);
+    const double c = std::floor((b.hi[k] + this->Tolerance - this->All.lo[k]) * scale);
+    lo[k] = static_cast<int>(std::clamp(a, 0.0, this->Dims[k] - 1.0));
+    hi[k] = static_cast<int>(std::clamp(c, 0.0, this->Dims[k] - 1.0));
+  }
+}
+
+const std::vector<std::uint32_t>& BoxGrid::near(const Box& box)
+{
+  this->Near.clear();
+  ++this->Query;
+  int lo[3], hi[3];
+  this->range(box, lo, hi);
+  for (int z = lo[2]; z <= hi[2]; ++z)
+    for (int y = lo[1]; y <= hi[1]; ++y)
+      for (int x = lo[0]; x <= hi[0]; ++x)
+        for (const std::uint32_t i :
+          this->Cells[(static_cast<std::size_t>(z) * this->Dims[1] + y) * this->Dims[0] + x])
+        {
+          if (this->Seen[i] != this->Query)
+          {
+            this->Seen[i] = this->Query;
+            this->Near.push_back(i);
+          }
+        }
+  std::sort(this->Near.begin(), this->Near.end());
+  return this->Near;
+}
+
 std::size_t splitCellsAtOpenings(bsp::Tree& tree, const CellComplex& cx)
 {
   const double tol = tree.tolerance;
@@ -507,42 +580,12 @@ std::size_t splitCellsAtOpenings(bsp::Tree& tree, const CellComplex& cx)
       fragments.push_back(std::move(c));
     }
   }
-  // A uniform grid over the fragments' boxes (about one fragment per grid cell), so that each
-  // cell looks only at the fragments near it.
-  Box all;
+  std::vector<Box> boxes;
   for (const Candidate& f : fragments)
   {
-    all.extend(f.bounds);
+    boxes.push_back(f.bounds);
   }
-  const glm::dvec3 extent = glm::max(all.hi - all.lo, glm::dvec3(1e-300));
-  const double cellSize = std::cbrt(extent.x * extent.y * extent.z /
-    static_cast<double>(std::max<std::size_t>(fragments.size(), 1)));
-  glm::ivec3 dims;
-  for (int k = 0; k < 3; ++k)
-  {
-    dims[k] = std::clamp(static_cast<int>(extent[k] / std::max(cellSize, 1e-300)), 1, 256);
-  }
-  auto range = [&](const Box& b, glm::ivec3& lo, glm::ivec3& hi)
-  {
-    for (int k = 0; k < 3; ++k)
-    {
-      lo[k] = std::clamp(
-        static_cast<int>((b.lo[k] - tol - all.lo[k]) / extent[k] * dims[k]), 0, dims[k] - 1);
-      hi[k] = std::clamp(
-        static_cast<int>((b.hi[k] + tol - all.lo[k]) / extent[k] * dims[k]), 0, dims[k] - 1);
-    }
-  };
-  std::vector<std::vector<std::uint32_t>> grid(static_cast<std::size_t>(dims.x) * dims.y * dims.z);
-  for (std::uint32_t i = 0; i < fragments.size(); ++i)
-  {
-    glm::ivec3 lo, hi;
-    range(fragments[i].bounds, lo, hi);
-    for (int z = lo.z; z <= hi.z; ++z)
-      for (int y = lo.y; y <= hi.y; ++y)
-        for (int x = lo.x; x <= hi.x; ++x)
-          grid[(static_cast<std::size_t>(z) * dims.y + y) * dims.x + x].push_back(i);
-  }
-  std::vector<std::uint32_t> seen(fragments.size(), kNone), near;
+  BoxGrid grid(boxes, tol);
 
   std::vector<std::pair<std::uint32_t, glm::dvec4>> splits;
   Poly clipped, work;
@@ -558,22 +601,7 @@ std::size_t splitCellsAtOpenings(bsp::Tree& tree, const CellComplex& cx)
     {
       bounds.extend(v);
     }
-    near.clear();
-    glm::ivec3 lo, hi;
-    range(bounds, lo, hi);
-    for (int z = lo.z; z <= hi.z; ++z)
-      for (int y = lo.y; y <= hi.y; ++y)
-        for (int x = lo.x; x <= hi.x; ++x)
-          for (const std::uint32_t i :
-            grid[(static_cast<std::size_t>(z) * dims.y + y) * dims.x + x])
-          {
-            if (seen[i] != cell)
-            {
-              seen[i] = cell;
-              near.push_back(i);
-            }
-          }
-    std::sort(near.begin(), near.end()); // the first in input order wins: deterministic
+    const std::vector<std::uint32_t>& near = grid.near(bounds);
     for (const std::uint32_t i : near)
     {
       const Candidate& f = fragments[i];

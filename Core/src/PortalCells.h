@@ -22,6 +22,26 @@ inline std::uint32_t cellOf(std::uint32_t node, int side)
   return 2 * node + static_cast<std::uint32_t>(side);
 }
 
+/// A uniform grid over boxes (about one box per grid cell, at most 256 per axis): the boxes near
+/// a box or point without looking at all of them.
+class BoxGrid
+{
+public:
+  BoxGrid(const std::vector<Box>& boxes, double tolerance);
+  /// Ids of the boxes whose grid cells @p box touches, each once, ascending (a superset of the
+  /// boxes that overlap it).
+  const std::vector<std::uint32_t>& near(const Box& box);
+
+private:
+  void range(const Box& b, int lo[3], int hi[3]) const;
+  Box All;
+  double Tolerance;
+  int Dims[3] = { 1, 1, 1 };
+  std::vector<std::vector<std::uint32_t>> Cells;
+  std::vector<std::uint32_t> Seen, Near;
+  std::uint32_t Query = 0;
+};
+
 /// A convex piece of a node's plane between one cell in front and one behind.
 struct CellFace
 {

@@ -167,6 +167,7 @@ std::vector<std::uint8_t> findOpenings(const bsp::Tree& tree, const CellComplex&
     {
       pieceBounds.push_back(boundsOf(cx.open[i].polygon));
     }
+    detail::BoxGrid pieceGrid(pieceBounds, tol), fragmentGrid(fragmentBounds, tol);
     for (std::size_t pi = 0; pi < pieces.size(); ++pi)
     {
       const std::uint32_t i = pieces[pi];
@@ -196,23 +197,30 @@ std::vector<std::uint8_t> findOpenings(const bsp::Tree& tree, const CellComplex&
             continue;
           }
           bool found = false;
-          for (std::size_t pj = 0; pj < pieces.size() && !found; ++pj)
+          Box at;
+          at.extend(p);
+          for (const std::uint32_t pj : pieceGrid.near(at))
           {
             if (pj != pi && contains(pieceBounds[pj], p, tol) &&
               detail::insideConvexPolygon(cx.open[pieces[pj]].polygon, p, -tol))
             {
               regions.unite(i, pieces[pj]);
               found = true;
+              break;
             }
           }
           if (found)
           {
             continue;
           }
-          for (std::size_t f = 0; f < fragments.size() && !found; ++f)
+          for (const std::uint32_t f : fragmentGrid.near(at))
           {
-            found = contains(fragmentBounds[f], p, tol) &&
-              detail::insideConvexPolygon(fragments[f], p, -tol);
+            if (contains(fragmentBounds[f], p, tol) &&
+              detail::insideConvexPolygon(fragments[f], p, -tol))
+            {
+              found = true;
+              break;
+            }
           }
           (found ? wall : other)[i] += len / 3.0;
         }
