@@ -85,7 +85,7 @@ void compare(const PolygonMesh& mesh, const std::vector<std::int64_t>& authoredR
       ++authoredPer[roomOf[authored]];
     }
   }
-  std::size_t separating = 0, covered = 0;
+  std::size_t separating = 0, covered = 0, coveredByUnion = 0;
   for (const PortalDesc& a : authoredPortals)
   {
     const auto ia = roomOf.find(a.roomA), ib = roomOf.find(a.roomB);
@@ -96,15 +96,46 @@ void compare(const PolygonMesh& mesh, const std::vector<std::int64_t>& authoredR
       continue;
     }
     ++separating;
+    std::vector<const PortalDesc*> joining;
     for (const PortalDesc& p : g.portals)
     {
-      if (((p.roomA == ra && p.roomB == rb) || (p.roomA == rb && p.roomB == ra)) &&
-        inside(p, a.polygon, depth))
+      if ((p.roomA == ra && p.roomB == rb) || (p.roomA == rb && p.roomB == ra))
       {
-        ++covered;
-        break;
+        joining.push_back(&p);
       }
     }
+    bool one = false;
+    for (const PortalDesc* p : joining)
+    {
+      one = one || inside(*p, a.polygon, depth);
+    }
+    covered += one;
+    // Several generated portals may share the opening: each of its sample points (corners,
+    // edge middles, points halfway to the centre, the centre) must be in one of them.
+    glm::dvec3 centre(0.0);
+    for (const glm::dvec3& q : a.polygon)
+    {
+      centre += q / static_cast<double>(a.polygon.size());
+    }
+    std::vector<glm::dvec3> samples{ centre };
+    for (std::size_t k = 0; k < a.polygon.size(); ++k)
+    {
+      const glm::dvec3& q = a.polygon[k];
+      samples.push_back(q);
+      samples.push_back(0.5 * (q + a.polygon[(k + 1) % a.polygon.size()]));
+      samples.push_back(0.5 * (q + centre));
+    }
+    bool all = true;
+    for (const glm::dvec3& q : samples)
+    {
+      bool in = false;
+      for (const PortalDesc* p : joining)
+      {
+        in = in || inside(*p, { q }, depth);
+      }
+      all = all && in;
+    }
+    coveredByUnion += all;
   }
   std::size_t largest = 0;
   for (const auto& [room, count] : authoredPer)
@@ -113,9 +144,9 @@ void compare(const PolygonMesh& mesh, const std::vector<std::int64_t>& authoredR
   }
   std::printf("authored: %zu rooms -> %zu generated rooms (up to %zu authored in one; %zu with "
               "no polygon in a room); %zu portals, %zu between different generated rooms, %zu "
-              "of those inside a generated portal joining them\n",
+              "of those inside a generated portal joining them (%zu inside their union)\n",
     areas.size() - areas.count(-1), authoredPer.size() - authoredPer.count(kOutsideRoom), largest,
-    toOutside, authoredPortals.size(), separating, covered);
+    toOutside, authoredPortals.size(), separating, covered, coveredByUnion);
 }
 
 void print(const GeneratedPortals& g)

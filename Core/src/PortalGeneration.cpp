@@ -453,7 +453,10 @@ GeneratedPortals generatePortals(const GenerationInput& input, const GenerationC
   // Leaks: cells joined to the outside without an opening, yet enclosed by geometry.
   for (std::uint32_t c = 0; c < cells; ++c)
   {
-    if (!isAir[c] || !outside[rooms.find(c)] || !contains(inner, cx.centroid[c], 0.0))
+    // Only space that polygons face into: the void inside a level's pillars is enclosed too,
+    // but its walls turn their backs on it.
+    if (!isAir[c] || !outside[rooms.find(c)] || !contains(inner, cx.centroid[c], 0.0) ||
+      cx.facedArea[c] <= cx.backedArea[c])
     {
       continue;
     }

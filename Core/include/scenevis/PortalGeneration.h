@@ -45,7 +45,8 @@
  * see-through polygons (glass) are marked so that they do not close their opening.
  *
  * Leaks: cells joined to the outside through faces that are not openings (a missing wall, a gap
- * at a wall's edge) but enclosed by geometry in at least 5 of the 6 axis directions are reported
+ * at a wall's edge), faced by polygons (more polygon area on their faces faces into them than
+ * away) and enclosed by geometry in at least 5 of the 6 axis directions are reported
  * in `leakPoints`: the room behind such a gap is merged into the outside, which a portal culler
  * treats conservatively (outside geometry is drawn whenever the outside is seen).
  *
