@@ -4,7 +4,7 @@
 //
 //   scenevis_portal_gen_bench --scene MODEL.vtp [--out PREFIX] [--room-array RoomId]
 //                             [--authored-portals PORTALS.vtp] [--depth D]
-//                             [--tolerance R] [--enclosure E]   (GenerationConfig)
+//                             [--tolerance R] [--enclosure E] [--passage T]   (GenerationConfig)
 //   scenevis_portal_gen_bench --building FLOORS,X,Y,SEED [--out PREFIX]
 //
 // --out writes PREFIX.vtp (the model with the generated RoomId) and PREFIX-portals.vtp (RoomA,
@@ -22,6 +22,7 @@
 
 #include <glm/geometric.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -211,6 +212,8 @@ int main(int argc, char** argv)
       depth = std::atof(value.c_str());
     else if (key == "--tolerance")
       config.bsp.relativeTolerance = std::atof(value.c_str());
+    else if (key == "--passage")
+      config.passageThickness = std::atof(value.c_str());
     else if (key == "--enclosure")
       config.openingEnclosure = std::atof(value.c_str());
     else if (key == "--building")
@@ -280,6 +283,14 @@ int main(int argc, char** argv)
     input.mesh = &mesh;
     const GeneratedPortals g = generatePortals(input, config);
     print(g);
+    if (g.status == GenerationStatus::Ok)
+    {
+      PortalGraphReport report;
+      PortalGraph::build(g.cellScene(mesh), &report);
+      std::printf("portal graph: %zu errors, %zu warnings\n", report.errors(), report.warnings());
+      const std::string summary = report.summary();
+      std::printf("%s", summary.substr(0, std::min<std::size_t>(summary.size(), 600)).c_str());
+    }
     if (authoredRoom.size() == mesh.polygonCount())
     {
       compare(mesh, authoredRoom, authored, g, depth);

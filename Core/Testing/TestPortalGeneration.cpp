@@ -9,6 +9,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <map>
@@ -360,6 +361,36 @@ TEST(PortalGeneration, AMissingWallIsReportedAsALeak)
   EXPECT_EQ(g.roomCount, 1);
   ASSERT_EQ(g.portals.size(), 1u);
   EXPECT_EQ(g.portals[0].roomB, kOutsideRoom);
+}
+
+TEST(PortalGeneration, AWallWoundTheWrongWayStillBelongsToItsRoom)
+{
+  // Room 1's far wall (x = 10) faces the outside instead of the room, as the back side's wall
+  // parts of a converted Doom level do: seen only from room 1, it must be drawn with room 1.
+  ArchitectureSoup s = rowOfRooms(2);
+  s.finish();
+  std::size_t flipped = 0;
+  for (std::size_t i = 0; i < s.mesh.polygonCount(); ++i)
+  {
+    const std::uint32_t* ids = s.mesh.polygon(i);
+    bool atFarWall = true;
+    for (std::uint32_t k = 0; k < s.mesh.polygonSize(i); ++k)
+    {
+      atFarWall = atFarWall && s.mesh.points[ids[k]].x == 10.0;
+    }
+    if (atFarWall)
+    {
+      std::reverse(
+        s.mesh.indices.begin() + s.mesh.offsets[i], s.mesh.indices.begin() + s.mesh.offsets[i + 1]);
+      ++flipped;
+    }
+  }
+  ASSERT_EQ(flipped, 1u);
+  const GeneratedPortals g = generate(s.mesh);
+  ASSERT_EQ(g.status, GenerationStatus::Ok) << g.message;
+  EXPECT_EQ(g.roomCount, 2);
+  roomMap(s, g); // every polygon of room 1, the flipped wall too, in one room
+  expectOpeningsCovered(s, g);
 }
 
 TEST(PortalGeneration, GlassMarkedSeeThroughKeepsItsWindowOpen)

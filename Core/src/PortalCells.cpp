@@ -285,7 +285,8 @@ void subtractFragments(const bsp::Tree& tree, const std::vector<LocalFragment>& 
         const std::uint32_t faced = f.facesFront ? face.front : face.back;
         out.facedArea[faced] += area;
         out.backedArea[f.facesFront ? face.back : face.front] += area;
-        out.coverage.push_back(CellComplex::Coverage{ f.source, faced, area });
+        out.coverage.push_back(
+          CellComplex::Coverage{ f.source, faced, f.facesFront ? face.back : face.front, area });
       }
     }
     std::swap(remaining, next);

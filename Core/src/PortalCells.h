@@ -70,7 +70,8 @@ struct CellComplex
   struct Coverage
   {
     std::uint32_t source; ///< bsp::Fragment::source
-    std::uint32_t cell;
+    std::uint32_t cell;   ///< The cell it faces into.
+    std::uint32_t behind; ///< The cell on its back.
     double area;
   };
   std::vector<Coverage> coverage;

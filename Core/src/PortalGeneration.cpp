@@ -481,13 +481,14 @@ GeneratedPortals generatePortals(const GenerationInput& input, const GenerationC
   }
 
   // Passages: rooms thin for their largest opening join the neighbour they share most with.
-  std::vector<double> volume(cells, 0.0), largest(cells, 0.0);
+  std::vector<double> volume(cells, 0.0), largest(cells, 0.0), facedBy(cells, 0.0);
   std::vector<std::vector<std::pair<std::uint32_t, double>>> neighbours(cells);
   for (std::uint32_t c = 0; c < cells; ++c)
   {
     if (isAir[c])
     {
       volume[rooms.find(c)] += cx.volume[c];
+      facedBy[rooms.find(c)] += cx.facedArea[c];
     }
   }
   for (const std::uint32_t i : airPieces)
@@ -526,7 +527,9 @@ GeneratedPortals generatePortals(const GenerationInput& input, const GenerationC
     {
       largest[r] = std::max(largest[r], e.second);
     }
-    if (largest[r] > 0.0 && volume[r] < config.passageThickness * std::pow(largest[r], 1.5))
+    // A room no polygon faces into would have no geometry to find an eye in: a passage too.
+    if (largest[r] > 0.0 &&
+      (volume[r] < config.passageThickness * std::pow(largest[r], 1.5) || facedBy[r] <= 0.0))
     {
       passages.push_back(r);
     }
@@ -585,7 +588,14 @@ GeneratedPortals generatePortals(const GenerationInput& input, const GenerationC
   std::vector<std::vector<std::pair<std::int32_t, double>>> votes(polygons);
   for (const auto& cover : cx.coverage)
   {
-    const std::int32_t room = roomOfCell[cover.cell];
+    std::int32_t room = roomOfCell[cover.cell];
+    // Facing the outside with a room behind: a polygon wound the wrong way, like the back
+    // side's wall parts of a converted Doom level, which face the void under the other side's
+    // floor. Only its room sees it. (Facing solid space, it is hidden: left without a room.)
+    if (room == kOutsideRoom && roomOfCell[cover.behind] >= 0)
+    {
+      room = roomOfCell[cover.behind];
+    }
     if (room < kOutsideRoom)
     {
       continue;

@@ -33,7 +33,7 @@
  *    the box cells is the outside (kOutsideRoom). A room whose volume is small for its largest
  *    opening (volume / area^1.5 < `passageThickness`: the tunnel a door makes through a thick
  *    wall, the hole through a slab) is a passage and joins the neighbour it shares the largest
- *    opening with.
+ *    opening with; so does a room no polygon faces into (nothing to locate an eye in).
  * 6. Portals: the open faces between different rooms, one convex polygon (the hull of the faces)
  *    per connected opening region and room pair.
  *
@@ -51,8 +51,13 @@
  * treats conservatively (outside geometry is drawn whenever the outside is seen).
  *
  * Polygons: each gets the room its fragments face into over the largest area (see-through ones:
- * the room just in front of their centroid); polygons facing into solid space (hidden faces,
- * counted in polygonsWithoutRoom), the outside, or dropped (invalid) get kOutsideRoom.
+ * the room just in front of their centroid); a part facing the outside with a room behind it
+ * counts for that room (a polygon wound the wrong way: converted Doom levels wind
+ * the back side's wall parts toward the void). Polygons facing into solid space with nothing
+ * behind (hidden faces, counted in polygonsWithoutRoom), facing the outside with no room behind
+ * (facades), or dropped (invalid) get kOutsideRoom. Limit: a zero-thickness exterior wall
+ * without a facade polygon of its own goes to its room, so an eye outside sees it only through
+ * that room's windows.
  *
  * Cost: the BSP, then per round of opening splits the cells and faces again (a few rounds);
  * the demo building (2,250 polygons, 24 rooms) takes about 0.7 s.
