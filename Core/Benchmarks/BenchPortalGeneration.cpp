@@ -137,6 +137,16 @@ void compare(const PolygonMesh& mesh, const std::vector<std::int64_t>& authoredR
       all = all && in;
     }
     coveredByUnion += all;
+    if (!all && separating - coveredByUnion <= 4)
+    {
+      std::printf("  not covered: authored portal %d-%d (generated rooms %d-%d, %zu joining):",
+        a.roomA, a.roomB, ra, rb, joining.size());
+      for (const glm::dvec3& q : a.polygon)
+      {
+        std::printf(" (%.3f %.3f %.3f)", q.x, q.y, q.z);
+      }
+      std::printf("\n");
+    }
   }
   std::size_t largest = 0;
   for (const auto& [room, count] : authoredPer)

@@ -557,6 +557,35 @@ GeneratedPortals generatePortals(const GenerationInput& input, const GenerationC
   }
   outside = outsideRoots();
 
+  // A polygon seen from several rooms would close only the one it is given (the portal graph
+  // finds an eye by the polygons around it, so the others would lose it): the rooms a polygon
+  // faces into are one room. (The steps of a stair cut its well into rooms otherwise.)
+  std::vector<std::uint32_t> firstCell(blocking.polygonCount(), bsp::kNone);
+  for (const auto& cover : cx.coverage)
+  {
+    std::uint32_t cell = cover.cell;
+    if (!isAir[cell] || outside[rooms.find(cell)])
+    {
+      // Facing the outside with a room behind: that room's (see the polygons' rooms below).
+      if (!isAir[cell] || !isAir[cover.behind] || outside[rooms.find(cover.behind)])
+      {
+        continue;
+      }
+      cell = cover.behind;
+    }
+    std::uint32_t& first = firstCell[cover.source];
+    if (first == bsp::kNone)
+    {
+      first = cell;
+    }
+    else if (rooms.find(first) != rooms.find(cell))
+    {
+      rooms.unite(first, cell);
+      ++stats.roomsJoinedByPolygons;
+    }
+  }
+  outside = outsideRoots();
+
   // Room ids in the order of their first cell: deterministic.
   std::vector<std::int32_t> idOfRoot(cells, kOutsideRoom);
   std::vector<std::int32_t> roomOfCell(cells, kOutsideRoom - 1);
@@ -628,8 +657,51 @@ GeneratedPortals generatePortals(const GenerationInput& input, const GenerationC
     {
       continue;
     }
-    const std::uint32_t c = detail::locateCell(tree, centroid + lift * normal);
-    const std::int32_t room = c == bsp::kNone ? kOutsideRoom - 1 : roomOfCell[c];
+    // No covered part: see-through, coincident with another polygon that took the cover
+    // (zero-thickness walls), or hidden (facing solid space: the bottom of a box on the floor,
+    // a box's face inside another). First the room just in front of its centroid; a hidden
+    // face can peek out at its edges, where it is seen from the room around it: then the room
+    // just beyond an edge on its back side (beside the box, above the floor); last the first
+    // room stepping from its centroid along its normal.
+    const std::uint32_t front = detail::locateCell(tree, centroid + lift * normal);
+    std::int32_t room = front == bsp::kNone ? kOutsideRoom - 1 : roomOfCell[front];
+    room = room >= 0 ? room : kOutsideRoom - 1;
+    const std::uint32_t* ids = mesh.polygon(i);
+    const std::size_t count = mesh.polygonSize(i);
+    for (const double side : { -1.0, 1.0 })
+    {
+      for (std::size_t k = 0; k < count && room < 0; ++k)
+      {
+        const glm::dvec3 a = mesh.points[ids[k]] - tree.origin;
+        const glm::dvec3 edge = mesh.points[ids[(k + 1) % count]] - tree.origin - a;
+        const double len = glm::length(edge);
+        if (!(len > 0.0))
+        {
+          continue;
+        }
+        const glm::dvec3 outward = glm::cross(edge, normal) / len;
+        const glm::dvec3 p = a + 0.5 * edge + 2.0 * lift * (outward + side * normal);
+        const std::uint32_t c = detail::locateCell(tree, p);
+        room = c == bsp::kNone ? room : std::max(room, roomOfCell[c]);
+      }
+    }
+    room = room >= 0 ? room : kOutsideRoom - 1;
+    for (double away = lift; away < diagonal && room < 0; away *= 4.0)
+    {
+      for (const double sign : { 1.0, -1.0 })
+      {
+        const std::uint32_t c = detail::locateCell(tree, centroid + sign * away * normal);
+        const std::int32_t r = c == bsp::kNone ? kOutsideRoom - 1 : roomOfCell[c];
+        if (r >= 0 || (r == kOutsideRoom && room < kOutsideRoom))
+        {
+          room = r;
+        }
+        if (room >= 0)
+        {
+          break;
+        }
+      }
+    }
     if (room < kOutsideRoom)
     {
       ++stats.polygonsWithoutRoom;

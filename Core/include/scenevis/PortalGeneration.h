@@ -33,7 +33,9 @@
  *    the box cells is the outside (kOutsideRoom). A room whose volume is small for its largest
  *    opening (volume / area^1.5 < `passageThickness`: the tunnel a door makes through a thick
  *    wall, the hole through a slab) is a passage and joins the neighbour it shares the largest
- *    opening with; so does a room no polygon faces into (nothing to locate an eye in).
+ *    opening with; so does a room no polygon faces into (nothing to locate an eye in). Rooms
+ *    one polygon faces into are joined: the portal graph locates an eye by the polygons around
+ *    it, so each room must be closed by polygons of its own (and its portals).
  * 6. Portals: the open faces between different rooms, one convex polygon (the hull of the faces)
  *    per connected opening region and room pair.
  *
@@ -53,11 +55,12 @@
  * Polygons: each gets the room its fragments face into over the largest area (see-through ones:
  * the room just in front of their centroid); a part facing the outside with a room behind it
  * counts for that room (a polygon wound the wrong way: converted Doom levels wind
- * the back side's wall parts toward the void). Polygons facing into solid space with nothing
- * behind (hidden faces, counted in polygonsWithoutRoom), facing the outside with no room behind
- * (facades), or dropped (invalid) get kOutsideRoom. Limit: a zero-thickness exterior wall
- * without a facade polygon of its own goes to its room, so an eye outside sees it only through
- * that room's windows.
+ * the back side's wall parts toward the void). Hidden polygons (facing solid space) get the
+ * first room found stepping from their centroid along their normal (they may peek out at an
+ * edge); polygons facing the outside with no room behind (facades), polygons where no room is
+ * found (polygonsWithoutRoom) and dropped (invalid) ones get kOutsideRoom. Limit: a zero-thickness
+ * exterior wall without a facade polygon of its own goes to its room, so an eye outside sees it
+ * only through that room's windows.
  *
  * Cost: the BSP, then per round of opening splits the cells and faces again (a few rounds);
  * the demo building (2,250 polygons, 24 rooms) takes about 0.7 s.
@@ -136,6 +139,7 @@ struct GenerationStatistics
   std::size_t openingFaces = 0;        ///< Open pieces between air cells classified as openings.
   std::size_t roomsBeforePassages = 0; ///< Rooms (without the outside) before passages merged.
   std::size_t passagesMerged = 0;
+  std::size_t roomsJoinedByPolygons = 0; ///< Rooms joined because one polygon faces into both.
   std::size_t rooms = 0; ///< Final rooms (without the outside).
   std::size_t portals = 0;
   std::size_t exteriorPortals = 0; ///< Portals to the outside.
