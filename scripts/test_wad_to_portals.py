@@ -174,6 +174,33 @@ class ConverterTest(unittest.TestCase):
         self.assertEqual(cameras[1]["view_angle"], 90)
         self.assertEqual(cameras[1]["clipping_range"][0], 1)
 
+    def test_walls_face_into_their_sector(self):
+        # A portal generator tells air from solid by the side polygons face: the back side's
+        # lower and upper parts of a two-sided line must face their own sector too (they used to
+        # be wound like the front side's, toward the void under or over the other sector).
+        self.assertEqual(self.convert(tiny_wad()).returncode, 0)
+        _, arrays = read_vtp(self.path("map.vtp"))
+        model = polygons(arrays)
+        centre = {}
+        for room, polygon in zip(arrays["RoomId"], model):
+            if len(set(q[2] for q in polygon)) == 1:  # a flat: the room's middle in x and y
+                xs, ys = [q[0] for q in polygon], [q[1] for q in polygon]
+                centre.setdefault(room, ((min(xs) + max(xs)) / 2, (min(ys) + max(ys)) / 2))
+        walls = 0
+        for room, polygon in zip(arrays["RoomId"], model):
+            if len(set(q[2] for q in polygon)) == 1:
+                continue
+            n = [0.0, 0.0]
+            for p, q in zip(polygon, polygon[1:] + polygon[:1]):  # Newell, x and y only
+                n[0] += (p[1] - q[1]) * (p[2] + q[2])
+                n[1] += (p[2] - q[2]) * (p[0] + q[0])
+            mx = sum(q[0] for q in polygon) / len(polygon)
+            my = sum(q[1] for q in polygon) / len(polygon)
+            cx, cy = centre[room]
+            self.assertGreater(n[0] * (cx - mx) + n[1] * (cy - my), 0.0, (room, polygon))
+            walls += 1
+        self.assertGreater(walls, 0)
+
     def test_closed_sector_bounds_nothing(self):
         # MAP12 lost 15 pixels of 8 shut doors to the ID buffer: a closed sector's floor and
         # ceiling lie on the edge where the walls that close it meet, and depth ties showed them

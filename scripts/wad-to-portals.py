@@ -12,6 +12,7 @@ Rooms are the map's sectors (RoomId = sector index); Doom is 2.5D, z up, in map 
 OUT.vtp: polygons with the cell arrays
   RoomId  (Int32) the sector whose volume the polygon bounds
   Colors  (UInt8 RGBA, opaque) a colour per kind of surface shaded by the sector's light level
+  Every polygon faces into its sector (counter-clockwise seen from inside it).
   - one-sided lines: a wall quad from the floor to the ceiling of their sector;
   - two-sided lines joining two sectors: per side, the part of that side's own height range
     outside the opening: the lower part (from its floor up to the other floor) and the upper
@@ -291,7 +292,10 @@ def convert(data, map_name, all_things=False):
 
         def quad(z0, z1, room, kind):
             if z1 > z0:
-                polygons.append([(x1, y1, z0), (x2, y2, z0), (x2, y2, z1), (x1, y1, z1)])
+                # Each side's parts face into its own sector (the front is on the right of v1 ->
+                # v2): the back side's are wound the other way.
+                a, b = ((x1, y1), (x2, y2)) if room == sa else ((x2, y2), (x1, y1))
+                polygons.append([(*a, z0), (*b, z0), (*b, z1), (*a, z1)])
                 rooms.append(room)
                 kinds.append((kind, room))
 

@@ -1,0 +1,503 @@
+// Specification of automatic rooms and portals (PortalGeneration.h): rooms found from walls with
+// holes, one portal per doorway that covers the doorway, furniture and corridor corners inside a
+// room, leaks reported, bad input answered with a status. Oracles: the rooms each test scene was
+// built from (every polygon of a room must get one generated room, different rooms different
+// ones) and the openings cut into its walls (every opening inside a portal joining its rooms).
+#include "scenevis/PortalGeneration.h"
+#include "scenevis/PortalGeometry.h"
+#include "scenevis/PortalGraph.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <set>
+#include <vector>
+
+using namespace scenevis;
+using namespace scenevis::portals;
+
+namespace
+{
+
+/// An axis-aligned rectangle in the plane coordinate[axis] == at: an opening in a wall.
+struct Opening
+{
+  int axis = 0;
+  double at = 0.0;
+  glm::dvec3 lo{ 0.0 }, hi{ 0.0 }; ///< Corners (coordinate[axis] ignored).
+  int roomA = 0, roomB = 0;        ///< Authored rooms; -1: the outside.
+};
+
+/**
+ * Box rooms with zero-thickness walls: each room's six faces face into it (furniture faces out),
+ * each face split around at most one rectangular hole; a hole as large as the face leaves no
+ * polygon (rooms joined over a whole face make one room).
+ */
+struct ArchitectureSoup
+{
+  PolygonMesh mesh;
+  std::vector<int> authoredRoom; ///< Per polygon.
+  std::vector<Box> rooms;
+  std::vector<Opening> openings;
+
+  int room(const glm::dvec3& lo, const glm::dvec3& hi)
+  {
+    Box b;
+    b.extend(lo);
+    b.extend(hi);
+    rooms.push_back(b);
+    return static_cast<int>(rooms.size()) - 1;
+  }
+  void opening(int a, int b, int axis, double at, glm::dvec3 lo, glm::dvec3 hi)
+  {
+    lo[axis] = hi[axis] = at;
+    openings.push_back(Opening{ axis, at, lo, hi, a, b });
+  }
+  void quad(int r, int axis, double at, bool positive, double u0, double u1, double v0, double v1)
+  {
+    if (u1 - u0 <= 0 || v1 - v0 <= 0)
+    {
+      return;
+    }
+    const int u = (axis + 1) % 3, v = (axis + 2) % 3;
+    std::uint32_t ids[4];
+    for (int k = 0; k < 4; ++k)
+    {
+      glm::dvec3 p(0.0);
+      p[axis] = at;
+      p[u] = (k == 1 || k == 2) ? u1 : u0;
+      p[v] = (k >= 2) ? v1 : v0;
+      ids[positive ? k : 3 - k] = mesh.addPoint(p);
+    }
+    mesh.addPolygon(ids, 4);
+    authoredRoom.push_back(r);
+  }
+  /// The six faces of @p b, normals into it (@p inward) or out of it, split around openings.
+  void faces(int r, const Box& b, bool inward)
+  {
+    for (int axis = 0; axis < 3; ++axis)
+    {
+      const int u = (axis + 1) % 3, v = (axis + 2) % 3;
+      for (const bool atLo : { true, false })
+      {
+        const double at = atLo ? b.lo[axis] : b.hi[axis];
+        const bool positive = atLo == inward;
+        const Opening* hole = nullptr;
+        for (const Opening& o : openings)
+        {
+          if ((o.roomA == r || o.roomB == r) && o.axis == axis && o.at == at)
+          {
+            hole = &o;
+          }
+        }
+        if (!hole)
+        {
+          quad(r, axis, at, positive, b.lo[u], b.hi[u], b.lo[v], b.hi[v]);
+          continue;
+        }
+        const double hu0 = std::max(hole->lo[u], b.lo[u]), hu1 = std::min(hole->hi[u], b.hi[u]);
+        const double hv0 = std::max(hole->lo[v], b.lo[v]), hv1 = std::min(hole->hi[v], b.hi[v]);
+        quad(r, axis, at, positive, b.lo[u], b.hi[u], b.lo[v], hv0);
+        quad(r, axis, at, positive, b.lo[u], b.hi[u], hv1, b.hi[v]);
+        quad(r, axis, at, positive, b.lo[u], hu0, hv0, hv1);
+        quad(r, axis, at, positive, hu1, b.hi[u], hv0, hv1);
+      }
+    }
+  }
+  void finish()
+  {
+    for (std::size_t r = 0; r < rooms.size(); ++r)
+    {
+      faces(static_cast<int>(r), rooms[r], true);
+    }
+  }
+  /// A closed box standing in room @p r, facing out. Its faces lying on the room's walls or
+  /// floor are hidden there: the oracle expects no particular room for them (authored room -2).
+  void furniture(int r, const glm::dvec3& lo, const glm::dvec3& hi)
+  {
+    Box b;
+    b.extend(lo);
+    b.extend(hi);
+    const std::size_t first = mesh.polygonCount();
+    faces(r, b, false);
+    const Box& walls = rooms[static_cast<std::size_t>(r)];
+    for (std::size_t i = first; i < mesh.polygonCount(); ++i)
+    {
+      const glm::dvec3 n = newellNormal(mesh.points.data(), mesh.polygon(i), 4);
+      const glm::dvec3& p = mesh.points[mesh.polygon(i)[0]];
+      for (int axis = 0; axis < 3; ++axis)
+      {
+        if (n[axis] != 0.0 && (p[axis] == walls.lo[axis] || p[axis] == walls.hi[axis]))
+        {
+          authoredRoom[i] = -2;
+        }
+      }
+    }
+  }
+};
+
+GeneratedPortals generate(const PolygonMesh& mesh)
+{
+  GenerationInput in;
+  in.mesh = &mesh;
+  return generatePortals(in);
+}
+
+/// Generated room of each authored room: every polygon of one authored room must get the same
+/// generated room, and different authored rooms different ones (else the test fails).
+std::map<int, std::int32_t> roomMap(const ArchitectureSoup& s, const GeneratedPortals& g)
+{
+  std::map<int, std::set<std::int32_t>> seen;
+  for (std::size_t i = 0; i < s.authoredRoom.size(); ++i)
+  {
+    if (s.authoredRoom[i] >= 0)
+    {
+      seen[s.authoredRoom[i]].insert(g.roomOfPolygon[i]);
+    }
+  }
+  std::map<int, std::int32_t> map;
+  std::set<std::int32_t> used;
+  for (const auto& [authored, generated] : seen)
+  {
+    EXPECT_EQ(generated.size(), 1u) << "authored room " << authored << " split or mixed";
+    map[authored] = *generated.begin();
+    EXPECT_GE(map[authored], 0) << "authored room " << authored << " taken for the outside";
+    EXPECT_TRUE(used.insert(map[authored]).second)
+      << "authored room " << authored << " merged with another";
+  }
+  return map;
+}
+
+/// Whether @p point lies in the portal's plane (within @p tol) and inside its convex polygon.
+bool portalCovers(const PortalDesc& portal, const glm::dvec3& point, double tol)
+{
+  const glm::dvec3 n = glm::normalize(geometry::newellOf(portal.polygon));
+  if (std::abs(glm::dot(n, point - portal.polygon[0])) > tol)
+  {
+    return false;
+  }
+  std::vector<glm::dvec3> ccw = planarConvexHull(portal.polygon, n);
+  return geometry::insideConvex(ccw, n, point, tol);
+}
+
+/// Every authored opening lies inside one generated portal joining the generated rooms of its
+/// two authored rooms (conservativeness: a portal is never smaller than its opening).
+void expectOpeningsCovered(const ArchitectureSoup& s, const GeneratedPortals& g, double tol = 1e-6)
+{
+  const auto rooms = roomMap(s, g);
+  for (std::size_t k = 0; k < s.openings.size(); ++k)
+  {
+    const Opening& o = s.openings[k];
+    const std::int32_t a = o.roomA < 0 ? kOutsideRoom : rooms.at(o.roomA);
+    const std::int32_t b = o.roomB < 0 ? kOutsideRoom : rooms.at(o.roomB);
+    std::vector<glm::dvec3> corners;
+    const int u = (o.axis + 1) % 3, v = (o.axis + 2) % 3;
+    for (int c = 0; c < 4; ++c)
+    {
+      glm::dvec3 p = o.lo;
+      p[u] = (c & 1) ? o.hi[u] : o.lo[u];
+      p[v] = (c & 2) ? o.hi[v] : o.lo[v];
+      corners.push_back(p);
+    }
+    bool covered = false;
+    for (const PortalDesc& p : g.portals)
+    {
+      const bool joins = (p.roomA == a && p.roomB == b) || (p.roomA == b && p.roomB == a);
+      bool all = joins;
+      for (const glm::dvec3& c : corners)
+      {
+        all = all && portalCovers(p, c, tol);
+      }
+      covered = covered || all;
+    }
+    EXPECT_TRUE(covered) << "opening " << k << " (rooms " << o.roomA << ", " << o.roomB
+                         << ") not inside a portal joining them";
+  }
+}
+
+double area(const std::vector<glm::dvec3>& polygon)
+{
+  return 0.5 * glm::length(geometry::newellOf(polygon));
+}
+
+/// Rooms 5 x 4 x 3 along x, doors 1 x 2.1 in the walls between them.
+ArchitectureSoup rowOfRooms(int n)
+{
+  ArchitectureSoup s;
+  for (int i = 0; i < n; ++i)
+  {
+    s.room({ 5.0 * i, 0, 0 }, { 5.0 * (i + 1), 4, 3 });
+  }
+  for (int i = 0; i + 1 < n; ++i)
+  {
+    s.opening(i, i + 1, 0, 5.0 * (i + 1), { 0, 1.5, 0 }, { 0, 2.5, 2.1 });
+  }
+  return s;
+}
+
+} // namespace
+
+TEST(PortalGeneration, TwoRoomsJoinedByADoorGiveTwoRoomsAndOnePortalCoveringTheDoor)
+{
+  ArchitectureSoup s = rowOfRooms(2);
+  s.finish();
+  const GeneratedPortals g = generate(s.mesh);
+  ASSERT_EQ(g.status, GenerationStatus::Ok) << g.message;
+  EXPECT_EQ(g.roomCount, 2);
+  ASSERT_EQ(g.portals.size(), 1u);
+  EXPECT_EQ(g.statistics.leakCells, 0u);
+  EXPECT_EQ(g.statistics.exteriorPortals, 0u);
+  expectOpeningsCovered(s, g);
+  // Not the whole wall either: the portal is the door (the wall is 4 x 3, the door 1 x 2.1).
+  EXPECT_GE(area(g.portals[0].polygon), 2.1 - 1e-9);
+  EXPECT_LT(area(g.portals[0].polygon), 0.5 * 12.0);
+}
+
+TEST(PortalGeneration, ARowOfRoomsGivesOneRoomEachAndAPortalPerDoor)
+{
+  for (const int n : { 3, 6 })
+  {
+    ArchitectureSoup s = rowOfRooms(n);
+    s.finish();
+    const GeneratedPortals g = generate(s.mesh);
+    ASSERT_EQ(g.status, GenerationStatus::Ok) << g.message;
+    EXPECT_EQ(g.roomCount, n);
+    EXPECT_EQ(g.portals.size(), static_cast<std::size_t>(n - 1));
+    expectOpeningsCovered(s, g);
+    // The graph built from the generated scene is valid.
+    PortalGraphReport report;
+    PortalGraph::build(g.cellScene(s.mesh), &report);
+    EXPECT_EQ(report.errors(), 0u) << report.summary();
+  }
+}
+
+TEST(PortalGeneration, AnLShapedCorridorIsOneRoomBetweenItsDoors)
+{
+  ArchitectureSoup s;
+  const int west = s.room({ -4, -1, 0 }, { 0, 3, 3 });
+  const int leg1 = s.room({ 0, 0, 0 }, { 10, 2, 3 });
+  const int leg2 = s.room({ 8, 2, 0 }, { 10, 10, 3 });
+  const int north = s.room({ 7, 10, 0 }, { 11, 14, 3 });
+  s.opening(west, leg1, 0, 0.0, { 0, 0.5, 0 }, { 0, 1.5, 2.1 });
+  s.opening(leg2, north, 1, 10.0, { 8.5, 0, 0 }, { 9.5, 0, 2.1 });
+  // The legs share a whole face: no wall between them.
+  s.opening(leg1, leg2, 1, 2.0, { 8, 0, 0 }, { 10, 0, 3 });
+  s.finish();
+  const GeneratedPortals g = generate(s.mesh);
+  ASSERT_EQ(g.status, GenerationStatus::Ok) << g.message;
+  EXPECT_EQ(g.roomCount, 3);
+  EXPECT_EQ(g.portals.size(), 2u);
+  std::set<std::int32_t> corridor;
+  for (std::size_t i = 0; i < s.authoredRoom.size(); ++i)
+  {
+    if (s.authoredRoom[i] == leg1 || s.authoredRoom[i] == leg2)
+    {
+      corridor.insert(g.roomOfPolygon[i]);
+    }
+  }
+  EXPECT_EQ(corridor.size(), 1u) << "the corridor's legs must be one room";
+  EXPECT_GE(*corridor.begin(), 0);
+  // The doors: the corridor's legs count as one authored room for the oracle.
+  ArchitectureSoup doors = s;
+  for (int& r : doors.authoredRoom)
+  {
+    r = r == leg2 ? leg1 : r;
+  }
+  doors.openings = { s.openings[0], s.openings[1] };
+  doors.openings[1].roomA = leg1;
+  expectOpeningsCovered(doors, g);
+}
+
+TEST(PortalGeneration, FurnitureStaysInItsRoom)
+{
+  ArchitectureSoup s = rowOfRooms(2);
+  s.finish();
+  const std::size_t roomPolygons = s.mesh.polygonCount();
+  s.furniture(0, { 0.5, 0.5, 0 }, { 2.5, 1.5, 0.8 });   // a table-sized box on the floor
+  s.furniture(0, { 3.5, 3.0, 0 }, { 5.0, 4.0, 2.0 });   // a cabinet in the corner at the door wall
+  s.furniture(1, { 6.0, 0.5, 0.5 }, { 8.0, 3.5, 1.0 }); // a raised platform, free-standing
+  const GeneratedPortals g = generate(s.mesh);
+  ASSERT_EQ(g.status, GenerationStatus::Ok) << g.message;
+  EXPECT_EQ(g.roomCount, 2);
+  EXPECT_EQ(g.portals.size(), 1u);
+  expectOpeningsCovered(s, g);
+  roomMap(s, g);
+  EXPECT_EQ(s.mesh.polygonCount() - roomPolygons, 18u);
+}
+
+TEST(PortalGeneration, AWindowToTheOutsideIsAnExteriorPortal)
+{
+  ArchitectureSoup s = rowOfRooms(2);
+  s.opening(1, -1, 0, 10.0, { 0, 1, 1 }, { 0, 3, 2 });
+  s.finish();
+  const GeneratedPortals g = generate(s.mesh);
+  ASSERT_EQ(g.status, GenerationStatus::Ok) << g.message;
+  EXPECT_EQ(g.roomCount, 2);
+  EXPECT_EQ(g.portals.size(), 2u);
+  EXPECT_EQ(g.statistics.exteriorPortals, 1u);
+  EXPECT_EQ(g.statistics.leakCells, 0u);
+  expectOpeningsCovered(s, g);
+}
+
+TEST(PortalGeneration, AMissingWallIsReportedAsALeak)
+{
+  ArchitectureSoup s = rowOfRooms(2);
+  // Room 1's far wall (x = 10) is gone: its inside is open to the outside with no opening.
+  s.opening(1, -1, 0, 10.0, { 0, 0, 0 }, { 0, 4, 3 });
+  s.finish();
+  const GeneratedPortals g = generate(s.mesh);
+  ASSERT_EQ(g.status, GenerationStatus::Ok) << g.message;
+  EXPECT_GT(g.statistics.leakCells, 0u);
+  ASSERT_FALSE(g.leakPoints.empty());
+  for (const glm::dvec3& p : g.leakPoints)
+  {
+    EXPECT_TRUE(p.x > 5.0 && p.x < 10.0 && p.y > 0.0 && p.y < 4.0 && p.z > 0.0 && p.z < 3.0)
+      << "leak point outside the open room: " << p.x << ", " << p.y << ", " << p.z;
+  }
+  // The room with the door to the leaking one keeps its portal: what is behind it is outside.
+  EXPECT_EQ(g.roomCount, 1);
+  ASSERT_EQ(g.portals.size(), 1u);
+  EXPECT_EQ(g.portals[0].roomB, kOutsideRoom);
+}
+
+TEST(PortalGeneration, AWallWoundTheWrongWayStillBelongsToItsRoom)
+{
+  // Room 1's far wall (x = 10) faces the outside instead of the room, as the back side's wall
+  // parts of a converted Doom level do: seen only from room 1, it must be drawn with room 1.
+  ArchitectureSoup s = rowOfRooms(2);
+  s.finish();
+  std::size_t flipped = 0;
+  for (std::size_t i = 0; i < s.mesh.polygonCount(); ++i)
+  {
+    const std::uint32_t* ids = s.mesh.polygon(i);
+    bool atFarWall = true;
+    for (std::uint32_t k = 0; k < s.mesh.polygonSize(i); ++k)
+    {
+      atFarWall = atFarWall && s.mesh.points[ids[k]].x == 10.0;
+    }
+    if (atFarWall)
+    {
+      std::reverse(
+        s.mesh.indices.begin() + s.mesh.offsets[i], s.mesh.indices.begin() + s.mesh.offsets[i + 1]);
+      ++flipped;
+    }
+  }
+  ASSERT_EQ(flipped, 1u);
+  const GeneratedPortals g = generate(s.mesh);
+  ASSERT_EQ(g.status, GenerationStatus::Ok) << g.message;
+  EXPECT_EQ(g.roomCount, 2);
+  roomMap(s, g); // every polygon of room 1, the flipped wall too, in one room
+  expectOpeningsCovered(s, g);
+}
+
+TEST(PortalGeneration, GlassMarkedSeeThroughKeepsItsWindowOpen)
+{
+  ArchitectureSoup s = rowOfRooms(2);
+  s.finish();
+  // A pane filling the door: opaque it closes the door, see-through it does not.
+  const std::uint32_t ids[4] = { s.mesh.addPoint({ 5, 1.5, 0 }), s.mesh.addPoint({ 5, 2.5, 0 }),
+    s.mesh.addPoint({ 5, 2.5, 2.1 }), s.mesh.addPoint({ 5, 1.5, 2.1 }) };
+  s.mesh.addPolygon(ids, 4);
+  GenerationInput in;
+  in.mesh = &s.mesh;
+  const GeneratedPortals closed = generatePortals(in);
+  EXPECT_EQ(closed.portals.size(), 0u);
+  in.seeThrough.assign(s.mesh.polygonCount(), 0);
+  in.seeThrough.back() = 1;
+  const GeneratedPortals open = generatePortals(in);
+  EXPECT_EQ(open.roomCount, 2);
+  EXPECT_EQ(open.portals.size(), 1u);
+  EXPECT_GE(open.roomOfPolygon.back(), 0);
+}
+
+TEST(PortalGeneration, FarFromTheOriginTheSameRoomsAndPortals)
+{
+  ArchitectureSoup s = rowOfRooms(3);
+  const glm::dvec3 offset(1e7, -1e7, 1e7);
+  for (Box& b : s.rooms)
+  {
+    b.lo += offset;
+    b.hi += offset;
+  }
+  for (Opening& o : s.openings)
+  {
+    o.lo += offset;
+    o.hi += offset;
+    o.at += offset[o.axis];
+  }
+  s.finish();
+  const GeneratedPortals g = generate(s.mesh);
+  ASSERT_EQ(g.status, GenerationStatus::Ok) << g.message;
+  EXPECT_EQ(g.roomCount, 3);
+  EXPECT_EQ(g.portals.size(), 2u);
+  expectOpeningsCovered(s, g, 1e-6 * 1e7);
+}
+
+TEST(PortalGenerationBadInput, EmptyInputGivesAStatus)
+{
+  GenerationInput none;
+  EXPECT_EQ(generatePortals(none).status, GenerationStatus::EmptyInput);
+  PolygonMesh empty;
+  const GeneratedPortals g = generate(empty);
+  EXPECT_EQ(g.status, GenerationStatus::EmptyInput);
+  EXPECT_FALSE(g.message.empty());
+  EXPECT_TRUE(g.portals.empty());
+}
+
+TEST(PortalGenerationBadInput, OnlyDegenerateOrNaNPolygonsGiveAStatus)
+{
+  PolygonMesh mesh;
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const auto a = mesh.addPoint({ 0, 0, 0 }), b = mesh.addPoint({ 1, 0, 0 }),
+             c = mesh.addPoint({ 2, 0, 0 }), d = mesh.addPoint({ nan, 0, 1 });
+  mesh.addPolygon({ a, b, c }); // collinear
+  mesh.addPolygon({ a, b, d }); // NaN
+  mesh.addPolygon({ a, a, b }); // repeated point
+  const GeneratedPortals g = generate(mesh);
+  EXPECT_EQ(g.status, GenerationStatus::NoValidPolygons);
+  EXPECT_FALSE(g.message.empty());
+  ASSERT_EQ(g.roomOfPolygon.size(), 3u);
+  for (const std::int32_t r : g.roomOfPolygon)
+  {
+    EXPECT_EQ(r, kOutsideRoom);
+  }
+}
+
+TEST(PortalGenerationBadInput, BadPolygonsAmongGoodOnesAreDroppedAndCounted)
+{
+  ArchitectureSoup s = rowOfRooms(2);
+  s.finish();
+  const std::size_t good = s.mesh.polygonCount();
+  const double inf = std::numeric_limits<double>::infinity();
+  const auto p = s.mesh.addPoint({ 2, 2, 1 }), q = s.mesh.addPoint({ inf, 2, 1 });
+  s.mesh.addPolygon({ p, q, p });
+  s.mesh.addPolygon({ p, p, p });
+  s.mesh.indices.push_back(123456); // out-of-range point id
+  s.mesh.indices.push_back(p);
+  s.mesh.indices.push_back(q);
+  s.mesh.offsets.push_back(static_cast<std::uint32_t>(s.mesh.indices.size()));
+  const GeneratedPortals g = generate(s.mesh);
+  ASSERT_EQ(g.status, GenerationStatus::Ok) << g.message;
+  EXPECT_EQ(g.statistics.droppedPolygons, 3u);
+  EXPECT_EQ(g.roomCount, 2);
+  EXPECT_EQ(g.portals.size(), 1u);
+  for (std::size_t i = good; i < s.mesh.polygonCount(); ++i)
+  {
+    EXPECT_EQ(g.roomOfPolygon[i], kOutsideRoom);
+  }
+}
+
+TEST(PortalGenerationBadInput, AnOpenSoupStillGivesAnAnswer)
+{
+  // A single wall and a floor: no room is closed, everything is outside, nothing crashes.
+  ArchitectureSoup s;
+  s.quad(0, 0, 0.0, true, 0, 4, 0, 3);
+  s.quad(0, 2, 0.0, true, 0, 5, 0, 4);
+  const GeneratedPortals g = generate(s.mesh);
+  ASSERT_EQ(g.status, GenerationStatus::Ok) << g.message;
+  EXPECT_EQ(g.roomCount, 0);
+  EXPECT_TRUE(g.portals.empty());
+}
