@@ -118,8 +118,8 @@ struct Separation
   double offset = 0.0;
 };
 
-Separation separate(std::vector<std::uint32_t>& set, const std::vector<Extent>& extents,
-  double relativeTolerance, std::vector<std::uint32_t>& scratch)
+Separation separate(
+  std::vector<std::uint32_t>& set, const std::vector<Extent>& extents, std::vector<std::uint32_t>& scratch)
 {
   Separation best;
   std::size_t bestImbalance = std::numeric_limits<std::size_t>::max();
@@ -133,22 +133,12 @@ Separation separate(std::vector<std::uint32_t>& set, const std::vector<Extent>& 
           (extents[a].lo[d] == extents[b].lo[d] && a < b);
       });
     double farthest = -std::numeric_limits<double>::infinity();
-    std::uint32_t farthestPart = 0;
     for (std::size_t k = 0; k + 1 < m; ++k)
     {
-      if (extents[scratch[k]].hi[d] > farthest)
-      {
-        farthest = extents[scratch[k]].hi[d];
-        farthestPart = scratch[k];
-      }
-      const Extent& after = extents[scratch[k + 1]];
-      const double next = after.lo[d];
-      // The two parts at the gap may overlap by their tolerance (file comment): relative to the
-      // smaller of them, since every part after the gap overlaps the one before by no more.
-      const double tolerance = relativeTolerance *
-          std::min(
-            extents[farthestPart].hi[d] - extents[farthestPart].lo[d], after.hi[d] - after.lo[d]) +
-        16.0 * DBL_EPSILON * std::max(std::abs(farthest), std::abs(next));
+      farthest = std::max(farthest, extents[scratch[k]].hi[d]);
+      const double next = extents[scratch[k + 1]].lo[d];
+      // Parts at the gap may overlap by the rounding of the compared values (file comment).
+      const double tolerance = 64.0 * DBL_EPSILON * std::max(std::abs(farthest), std::abs(next));
       const std::size_t imbalance = 2 * (k + 1) > m ? 2 * (k + 1) - m : m - 2 * (k + 1);
       if (farthest <= next + tolerance && imbalance < bestImbalance)
       {
@@ -359,7 +349,7 @@ Tree build(const std::vector<const PolygonMesh*>& meshes, const std::vector<Part
     stack.pop_back();
     tree.statistics.depth = std::max(tree.statistics.depth, w.depth);
     const Separation s =
-      w.set.size() > 1 ? separate(w.set, extents, config.relativeTolerance, scratch) : Separation{};
+      w.set.size() > 1 ? separate(w.set, extents, scratch) : Separation{};
     if (s.split == 0)
     {
       std::sort(w.set.begin(), w.set.end());

@@ -32,10 +32,11 @@
  * (13 sorts of the parts per level) and the shapes of the groups it leaves or joins (see
  * `previous` below); the parts' own trees never.
  *
- * Tolerance: two parts at a gap count as touching when they overlap along the direction by at
- * most relativeTolerance * (the smaller of their two extents along it) + 16 * DBL_EPSILON * (the
- * larger magnitude of the two interval ends), as bsp::build's plane tolerance, but local: a part
- * far away or huge (1e30) does not make every other gap look closed (found by the fuzzer).
+ * Tolerance: two parts at a gap count as touching when they overlap along the direction by no
+ * more than the rounding of the compared values, 64 * DBL_EPSILON * (the larger magnitude of the
+ * two interval ends). Not more: a tolerance relative to the parts' or the scene's size let one
+ * huge part (1e30) close gaps between ordinary parts (found by the fuzzer). Parts that touch
+ * only up to a coarser noise stay together, in one group: slower, never wrong.
  *
  * Matrices that are finite but not an invertible affine map (a scale of 0 flattens a part, a
  * projective matrix divides by w) give a part no model frame: it is separated like any other,
@@ -149,8 +150,6 @@ struct BuildConfig
 {
   /// For the shapes' trees.
   bsp::BuildConfig shapeConfig;
-  /// Overlap tolerance of two parts relative to their extent (see the file comment).
-  double relativeTolerance = 1e-10;
 };
 
 /**
