@@ -1,6 +1,6 @@
-// The four commands of scenevis, one file each: CommandRender.cxx, CommandSort.cxx,
-// CommandCull.cxx and CommandBench.cxx. Each returns the exit code; errors are thrown
-// (UsageError: exit 2, anything else: exit 1).
+// The commands of scenevis, one file each: CommandRender.cxx, CommandSort.cxx,
+// CommandCull.cxx, CommandPortals.cxx and CommandBench.cxx. Each returns the exit code; errors are
+// thrown (UsageError: exit 2, anything else: exit 1).
 #ifndef scenevis_tool_Commands_h
 #define scenevis_tool_Commands_h
 
@@ -23,6 +23,11 @@ int RunSort(const Options& options);
 /// JSON on stdout. The visible set is that of a real (offscreen) render, so it is exactly what
 /// `render` would draw.
 int RunCull(const Options& options);
+
+/// `scenevis portals`: rooms and portals found from the scene's geometry, written as OUT.vtp (the
+/// scene with a room cell array) and OUT-portals.vtp (RoomA, RoomB); what was found as JSON on
+/// stdout.
+int RunPortals(const Options& options);
 
 /// `scenevis bench`: accuracy against time of every translucency method on each scene, as a CSV
 /// table and a plot in --out-dir.

@@ -22,6 +22,12 @@ Usage:
                               props, parts, rooms, chunks and triangles
   scenevis bench [options]    accuracy versus time of every translucency method: a CSV table
                               and a plot (PNG) of frame time against image error
+  scenevis portals --out OUT [options]  rooms and portals found from the scene's geometry
+                              (walls, floors, ceilings; doors and windows are holes in them):
+                              OUT.vtp (the scene with a room cell array, --room-array, -1
+                              outside) and OUT-portals.vtp (RoomA, RoomB) for --portals;
+                              translucent cells (glass) do not close an opening. Prints
+                              what was found as JSON (rooms, portals, leaks, seconds)
   scenevis --help | --version
 
 Scene (all commands):
@@ -234,11 +240,11 @@ Options ParseOptions(int argc, char* argv[])
   Options options;
   if (argc < 2)
   {
-    throw UsageError("missing command (render, sort, cull or bench); see scenevis --help");
+    throw UsageError("missing command (render, sort, cull, portals or bench); see scenevis --help");
   }
   options.command = argv[1];
   if (options.command != "render" && options.command != "sort" && options.command != "bench" &&
-    options.command != "cull")
+    options.command != "cull" && options.command != "portals")
   {
     throw UsageError("unknown command '" + options.command + "'; see scenevis --help");
   }
@@ -429,6 +435,15 @@ Options ParseOptions(int argc, char* argv[])
   if (options.command == "sort" && options.out.empty())
   {
     throw UsageError("sort needs --out FILE.vtp");
+  }
+  if (options.command == "portals" && options.out.empty())
+  {
+    throw UsageError("portals needs --out PREFIX (writes PREFIX.vtp and PREFIX-portals.vtp)");
+  }
+  if (options.command == "portals" && (options.instances || !options.portals.empty()))
+  {
+    throw UsageError(std::string(options.instances ? "--instances" : "--portals") +
+      " does not go with portals, which finds the portals of one flattened model");
   }
   CheckCameraOptions(options);
   if ((options.partArraySet || options.roomArraySet) && options.command == "sort")

@@ -68,6 +68,10 @@ int main(int argc, char* argv[])
     {
       return scenevis::tool::RunCull(options);
     }
+    if (options.command == "portals")
+    {
+      return scenevis::tool::RunPortals(options);
+    }
     return options.command == "render" ? scenevis::tool::RunRender(options)
                                        : scenevis::tool::RunSort(options);
   }
