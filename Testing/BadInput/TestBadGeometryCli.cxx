@@ -1,6 +1,7 @@
 // Specification: bad GEOMETRY in well-formed files, end to end through `scenevis render` with
-// every translucency method that SceneVis implements (issue 8). The file is valid VTK XML; what
-// is in it is not: NaN/Inf points, nothing at all, only degenerate polygons, no polygons,
+// every translucency method that SceneVis implements (issue 8), and through `scenevis portals`
+// (rooms and portals found, or one error line and no file left; issue 14). The file is valid VTK
+// XML; what is in it is not: NaN/Inf points, nothing at all, only degenerate polygons, no polygons,
 // mixed cell types, non-planar and self-intersecting polygons, 1e7 offsets with 1e-3 features,
 // extents of 1e-12 and 1e12. Each (file, method) pair runs in a child process with a timeout:
 //
@@ -426,6 +427,51 @@ int main(int argc, char* argv[])
       }
     }
   }
+  // `scenevis portals` on every file: rooms and portals found (exit 0, both files written) or one
+  // error line (exit 1, neither file left behind); never a crash or a hang.
+  for (const Case& c : catalogue)
+  {
+    const std::string file = scratch + "/" + c.name + ".vtp";
+    const std::string prefix = scratch + "/portals-" + c.name;
+    const std::string model = prefix + ".vtp", portals = prefix + "-portals.vtp";
+    std::remove(model.c_str());
+    std::remove(portals.c_str());
+    const Run run = RunChild({ tool, "portals", "--scene", file, "--out", prefix }, scratch);
+    std::size_t toolLines = 0;
+    for (const std::string& line : Lines(run.err))
+    {
+      toolLines += line.rfind("scenevis: ", 0) == 0 ? 1 : 0;
+    }
+    struct stat st;
+    const bool written = stat(model.c_str(), &st) == 0 && stat(portals.c_str(), &st) == 0;
+    const bool partial =
+      !written && (stat(model.c_str(), &st) == 0 || stat(portals.c_str(), &st) == 0);
+    std::string problem;
+    if (run.timedOut || run.signal != 0)
+    {
+      problem = run.timedOut ? "the tool hangs" : "killed by signal " + std::to_string(run.signal);
+    }
+    else if (run.exitCode == 0 && !written)
+    {
+      problem = "exit 0 without both files";
+    }
+    else if (run.exitCode == 1 && (toolLines != 1 || written || partial))
+    {
+      problem = "exit 1 without exactly one 'scenevis: ' line, or with files left behind";
+    }
+    else if (run.exitCode != 0 && run.exitCode != 1)
+    {
+      problem = "exit code " + std::to_string(run.exitCode);
+    }
+    std::cout << (problem.empty() ? "ok   " : "FAIL ") << c.name << " portals: exit "
+              << run.exitCode << (written ? ", files written" : ", no files") << "\n";
+    if (!problem.empty())
+    {
+      std::cout << "     " << problem << "\n";
+      ++failures;
+    }
+  }
+
   const std::string deep = std::string(100000, '[') + std::string(100000, ']');
   std::string bytes;
   for (int b = 0; b < 256; ++b)
