@@ -96,6 +96,19 @@ struct PartScene
     return polygon;
   }
 
+  /// The oracle's verdict on @p pieces drawn in that order (first drawn first).
+  scenevis::oracle::OracleReport judge(const std::vector<Piece>& pieces, const View& view) const
+  {
+    std::vector<Polygon> polygons;
+    std::vector<std::uint32_t> drawn;
+    for (const Piece& p : pieces)
+    {
+      drawn.push_back(static_cast<std::uint32_t>(polygons.size()));
+      polygons.push_back(this->world(p));
+    }
+    return scenevis::oracle::checkOrder(polygons, drawn, view);
+  }
+
   Box bounds() const
   {
     Box box;
@@ -158,17 +171,7 @@ glm::dmat4 placement(
     {
       std::reverse(pieces.begin(), pieces.end());
     }
-    std::vector<Polygon> polygons;
-    for (const Piece& p : pieces)
-    {
-      polygons.push_back(scene.world(p));
-    }
-    std::vector<std::uint32_t> identity(polygons.size());
-    for (std::uint32_t i = 0; i < identity.size(); ++i)
-    {
-      identity[i] = i;
-    }
-    const auto report = scenevis::oracle::checkOrder(polygons, identity, view);
+    const auto report = scene.judge(pieces, view);
     if (!report.ok())
     {
       const auto& v = report.violations.front();
@@ -366,17 +369,7 @@ TEST(PartOrder, GroupsDrawnInTheWrongOrderAreCaughtByTheOracle)
   ASSERT_FALSE(pieces.empty());
   EXPECT_EQ(pieces.front().part, 0u) << "the part farther from the eye comes first";
   std::stable_partition(pieces.begin(), pieces.end(), [](const Piece& p) { return p.part == 1; });
-  std::vector<Polygon> polygons;
-  for (const Piece& p : pieces)
-  {
-    polygons.push_back(scene.world(p));
-  }
-  std::vector<std::uint32_t> identity(polygons.size());
-  for (std::uint32_t i = 0; i < identity.size(); ++i)
-  {
-    identity[i] = i;
-  }
-  EXPECT_FALSE(scenevis::oracle::checkOrder(polygons, identity, view).ok());
+  EXPECT_FALSE(scene.judge(pieces, view).ok());
 }
 
 TEST(PartOrder, BadPartsAreDrawnApartAndCountedNotLost)
