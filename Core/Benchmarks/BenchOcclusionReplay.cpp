@@ -3,7 +3,9 @@
 // replays in this thread's CPU time, and a hash of every buffer and its statistics so that two
 // builds (or two rasterizers) can be compared on the same input.
 //
-// Usage: scenevis_occlusion_replay FILE [repeats (default 20)]
+// Usage: scenevis_occlusion_replay FILE [repeats (default 20)] [exact|float|both (default)]
+// With both, the two rasterizers (MaskedDepthBuffer::Rasterizer) replay each cull alternately,
+// so that both see the same load.
 //
 // FILE holds, in the machine's byte order, a sequence of records, each led by an int32 tag:
 //   tag 1, a cull: int32 width, int32 height, glm::dmat4 clipFromWorld (16 doubles);
@@ -74,7 +76,8 @@ bool readCulls(const char* path, std::vector<Cull>& culls)
     return false;
   }
   bool ok = true;
-  auto get = [&](void* p, std::size_t n) {
+  auto get = [&](void* p, std::size_t n)
+  {
     ok = ok && std::fread(p, 1, n, f) == n;
     return ok;
   };
@@ -168,6 +171,16 @@ int main(int argc, char** argv)
     return 2;
   }
   const int repeats = argc > 2 ? std::max(1, std::atoi(argv[2])) : 20;
+  const std::string which = argc > 3 ? argv[3] : "both";
+  std::vector<MaskedDepthBuffer::Rasterizer> rasterizers;
+  if (which != "float")
+  {
+    rasterizers.push_back(MaskedDepthBuffer::Rasterizer::Exact);
+  }
+  if (which != "exact")
+  {
+    rasterizers.push_back(MaskedDepthBuffer::Rasterizer::Float);
+  }
   std::vector<Cull> culls;
   if (!readCulls(argv[1], culls))
   {
@@ -177,35 +190,51 @@ int main(int argc, char** argv)
   for (std::size_t ci = 0; ci < culls.size(); ++ci)
   {
     const Cull& cull = culls[ci];
-    MaskedDepthBuffer buffer;
-    buffer.resize(cull.width, cull.height);
-    buffer.setClipFromWorld(cull.clipFromWorld);
-    std::vector<double> seconds;
+    std::vector<MaskedDepthBuffer> buffers(rasterizers.size());
+    std::vector<std::vector<double>> seconds(rasterizers.size());
+    for (std::size_t k = 0; k < buffers.size(); ++k)
+    {
+      buffers[k].resize(cull.width, cull.height);
+      buffers[k].setClipFromWorld(cull.clipFromWorld);
+      buffers[k].rasterizer = rasterizers[k];
+    }
     for (int r = 0; r < repeats; ++r)
     {
-      const double start = threadSeconds();
-      replay(buffer, cull);
-      seconds.push_back(threadSeconds() - start);
-    }
-    std::sort(seconds.begin(), seconds.end());
-    std::uint64_t hash = 1469598103934665603ull;
-    std::size_t fullTiles = 0;
-    for (const MaskedDepthBuffer::Tile& t : buffer.tiles())
-    {
-      hash = fnv(hash, &t.z0, 4);
-      hash = fnv(hash, &t.mask, 4);
-      if (t.mask)
+      for (std::size_t k = 0; k < buffers.size(); ++k)
       {
-        hash = fnv(hash, &t.z1, 4);
+        const double start = threadSeconds();
+        replay(buffers[k], cull);
+        seconds[k].push_back(threadSeconds() - start);
       }
-      fullTiles += t.z0 < 2.0f ? 1 : 0;
     }
-    const BufferStats& st = buffer.stats();
-    std::printf("cull %zu: %zu draws, hash %016llx, full tiles %zu, in %zu drawn %zu rejected %zu "
-                "tile updates %zu clusters hidden %zu/%zu; CPU ms best %.3f median %.3f\n",
-      ci, cull.draws.size(), static_cast<unsigned long long>(hash), fullTiles, st.trianglesIn,
-      st.trianglesDrawn, st.trianglesRejected, st.tilesUpdated, st.clustersHidden,
-      st.clustersTested, 1e3 * seconds.front(), 1e3 * seconds[seconds.size() / 2]);
+    for (std::size_t k = 0; k < buffers.size(); ++k)
+    {
+      std::sort(seconds[k].begin(), seconds[k].end());
+      std::uint64_t hash = 1469598103934665603ull;
+      std::size_t fullTiles = 0, maskedPixels = 0;
+      for (const MaskedDepthBuffer::Tile& t : buffers[k].tiles())
+      {
+        hash = fnv(hash, &t.z0, 4);
+        hash = fnv(hash, &t.mask, 4);
+        if (t.mask)
+        {
+          hash = fnv(hash, &t.z1, 4);
+        }
+        fullTiles += t.z0 < 2.0f ? 1 : 0;
+        for (std::uint32_t m = t.mask; m; m &= m - 1)
+        {
+          ++maskedPixels;
+        }
+      }
+      const BufferStats& st = buffers[k].stats();
+      std::printf("cull %zu %s: %zu draws, hash %016llx, full tiles %zu, working-layer pixels %zu, "
+                  "in %zu drawn %zu rejected %zu tile updates %zu clusters hidden %zu/%zu; CPU "
+                  "ms best %.3f median %.3f\n",
+        ci, rasterizers[k] == MaskedDepthBuffer::Rasterizer::Exact ? "exact" : "float",
+        cull.draws.size(), static_cast<unsigned long long>(hash), fullTiles, maskedPixels,
+        st.trianglesIn, st.trianglesDrawn, st.trianglesRejected, st.tilesUpdated, st.clustersHidden,
+        st.clustersTested, 1e3 * seconds[k].front(), 1e3 * seconds[k][seconds[k].size() / 2]);
+    }
   }
   return 0;
 }

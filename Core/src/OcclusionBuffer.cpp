@@ -464,6 +464,10 @@ void MaskedDepthBuffer::drawWindowTriangle(const glm::dvec3& a, const glm::dvec3
 void MaskedDepthBuffer::drawFrontTriangle(const glm::dvec3& a, const glm::dvec3& b,
   const glm::dvec3& c, double area2, const CentreSpan& span, unsigned outline)
 {
+  if (rasterizer == Rasterizer::Float && drawFrontTriangleFloat(a, b, c, area2, span, outline))
+  {
+    return;
+  }
   const double orientation = area2 > 0.0 ? 1.0 : -1.0;
   const double xmin = std::min({ a.x, b.x, c.x }), xmax = std::max({ a.x, b.x, c.x });
   const double ymin = std::min({ a.y, b.y, c.y }), ymax = std::max({ a.y, b.y, c.y });
@@ -554,8 +558,8 @@ void MaskedDepthBuffer::drawFrontTriangle(const glm::dvec3& a, const glm::dvec3&
         }
       }
       const float oldZ0 = tile.z0;
-      updateTile(tile, mask, roundUp(plane.tileBound(x0, y0) + depthMargin),
-        outsideX_[tx] | outsideY_[ty]);
+      updateTile(
+        tile, mask, roundUp(plane.tileBound(x0, y0) + depthMargin), outsideX_[tx] | outsideY_[ty]);
       ++revision_;
       if (tile.z0 != oldZ0)
       {

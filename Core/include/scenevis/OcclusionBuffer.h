@@ -139,6 +139,14 @@ public:
     std::uint32_t mask; ///< working layer coverage, bit (y * 8 + x) for pixel (x, y) of the tile
   };
 
+  /// Which arithmetic rasterizes triangles (see "Two rasterizers" in the file comment).
+  enum class Rasterizer
+  {
+    Exact, ///< double edge functions per tile
+    Float  ///< float scanline crossings, a row of tiles at a time (SSE2; elsewhere Exact)
+  };
+  Rasterizer rasterizer = Rasterizer::Float;
+
   /// Pixels inward from every triangle edge that a covered pixel centre must keep.
   double coverageMargin = 1.0 / 64.0;
   /// Window-depth margin added to occluder depths and taken from occludee depths.
@@ -225,6 +233,10 @@ private:
     FaceCulling culling, unsigned outlineEdges);
   /// A triangle OpenGL draws (doubled signed area @p area2) whose centres lie in @p span.
   void drawFrontTriangle(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c,
+    double area2, const CentreSpan& span, unsigned outlineEdges);
+  /// drawFrontTriangle() by the float rasterizer; false (nothing done) for a triangle it leaves
+  /// to the exact one (coordinates beyond its range, nearly horizontal edges, no SSE2).
+  bool drawFrontTriangleFloat(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c,
     double area2, const CentreSpan& span, unsigned outlineEdges);
   void updateTile(Tile& tile, std::uint32_t mask, float depth, std::uint32_t outside);
   /// Whether a triangle whose centres lie in @p span is behind the whole-tile depth of every
