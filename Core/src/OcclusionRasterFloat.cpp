@@ -6,6 +6,7 @@
 #include "scenevis/OcclusionBuffer.h"
 
 #include "OcclusionEdge.h"
+#include "OcclusionTileUpdate.h"
 
 #include <algorithm>
 #include <cmath>
@@ -182,7 +183,7 @@ bool MaskedDepthBuffer::drawFrontTriangleFloat(const glm::dvec3& a, const glm::d
   const __m128 lo = _mm_set1_ps(-kClamp), hi = _mm_set1_ps(kClamp);
   const __m128 leftStart = _mm_set1_ps(static_cast<float>(span.x0));
   const __m128 rightStart = _mm_set1_ps(static_cast<float>(span.x1));
-  const __m128 empty = _mm_set1_ps(kClamp);
+  const __m128 empty = _mm_set1_ps(kClamp), minusEmpty = _mm_set1_ps(-kClamp);
   const __m128 firstRow = _mm_set1_ps(static_cast<float>(rowFirst));
   const __m128 lastRow = _mm_set1_ps(static_cast<float>(rowLast));
   const __m128 rowStep = _mm_set_ps(3.0f, 2.0f, 1.0f, 0.0f);
@@ -215,29 +216,27 @@ bool MaskedDepthBuffer::drawFrontTriangleFloat(const glm::dvec3& a, const glm::d
     }
     const __m128 valid = _mm_and_ps(_mm_cmpge_ps(row, firstRow), _mm_cmple_ps(row, lastRow));
     first = _mm_or_ps(_mm_and_ps(valid, first), _mm_andnot_ps(valid, empty));
-    const __m128i firstI = _mm_cvttps_epi32(first), lastI = _mm_cvttps_epi32(last);
-    alignas(16) int f4[4], l4[4];
-    _mm_store_si128(reinterpret_cast<__m128i*>(f4), firstI);
-    _mm_store_si128(reinterpret_cast<__m128i*>(l4), lastI);
-    int xFirst = std::numeric_limits<int>::max(), xLast = -1;
-    for (int j = 0; j < 4; ++j)
-    {
-      if (f4[j] <= l4[j])
-      {
-        xFirst = std::min(xFirst, f4[j]);
-        xLast = std::max(xLast, l4[j]);
-      }
-    }
+    // The row's pixel range: the smallest first and largest last of the scanlines not empty.
+    const __m128 filled = _mm_cmple_ps(first, last);
+    __m128 from = _mm_or_ps(_mm_and_ps(filled, first), _mm_andnot_ps(filled, empty));
+    __m128 to = _mm_or_ps(_mm_and_ps(filled, last), _mm_andnot_ps(filled, minusEmpty));
+    from = _mm_min_ps(from, _mm_shuffle_ps(from, from, _MM_SHUFFLE(1, 0, 3, 2)));
+    from = _mm_min_ps(from, _mm_shuffle_ps(from, from, _MM_SHUFFLE(2, 3, 0, 1)));
+    to = _mm_max_ps(to, _mm_shuffle_ps(to, to, _MM_SHUFFLE(1, 0, 3, 2)));
+    to = _mm_max_ps(to, _mm_shuffle_ps(to, to, _MM_SHUFFLE(2, 3, 0, 1)));
+    const int xFirst = _mm_cvttss_si32(from), xLast = _mm_cvttss_si32(to);
     if (xFirst > xLast)
     {
       continue;
     }
+    const __m128i firstI = _mm_cvttps_epi32(first), lastI = _mm_cvttps_epi32(last);
     // Per tile: pixel i of scanline j is covered when first_j <= 8 tx + i <= last_j; the bounds
     // relative to the tile, saturated to bytes, repeated over their scanline's 8 bytes.
     const __m128i below = _mm_sub_epi32(firstI, _mm_set1_epi32(1));
     const __m128i above = _mm_add_epi32(lastI, _mm_set1_epi32(1));
     const double y0 = ty * kTileHeight + 0.5;
-    for (int tx = xFirst / kTileWidth; tx <= xLast / kTileWidth; ++tx)
+    const int txEnd = xLast / kTileWidth;
+    for (int tx = xFirst / kTileWidth; tx <= txEnd; ++tx)
     {
       Tile& tile = tiles_[static_cast<std::size_t>(ty) * tilesX_ + tx];
       if (zNearVertex >= static_cast<double>(tile.z0))
