@@ -1,9 +1,9 @@
 // libFuzzer target for the occlusion buffer (OcclusionBuffer.h): arbitrary bytes -> a small
 // viewport, a perspective or parallel camera, a few occluder triangles (shared edges, edges
 // through pixel centres, the near plane cutting them, offsets of 1e7, NaN and huge values) drawn
-// with or without edge neighbours and face culling, and a few boxes. Checked against the
-// brute-force ray oracle (OcclusionOracle.h), not just "no crash": a box reported occluded must
-// have no pixel where part of it is in front of every drawn occluder.
+// with or without edge neighbours and face culling, by either rasterizer, and a few boxes. Checked
+// against the brute-force ray oracle (OcclusionOracle.h), not just "no crash": a box reported
+// occluded must have no pixel where part of it is in front of every drawn occluder.
 //
 // Guard: the oracle is consulted only for conditioned input (every coordinate finite and within
 // 1e8); outside it the sanitizers judge. SCENEVIS_FUZZ_SELFTEST=1 checks that the oracle catches
@@ -68,6 +68,9 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const std::uint8_t flags = in.byte();
   const bool parallel = flags & 1, withNeighbors = flags & 2, offset = flags & 4;
   const FaceCulling culling = (flags & 8) ? FaceCulling::Back : FaceCulling::None;
+  // Both rasterizers (OcclusionBuffer.h, "Two rasterizers"): the float one unless bit 4 is set.
+  const MaskedDepthBuffer::Rasterizer rasterizer =
+    (flags & 16) ? MaskedDepthBuffer::Rasterizer::Exact : MaskedDepthBuffer::Rasterizer::Float;
   const glm::dvec3 origin = offset ? glm::dvec3(1e7, -1e7, 5e6) : glm::dvec3(0.0);
   glm::dvec3 eye(in.coordinate(), in.coordinate() - 20.0, in.coordinate());
   glm::dvec3 target(in.coordinate() * 0.2, in.coordinate() * 0.2, in.coordinate() * 0.2);
@@ -111,6 +114,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const std::vector<std::uint32_t> neighbors =
     buildTriangleNeighbors(xyz.data(), points.size(), indices.data(), indices.size() / 3);
   MaskedDepthBuffer buffer;
+  buffer.rasterizer = rasterizer;
   buffer.resize(width, height);
   buffer.setClipFromWorld(clipFromWorld);
   buffer.drawTriangles(clip.data(), clip.size(), indices.data(), indices.size() / 3, culling,

@@ -19,6 +19,7 @@
 #include <cmath>
 #include <limits>
 #include <random>
+#include <string>
 
 using namespace scenevis;
 using namespace scenevis::occlusion;
@@ -110,9 +111,26 @@ std::vector<Triangle> wall(double y, double h, int n)
   return out;
 }
 
+/// The rasterizer of the running test (every test runs with each, see RasterizerTest).
+MaskedDepthBuffer::Rasterizer gRasterizer = MaskedDepthBuffer::Rasterizer::Float;
+
+/// Every test of this file runs once per rasterizer (OcclusionBuffer.h, "Two rasterizers"): both
+/// must be conservative, and both must occlude.
+class RasterizerTest : public ::testing::TestWithParam<MaskedDepthBuffer::Rasterizer>
+{
+protected:
+  void SetUp() override { gRasterizer = GetParam(); }
+};
+
+std::string rasterizerName(const ::testing::TestParamInfo<MaskedDepthBuffer::Rasterizer>& info)
+{
+  return info.param == MaskedDepthBuffer::Rasterizer::Exact ? "Exact" : "Float";
+}
+
 MaskedDepthBuffer bufferFor(const Camera& cam)
 {
   MaskedDepthBuffer buffer;
+  buffer.rasterizer = gRasterizer;
   buffer.resize(cam.width, cam.height);
   buffer.setClipFromWorld(cam.clipFromWorld);
   return buffer;
@@ -121,14 +139,23 @@ MaskedDepthBuffer bufferFor(const Camera& cam)
 const Camera kFront = perspectiveCamera({ 0, -10, 0 }, { 0, 0, 0 }, 60.0, 83, 61, 0.1, 100.0);
 } // namespace
 
-TEST(OcclusionBuffer, AnEmptyBufferOccludesNothing)
+using OcclusionBuffer = RasterizerTest;
+using OcclusionCull = RasterizerTest;
+INSTANTIATE_TEST_SUITE_P(Rasterizer, OcclusionBuffer,
+  ::testing::Values(MaskedDepthBuffer::Rasterizer::Exact, MaskedDepthBuffer::Rasterizer::Float),
+  rasterizerName);
+INSTANTIATE_TEST_SUITE_P(Rasterizer, OcclusionCull,
+  ::testing::Values(MaskedDepthBuffer::Rasterizer::Exact, MaskedDepthBuffer::Rasterizer::Float),
+  rasterizerName);
+
+TEST_P(OcclusionBuffer, AnEmptyBufferOccludesNothing)
 {
   MaskedDepthBuffer buffer = bufferFor(kFront);
   EXPECT_FALSE(buffer.boxOccluded({ -1, 5, -1 }, { 1, 6, 1 }));
   EXPECT_EQ(buffer.tileDepth(10, 10), std::numeric_limits<float>::infinity());
 }
 
-TEST(OcclusionBuffer, AWallHidesWhatIsBehindItAndNotWhatIsBeforeIt)
+TEST_P(OcclusionBuffer, AWallHidesWhatIsBehindItAndNotWhatIsBeforeIt)
 {
   const std::vector<Triangle> w = wall(0.0, 5.0, 1);
   MaskedDepthBuffer buffer = bufferFor(kFront);
@@ -139,7 +166,7 @@ TEST(OcclusionBuffer, AWallHidesWhatIsBehindItAndNotWhatIsBeforeIt)
   EXPECT_FALSE(buffer.boxOccluded({ -1, -0.5, -1 }, { 1, 1, 1 })); // through the wall
 }
 
-TEST(OcclusionBuffer, AWallOfManySmallTrianglesOccludesAsOne)
+TEST_P(OcclusionBuffer, AWallOfManySmallTrianglesOccludesAsOne)
 {
   // 20,000 triangles, each much smaller than a tile: no single triangle covers a tile, the
   // working layer merges them.
@@ -150,7 +177,7 @@ TEST(OcclusionBuffer, AWallOfManySmallTrianglesOccludesAsOne)
   EXPECT_TRUE(buffer.boxOccluded({ -3, 0.5, -3 }, { 3, 9, 3 }));
 }
 
-TEST(OcclusionBuffer, AnOccluderSmallerThanATileHidesWhatIsBehindIt)
+TEST_P(OcclusionBuffer, AnOccluderSmallerThanATileHidesWhatIsBehindIt)
 {
   // A wall of about 5 x 5 pixels covers no whole 8 x 4 tile: only the working layer (its mask
   // and depth) knows it; a box behind it covering fewer pixels is hidden by it.
@@ -164,7 +191,7 @@ TEST(OcclusionBuffer, AnOccluderSmallerThanATileHidesWhatIsBehindIt)
   EXPECT_FALSE(buffer.boxOccluded({ -0.8, 1.0, -0.06 }, { 0.8, 1.1, 0.06 }));
 }
 
-TEST(OcclusionBuffer, ABoxPeekingOutByOnePixelIsVisible)
+TEST_P(OcclusionBuffer, ABoxPeekingOutByOnePixelIsVisible)
 {
   const std::vector<Triangle> w = wall(0.0, 2.0, 1);
   MaskedDepthBuffer buffer = bufferFor(kFront);
@@ -175,7 +202,7 @@ TEST(OcclusionBuffer, ABoxPeekingOutByOnePixelIsVisible)
   EXPECT_FALSE(buffer.boxOccluded(lo, hi));
 }
 
-TEST(OcclusionBuffer, CulledFacesDoNotOcclude)
+TEST_P(OcclusionBuffer, CulledFacesDoNotOcclude)
 {
   const std::vector<Triangle> w = wall(0.0, 5.0, 4); // counter-clockwise seen from the eye
   {
@@ -191,7 +218,7 @@ TEST(OcclusionBuffer, CulledFacesDoNotOcclude)
   }
 }
 
-TEST(OcclusionBuffer, AnOccluderCutByTheNearPlaneStillOccludes)
+TEST_P(OcclusionBuffer, AnOccluderCutByTheNearPlaneStillOccludes)
 {
   // The eye 0.15 in front of a big tilted wall that reaches behind the eye: its triangles are cut
   // by the near plane (0.1).
@@ -214,7 +241,7 @@ TEST(OcclusionBuffer, AnOccluderCutByTheNearPlaneStillOccludes)
   EXPECT_FALSE(buffer.boxOccluded({ -0.2, -0.1, -0.2 }, { 0.2, 0.5, 0.2 }));
 }
 
-TEST(OcclusionBuffer, OnlyThePartOfABoxInTheFrustumIsTested)
+TEST_P(OcclusionBuffer, OnlyThePartOfABoxInTheFrustumIsTested)
 {
   // Eye at the origin looking along +y (90 degrees): a wall at y = 1. A box beside the viewer
   // reaches behind the eye, but what of it is in the frustum lies behind the wall.
@@ -233,7 +260,7 @@ TEST(OcclusionBuffer, OnlyThePartOfABoxInTheFrustumIsTested)
   EXPECT_FALSE(buffer.boxOccluded({ -5, -5, -5 }, { 5, 5, 5 }));
 }
 
-TEST(OcclusionBuffer, ParallelProjectionOccludes)
+TEST_P(OcclusionBuffer, ParallelProjectionOccludes)
 {
   const Camera cam = parallelCamera({ 0, -10, 0 }, { 0, 0, 0 }, 6.0, 70, 50, 0.1, 100.0);
   const std::vector<Triangle> w = wall(0.0, 5.0, 10);
@@ -243,7 +270,7 @@ TEST(OcclusionBuffer, ParallelProjectionOccludes)
   EXPECT_FALSE(buffer.boxOccluded({ -6, 1, -1 }, { -4, 2, 1 })); // beside the wall's edge
 }
 
-TEST(OcclusionBuffer, BadInputIsRejectedNotDrawn)
+TEST_P(OcclusionBuffer, BadInputIsRejectedNotDrawn)
 {
   MaskedDepthBuffer buffer = bufferFor(kFront);
   const double nan = std::numeric_limits<double>::quiet_NaN();
@@ -256,12 +283,13 @@ TEST(OcclusionBuffer, BadInputIsRejectedNotDrawn)
   EXPECT_FALSE(buffer.boxOccluded({ nan, 0, 0 }, { 1, 1, 1 }));
   EXPECT_FALSE(buffer.boxOccluded({ 1, 1, 1 }, { 0, 0, 0 })); // empty
   MaskedDepthBuffer empty;
+  empty.rasterizer = gRasterizer;
   empty.resize(0, 0);
   empty.drawTriangles(clip.data(), 3, indices.data(), 1);
   EXPECT_FALSE(empty.boxOccluded({ -1, 1, -1 }, { 1, 2, 1 }));
 }
 
-TEST(OcclusionBuffer, HugeCoordinateOffsetsStayConservative)
+TEST_P(OcclusionBuffer, HugeCoordinateOffsetsStayConservative)
 {
   const glm::dvec3 o(1e7, -2e7, 3e7);
   const Camera cam = perspectiveCamera(o + glm::dvec3(0, -10, 0), o, 60.0, 64, 48, 0.1, 100.0);
@@ -281,7 +309,7 @@ TEST(OcclusionBuffer, HugeCoordinateOffsetsStayConservative)
 // The fuzz: random triangle soups and boxes seen by random perspective and parallel cameras at
 // viewport sizes that are not multiples of the tile; every box reported hidden is checked at
 // every pixel by the ray-casting oracle.
-TEST(OcclusionBuffer, RandomScenesAreConservativeAtEveryPixel)
+TEST_P(OcclusionBuffer, RandomScenesAreConservativeAtEveryPixel)
 {
   std::mt19937_64 rng(12345);
   auto uniform = [&](double a, double b) { return std::uniform_real_distribution<double>(a, b)(rng); };
@@ -337,7 +365,7 @@ TEST(OcclusionBuffer, RandomScenesAreConservativeAtEveryPixel)
 
 // The BVH's front-to-back cull with occlusion: opaque boxes occlude each other; every object the
 // oracle sees at some pixel is in the visible list, with and without last frame's seeds.
-TEST(OcclusionCull, EveryObjectSeenAtSomePixelIsKept)
+TEST_P(OcclusionCull, EveryObjectSeenAtSomePixelIsKept)
 {
   std::mt19937_64 rng(777);
   auto uniform = [&](double a, double b) { return std::uniform_real_distribution<double>(a, b)(rng); };
@@ -447,7 +475,7 @@ TEST(OcclusionCull, EveryObjectSeenAtSomePixelIsKept)
                                              << hiddenInFrustum << " hidden in the frustum";
 }
 
-TEST(OcclusionCull, AWallBesideTheEyeIsDrawnBeforeWhatItHidesWhateverTheTree)
+TEST_P(OcclusionCull, AWallBesideTheEyeIsDrawnBeforeWhatItHidesWhateverTheTree)
 {
   // A wall of four panels two units in front of the eye, a long thin rail passing beside the eye
   // (its box comes nearer than the wall), and 200 blocks behind the wall near the rail. A
@@ -504,7 +532,7 @@ TEST(OcclusionCull, AWallBesideTheEyeIsDrawnBeforeWhatItHidesWhateverTheTree)
   }
 }
 
-TEST(OcclusionBuffer, TheRevisionChangesWhenATestsAnswerMay)
+TEST_P(OcclusionBuffer, TheRevisionChangesWhenATestsAnswerMay)
 {
   const Camera cam = perspectiveCamera({ 0, 0, 10 }, { 0, 0, 0 }, 60.0, 64, 48, 0.1, 100.0);
   MaskedDepthBuffer buffer = bufferFor(cam);
@@ -524,7 +552,7 @@ TEST(OcclusionBuffer, TheRevisionChangesWhenATestsAnswerMay)
   EXPECT_NE(revision, buffer.revision()) << "a camera was given";
 }
 
-TEST(OcclusionBuffer, TwoPartsSharingAnEdgeHideABoxBehindTheSeam)
+TEST_P(OcclusionBuffer, TwoPartsSharingAnEdgeHideABoxBehindTheSeam)
 {
   // Two triangles of different parts (two draw calls, no neighbour table between them) share
   // the diagonal of a square wall; a thin box right behind the diagonal is hidden: the tiles the
@@ -549,7 +577,7 @@ TEST(OcclusionBuffer, TwoPartsSharingAnEdgeHideABoxBehindTheSeam)
 // vertices are projected (TriangleClusters): the buffer must come out bit for bit as when every
 // triangle is drawn (each skipped triangle would have been rejected by its own test), with a
 // model matrix, both projections, eyes close to the triangles and the near plane cutting some.
-TEST(OcclusionBuffer, HiddenTriangleClustersAreSkippedWithTheSameBuffer)
+TEST_P(OcclusionBuffer, HiddenTriangleClustersAreSkippedWithTheSameBuffer)
 {
   std::mt19937_64 rng(777);
   auto uniform = [&](double a, double b) { return std::uniform_real_distribution<double>(a, b)(rng); };
@@ -631,4 +659,270 @@ TEST(OcclusionBuffer, HiddenTriangleClustersAreSkippedWithTheSameBuffer)
   }
   // Not the same by skipping nothing.
   EXPECT_GT(skipped, tested / 10) << skipped << " of " << tested << " runs skipped";
+}
+
+namespace
+{
+/// Window point (pixels, window depth in clip z) of a camera whose clip space is world space.
+glm::dvec3 windowPoint(const Camera& cam, double x, double y, double z)
+{
+  return { 2.0 * x / cam.width - 1.0, 2.0 * y / cam.height - 1.0, z };
+}
+
+/// What OpenGL draws of @p soup with @p culling (facing: the sign of det[x y w] in clip space).
+std::vector<Triangle> drawnFaces(
+  const Camera& cam, const std::vector<Triangle>& soup, FaceCulling culling)
+{
+  std::vector<Triangle> out;
+  for (const Triangle& t : soup)
+  {
+    const glm::dvec4 a = cam.clipFromWorld * glm::dvec4(t.a, 1.0);
+    const glm::dvec4 b = cam.clipFromWorld * glm::dvec4(t.b, 1.0);
+    const glm::dvec4 c = cam.clipFromWorld * glm::dvec4(t.c, 1.0);
+    const double det =
+      a.x * (b.y * c.w - b.w * c.y) - a.y * (b.x * c.w - b.w * c.x) + a.w * (b.x * c.y - b.y * c.x);
+    if (culling == FaceCulling::None || (culling == FaceCulling::Back && det > 0.0) ||
+      (culling == FaceCulling::Front && det < 0.0))
+    {
+      out.push_back(t);
+    }
+  }
+  return out;
+}
+} // namespace
+
+// What float arithmetic makes hazardous (OcclusionBuffer.h, "Two rasterizers"), for both
+// rasterizers, every box reported hidden checked at every pixel by the oracle: meshes whose
+// vertices lie on tile and pixel-centre boundaries (and within 1e-7 pixel of them), slivers
+// thinner than a pixel at every slope (exactly and nearly horizontal ones included), vertices
+// far beyond the float rasterizer's range, triangles cut by the near plane, both windings with
+// either face culled.
+TEST_P(OcclusionBuffer, FloatHazardsAreConservativeAtEveryPixel)
+{
+  std::mt19937_64 rng(2026);
+  auto uniform = [&](double a, double b)
+  { return std::uniform_real_distribution<double>(a, b)(rng); };
+  std::size_t reported = 0, hiddenByOracle = 0, pixelsClaimed = 0;
+  for (int scene = 0; scene < 100; ++scene)
+  {
+    const int kind = scene % 5;
+    Camera cam;
+    cam.width = 67;
+    cam.height = 45;
+    if (kind == 3)
+    {
+      cam = perspectiveCamera({ 0, -3, 0 }, { 0, 0, 0 }, 70.0, 67, 45, 0.5, 20.0);
+    }
+    auto snap = [&](double v, int step)
+    {
+      static const double nudge[] = { 0.0, 1e-7, -1e-7, 0.5, -0.5, 1e-3, 0.25 };
+      return step * std::round(v / step) + nudge[rng() % 7];
+    };
+    std::vector<Triangle> soup;
+    FaceCulling culling = FaceCulling::None;
+    if (kind == 0 || kind == 4)
+    {
+      // A jittered grid mesh; kind 4: random windings, one face culled.
+      const int nx = 2 + static_cast<int>(rng() % 6), ny = 2 + static_cast<int>(rng() % 5);
+      const double x0 = uniform(-10, 40), y0 = uniform(-6, 25), sx = uniform(2, 14),
+                   sy = uniform(1, 10), z0 = uniform(-0.5, 0.3), zx = uniform(-0.01, 0.01);
+      const int step = scene % 2 == 0 ? 8 : 1;
+      std::vector<glm::dvec3> p;
+      for (int j = 0; j <= ny; ++j)
+      {
+        for (int i = 0; i <= nx; ++i)
+        {
+          const double x = snap(x0 + i * sx, step), y = snap(y0 + j * sy, step == 8 ? 4 : 1);
+          p.push_back(windowPoint(cam, x, y, z0 + zx * x));
+        }
+      }
+      for (int j = 0; j < ny; ++j)
+      {
+        for (int i = 0; i < nx; ++i)
+        {
+          const glm::dvec3& a = p[j * (nx + 1) + i];
+          const glm::dvec3& b = p[j * (nx + 1) + i + 1];
+          const glm::dvec3& c = p[(j + 1) * (nx + 1) + i + 1];
+          const glm::dvec3& d = p[(j + 1) * (nx + 1) + i];
+          const bool flip = kind == 4 && rng() % 2 == 0;
+          soup.push_back(flip ? Triangle{ a, c, b } : Triangle{ a, b, c });
+          soup.push_back(flip ? Triangle{ a, d, c } : Triangle{ a, c, d });
+        }
+      }
+      culling =
+        kind == 4 ? (scene % 2 == 0 ? FaceCulling::Back : FaceCulling::Front) : FaceCulling::None;
+    }
+    else if (kind == 1)
+    {
+      // Slivers in pairs sharing their long edge.
+      for (int i = 0; i < 20; ++i)
+      {
+        static const double slopes[] = { 0.0, 1e-6, -3e-5, 1e-3, 0.7, 40.0, 1e5 };
+        const double slope = i % 3 == 0 ? slopes[rng() % 7] : uniform(-2, 2);
+        const glm::dvec2 dir = glm::normalize(glm::dvec2(1.0, slope));
+        const glm::dvec2 normal(-dir.y, dir.x);
+        const glm::dvec2 c(uniform(0, 67), uniform(0, 45));
+        const double length = uniform(2, 60), width = uniform(1e-4, 0.8), z = uniform(-0.5, 0.5);
+        const glm::dvec2 a = c - dir * length * 0.5, b = c + dir * length * 0.5;
+        const glm::dvec2 up = c + normal * width, down = c - normal * uniform(1e-4, 0.8);
+        const glm::dvec3 pa = windowPoint(cam, a.x, a.y, z), pb = windowPoint(cam, b.x, b.y, z);
+        soup.push_back({ pa, pb, windowPoint(cam, up.x, up.y, z) });
+        soup.push_back({ pb, pa, windowPoint(cam, down.x, down.y, z) });
+      }
+    }
+    else if (kind == 2)
+    {
+      // Fans whose outer vertices are far outside the viewport (beyond 2^14 pixels or not).
+      static const double far[] = { 1e3, 1.6e4, 1.7e4, 1e6 };
+      const glm::dvec2 c(uniform(0, 67), uniform(0, 45));
+      const double z = uniform(-0.5, 0.5);
+      const int n = 3 + static_cast<int>(rng() % 5);
+      std::vector<glm::dvec3> rim;
+      for (int i = 0; i < n; ++i)
+      {
+        const double angle = 6.283185307179586 * (i + uniform(0, 0.5)) / n;
+        const double r = i % 2 == 0 ? far[rng() % 4] : uniform(3, 40);
+        rim.push_back(windowPoint(cam, c.x + r * std::cos(angle), c.y + r * std::sin(angle), z));
+      }
+      for (int i = 0; i < n; ++i)
+      {
+        soup.push_back({ windowPoint(cam, c.x, c.y, z), rim[i], rim[(i + 1) % n] });
+      }
+    }
+    else
+    {
+      // Near plane (y = -2.5): a tilted grid reaching from behind the eye to the far side.
+      const int n = 3 + static_cast<int>(rng() % 5);
+      const double tilt = uniform(0.2, 3);
+      for (int i = 0; i < n; ++i)
+      {
+        for (int k = 0; k < n; ++k)
+        {
+          auto at = [&](int a, int b)
+          {
+            const double x = -2.0 + 4.0 * a / n, z = -2.0 + 4.0 * b / n;
+            return glm::dvec3(x, -2.5 + tilt * (z + 1.0), z);
+          };
+          soup.push_back({ at(i, k), at(i + 1, k), at(i + 1, k + 1) });
+          soup.push_back({ at(i, k), at(i + 1, k + 1), at(i, k + 1) });
+        }
+      }
+    }
+    MaskedDepthBuffer buffer = bufferFor(cam);
+    draw(buffer, cam, soup, culling, scene % 3 != 2);
+    const std::vector<Triangle> drawn = drawnFaces(cam, soup, culling);
+    if (kind != 3)
+    {
+      // The buffer itself, below the box test's one-pixel safety ring: every pixel centre it
+      // claims (the whole tile at z0, the working layer's mask at z1) has a drawn triangle at
+      // least as near (a box of 1/50 pixel just behind the claimed depth is hidden there).
+      for (int ty = 0; ty < buffer.tilesY(); ++ty)
+      {
+        for (int tx = 0; tx < buffer.tilesX(); ++tx)
+        {
+          const MaskedDepthBuffer::Tile& tile = buffer.tiles()[ty * buffer.tilesX() + tx];
+          for (int bit = 0; bit < 32; ++bit)
+          {
+            const int i = tx * 8 + bit % 8, j = ty * 4 + bit / 8;
+            const bool whole = tile.z0 < 1.0f, layer = tile.mask & (1u << bit);
+            if (i >= cam.width || j >= cam.height || (!whole && !layer))
+            {
+              continue;
+            }
+            const double depth = whole ? tile.z0 : tile.z1;
+            if (!(depth < 1.0))
+            {
+              continue;
+            }
+            const double z = 2.0 * depth - 1.0;
+            ++pixelsClaimed;
+            const glm::dvec3 lo = windowPoint(cam, i + 0.49, j + 0.49, z + 1e-6);
+            const glm::dvec3 hi = windowPoint(cam, i + 0.51, j + 0.51, z + 2e-6);
+            ASSERT_EQ(visiblePixels(cam, drawn, lo, hi), 0)
+              << "scene " << scene << " (kind " << kind << "): pixel " << i << ", " << j
+              << " claimed at depth " << depth << (whole ? " (whole tile)" : " (working layer)");
+          }
+        }
+      }
+    }
+    for (int b = 0; b < 80; ++b)
+    {
+      glm::dvec3 lo, hi;
+      if (kind == 3)
+      {
+        const glm::dvec3 c(uniform(-2, 2), uniform(-1, 4), uniform(-2, 2));
+        const glm::dvec3 half(uniform(0.01, 0.3), uniform(0.01, 0.3), uniform(0.01, 0.3));
+        lo = c - half;
+        hi = c + half;
+      }
+      else
+      {
+        double x = uniform(-2, 69), y = uniform(-2, 47), z = uniform(-0.6, 0.95);
+        double w = uniform(0.05, 3), h = uniform(0.05, 3), d = uniform(0.001, 0.04);
+        if (b % 2 == 0 && !soup.empty())
+        {
+          // A box smaller than a pixel just outside or inside an edge, behind it: the coverage
+          // of pixel centres near edges is what rounding can get wrong.
+          const Triangle& t = soup[rng() % soup.size()];
+          const glm::dvec3 v[3] = { t.a, t.b, t.c };
+          const int e = static_cast<int>(rng() % 3);
+          const glm::dvec2 p0((v[e].x + 1) * 0.5 * cam.width, (v[e].y + 1) * 0.5 * cam.height);
+          const glm::dvec3& q = v[(e + 1) % 3];
+          const glm::dvec2 p1((q.x + 1) * 0.5 * cam.width, (q.y + 1) * 0.5 * cam.height);
+          const glm::dvec2 along = p0 + (p1 - p0) * uniform(0, 1);
+          const glm::dvec2 n = glm::length(p1 - p0) > 0.0
+            ? glm::dvec2(p0.y - p1.y, p1.x - p0.x) / glm::length(p1 - p0)
+            : glm::dvec2(0.0);
+          const glm::dvec2 at = along + n * uniform(-1.0, 1.0);
+          x = at.x;
+          y = at.y;
+          w = uniform(0.01, 0.4);
+          h = uniform(0.01, 0.4);
+          z = std::min(0.95, std::max({ v[0].z, v[1].z, v[2].z }) + uniform(0.01, 0.1));
+          d = 0.001;
+        }
+        lo = windowPoint(cam, x - w, y - h, z - d);
+        hi = windowPoint(cam, x + w, y + h, z + d);
+      }
+      const bool occluded = buffer.boxOccluded(lo, hi);
+      const int visible = visiblePixels(cam, drawn, lo, hi);
+      reported += occluded ? 1 : 0;
+      hiddenByOracle += visible == 0 ? 1 : 0;
+      ASSERT_FALSE(occluded && visible > 0)
+        << "scene " << scene << " (kind " << kind << ") box " << b
+        << ": reported hidden, visible at " << visible << " pixels";
+    }
+  }
+  // Not conservative by doing nothing.
+  EXPECT_GT(pixelsClaimed, 10000u);
+  EXPECT_GT(reported, hiddenByOracle / 5)
+    << hiddenByOracle << " truly hidden, " << reported << " reported";
+}
+
+// glPolygonOffset pushes the occluders back: what lies between the surface and its offset depth
+// is drawn in front of it by OpenGL, so it must not be reported hidden.
+TEST_P(OcclusionBuffer, PolygonOffsetPushesOccludersBack)
+{
+  Camera cam;
+  cam.width = 67;
+  cam.height = 45;
+  // A wall over the whole viewport, clip z = 0.05 x (window depth slope 0.05 / 67 per pixel,
+  // 0.012 in clip z over a tile).
+  const std::vector<Triangle> wall = { { { -1.5, -1.5, -0.075 }, { 1.5, -1.5, 0.075 },
+                                         { 1.5, 1.5, 0.075 } },
+    { { -1.5, -1.5, -0.075 }, { 1.5, 1.5, 0.075 }, { -1.5, 1.5, -0.075 } } };
+  // A small box at the centre (wall at clip z 0 there), its nearest clip z at @p z.
+  auto hidden = [&](double factor, double units, double z)
+  {
+    MaskedDepthBuffer buffer = bufferFor(cam);
+    buffer.polygonOffsetFactor = factor;
+    buffer.polygonOffsetDepth = units;
+    draw(buffer, cam, wall);
+    return buffer.boxOccluded({ -0.01, -0.01, z }, { 0.01, 0.01, z + 0.1 });
+  };
+  EXPECT_TRUE(hidden(0.0, 0.0, 0.05));
+  EXPECT_FALSE(hidden(0.0, 0.05, 0.05)); // window depth offset 0.05 = clip 0.1
+  EXPECT_TRUE(hidden(0.0, 0.05, 0.15));
+  EXPECT_FALSE(hidden(40.0, 0.0, 0.05)); // 40 x 0.05 / 67 = 0.03 window depth
+  EXPECT_TRUE(hidden(40.0, 0.0, 0.15));
 }

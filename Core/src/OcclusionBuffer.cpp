@@ -1,6 +1,7 @@
 #include "scenevis/OcclusionBuffer.h"
 
 #include "OcclusionEdge.h"
+#include "OcclusionTileUpdate.h"
 
 #include <glm/common.hpp>
 #include <glm/matrix.hpp>
@@ -40,23 +41,6 @@ bool culled(double area2, FaceCulling culling)
     (culling == FaceCulling::Front && area2 > 0.0);
 }
 
-/// The smallest float not below @p value (float(value) may round down).
-float roundUp(double value)
-{
-  float f = static_cast<float>(value);
-  if (static_cast<double>(f) < value)
-  {
-    // std::nextafter(f, +inf) without the library call (one per tile update): f is below value,
-    // so neither +inf nor NaN; the next float up is one step of its bits away from zero when
-    // positive, towards zero when negative (-inf gives the lowest finite float, as nextafter
-    // does), the smallest positive one from +-0.
-    std::uint32_t bits;
-    std::memcpy(&bits, &f, sizeof bits);
-    bits = f == 0.0f ? 1u : ((bits >> 31) == 0u ? bits + 1u : bits - 1u);
-    std::memcpy(&f, &bits, sizeof f);
-  }
-  return f;
-}
 } // namespace
 
 /**
@@ -481,8 +465,11 @@ void MaskedDepthBuffer::drawWindowTriangle(const glm::dvec3& a, const glm::dvec3
 void MaskedDepthBuffer::drawFrontTriangle(const glm::dvec3& a, const glm::dvec3& b,
   const glm::dvec3& c, double area2, const CentreSpan& span, unsigned outline)
 {
+  if (rasterizer == Rasterizer::Float && drawFrontTriangleFloat(a, b, c, area2, span, outline))
+  {
+    return;
+  }
   const double orientation = area2 > 0.0 ? 1.0 : -1.0;
-  const double det = std::abs(area2);
   const double xmin = std::min({ a.x, b.x, c.x }), xmax = std::max({ a.x, b.x, c.x });
   const double ymin = std::min({ a.y, b.y, c.y }), ymax = std::max({ a.y, b.y, c.y });
   const int tx0 = span.x0 / kTileWidth, tx1 = span.x1 / kTileWidth;
@@ -496,21 +483,7 @@ void MaskedDepthBuffer::drawFrontTriangle(const glm::dvec3& a, const glm::dvec3&
     EdgeTest(c, a, orientation, outline & 4u, coverageMargin, extent)
   };
 
-  // Window depth as a plane z = zx x + zy y + z00 (depth is affine in window x, y); counter-
-  // clockwise vertex order for the solve.
-  const glm::dvec3& q1 = area2 > 0.0 ? b : c;
-  const glm::dvec3& q2 = area2 > 0.0 ? c : b;
-  const double bx = q1.x - a.x, by = q1.y - a.y, bz = q1.z - a.z;
-  const double cx = q2.x - a.x, cy = q2.y - a.y, cz = q2.z - a.z;
-  const double zx = (bz * cy - by * cz) / det;
-  const double zy = (bx * cz - bz * cx) / det;
-  const double z00 = a.z - zx * a.x - zy * a.y;
-  const double offset = std::max(0.0, polygonOffsetFactor) * std::max(std::abs(zx), std::abs(zy)) +
-    std::max(0.0, polygonOffsetDepth);
-  const double zFarVertex = std::max({ a.z, b.z, c.z }) + offset;
-  // Rounding of the plane's evaluation, bounded generously; the depth margin comes on top.
-  const double planeError =
-    1e-12 * ((std::abs(zx) + 1.0) * width_ + (std::abs(zy) + 1.0) * height_ + std::abs(z00));
+  const DepthPlane plane(a, b, c, area2, polygonOffsetFactor, polygonOffsetDepth, width_, height_);
 
   // Per edge, over a tile's 8 x 4 pixel centres: value = value at the first centre + i gx + j gy;
   // its extremes are at corners (offsets below). Decisions within `slack` of the threshold are
@@ -524,8 +497,6 @@ void MaskedDepthBuffer::drawFrontTriangle(const glm::dvec3& a, const glm::dvec3&
     emptyBelow[k] = e.threshold - e.slack;
     fullAbove[k] = e.threshold + e.slack;
   }
-  const double zOffset =
-    std::max(0.0, (kTileWidth - 1) * zx) + std::max(0.0, (kTileHeight - 1) * zy);
   bool touched = false;
   for (int ty = ty0; ty <= ty1; ++ty)
   {
@@ -587,10 +558,9 @@ void MaskedDepthBuffer::drawFrontTriangle(const glm::dvec3& a, const glm::dvec3&
           continue;
         }
       }
-      const double zCorners = zx * x0 + zy * y0 + z00 + zOffset;
-      const double depth = std::min(zCorners + offset + planeError, zFarVertex) + depthMargin;
       const float oldZ0 = tile.z0;
-      updateTile(tile, mask, roundUp(depth), outsideX_[tx] | outsideY_[ty]);
+      updateTile(
+        tile, mask, roundUp(plane.tileBound(x0, y0) + depthMargin), outsideX_[tx] | outsideY_[ty]);
       ++revision_;
       if (tile.z0 != oldZ0)
       {
@@ -653,17 +623,6 @@ bool MaskedDepthBuffer::behindTiles(int tx0, int ty0, int tx1, int ty1, double d
   return true;
 }
 
-void MaskedDepthBuffer::lowerBlock(int tx, int ty, float oldZ0)
-{
-  float& bound = blockZ0_[static_cast<std::size_t>(ty / kBlockTiles) * blocksX_ + tx / kBlockTiles];
-  if (oldZ0 >= bound)
-  {
-    // The block's largest z0 may have gone down: found again when the block is next read (a
-    // wall filling a block tile by tile costs one pass over it, not one per tile).
-    bound = std::numeric_limits<float>::quiet_NaN();
-  }
-}
-
 float MaskedDepthBuffer::largestZ0(int bx, int by) const
 {
   float largest = -kNoOccluder;
@@ -677,48 +636,6 @@ float MaskedDepthBuffer::largestZ0(int bx, int by) const
     }
   }
   return largest;
-}
-
-void MaskedDepthBuffer::updateTile(Tile& tile, std::uint32_t mask, float depth, std::uint32_t outside)
-{
-  // Invariants: every pixel has an occluder at depth <= z0; every pixel of mask one at <= z1.
-  if (!(depth < tile.z0))
-  {
-    return; // no nearer than what the whole tile already has
-  }
-  if ((mask | outside) == kFullMask)
-  {
-    tile.z0 = depth;
-  }
-  else if (tile.mask == 0)
-  {
-    tile.mask = mask;
-    tile.z1 = depth;
-  }
-  else if (tile.z1 - depth > std::min(tile.z0, 1.0f) - tile.z1)
-  {
-    // The new triangle is much nearer than the working layer: merging would push the layer's
-    // depth far back; start the layer again from this triangle (Hasselgren et al.'s heuristic).
-    // A tile with no reference layer yet measures from the far plane (window depth 1), as a
-    // buffer cleared to the far plane would: with +inf the layer would never restart, and a far
-    // part drawn first into a tile would set the depth of the near wall that completes it.
-    tile.mask = mask;
-    tile.z1 = depth;
-  }
-  else
-  {
-    tile.mask |= mask;
-    tile.z1 = std::max(tile.z1, depth);
-  }
-  if (tile.mask != 0 && (tile.mask | outside) == kFullMask)
-  {
-    tile.z0 = std::min(tile.z0, tile.z1);
-    tile.mask = 0;
-  }
-  else if (tile.mask != 0 && !(tile.z1 < tile.z0))
-  {
-    tile.mask = 0; // the working layer says nothing the reference layer does not
-  }
 }
 
 bool MaskedDepthBuffer::rectOccluded(

@@ -1,14 +1,16 @@
 #pragma once
-// Module-private: the edge test of MaskedDepthBuffer's rasterizer (OcclusionBuffer.cpp), with the
-// coverage mask of a whole 8 x 4 tile computed four rows at once (SSE2, the x86-64 baseline;
-// the same arithmetic row by row elsewhere). Both give the same bits: only IEEE double
-// operations in the same order, and integer steps that are exact.
+// Module-private: the edge test of MaskedDepthBuffer's exact rasterizer (OcclusionBuffer.cpp),
+// with the coverage mask of a whole 8 x 4 tile computed four rows at once (SSE2, the x86-64
+// baseline; the same arithmetic row by row elsewhere). Both give the same bits: only IEEE double
+// operations in the same order, and integer steps that are exact. Also the depth bound of a
+// triangle over a tile and the upward float rounding that both rasterizers share.
 
 #include <glm/vec3.hpp>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 
 #if defined(__SSE2__) || defined(_M_X64)
 #include <emmintrin.h>
@@ -19,6 +21,62 @@ namespace scenevis
 {
 namespace occlusion
 {
+/// The smallest float not below @p value (float(value) may round down).
+inline float roundUp(double value)
+{
+  float f = static_cast<float>(value);
+  if (static_cast<double>(f) < value)
+  {
+    // std::nextafter(f, +inf) without the library call (one per tile update): f is below value,
+    // so neither +inf nor NaN; the next float up is one step of its bits away from zero when
+    // positive, towards zero when negative (-inf gives the lowest finite float, as nextafter
+    // does), the smallest positive one from +-0.
+    std::uint32_t bits;
+    std::memcpy(&bits, &f, sizeof bits);
+    bits = f == 0.0f ? 1u : ((bits >> 31) == 0u ? bits + 1u : bits - 1u);
+    std::memcpy(&f, &bits, sizeof f);
+  }
+  return f;
+}
+
+/**
+ * Window depth of a triangle as a plane z = zx x + zy y + z00 (depth is affine in window x, y),
+ * and a bound on it over the 8 x 4 pixel centres of a tile: the plane's largest value over the
+ * tile's corner centres (plus a generous bound on its rounding and the OpenGL polygon offset),
+ * never farther than the triangle's farthest vertex (plus offset). The depth margin comes on top.
+ */
+struct DepthPlane
+{
+  double zx, zy, z00, offset, zFarVertex, planeError, zOffset;
+
+  DepthPlane(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c, double area2,
+    double offsetFactor, double offsetDepth, int width, int height)
+  {
+    // Counter-clockwise vertex order for the solve.
+    const double det = std::abs(area2);
+    const glm::dvec3& q1 = area2 > 0.0 ? b : c;
+    const glm::dvec3& q2 = area2 > 0.0 ? c : b;
+    const double bx = q1.x - a.x, by = q1.y - a.y, bz = q1.z - a.z;
+    const double cx = q2.x - a.x, cy = q2.y - a.y, cz = q2.z - a.z;
+    zx = (bz * cy - by * cz) / det;
+    zy = (bx * cz - bz * cx) / det;
+    z00 = a.z - zx * a.x - zy * a.y;
+    offset = std::max(0.0, offsetFactor) * std::max(std::abs(zx), std::abs(zy)) +
+      std::max(0.0, offsetDepth);
+    zFarVertex = std::max({ a.z, b.z, c.z }) + offset;
+    planeError =
+      1e-12 * ((std::abs(zx) + 1.0) * width + (std::abs(zy) + 1.0) * height + std::abs(z00));
+    zOffset = std::max(0.0, 7 * zx) + std::max(0.0, 3 * zy);
+  }
+
+  /// The bound over the tile whose first pixel centre is (x0, y0).
+  double tileBound(double x0, double y0) const
+  {
+    const double zCorners = zx * x0 + zy * y0 + z00 + zOffset;
+    return std::min(zCorners + offset + planeError, zFarVertex);
+  }
+};
+
 /**
  * Inside test of one triangle edge at pixel centres. The edge function is evaluated with the
  * edge's end points in a canonical order (lexicographic), so the two triangles sharing an edge

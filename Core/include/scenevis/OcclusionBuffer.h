@@ -52,6 +52,37 @@
  * Per occludee box, 8 corner projections and one comparison per tile. Memory: 12 bytes per tile
  * and 4 per 4 x 4 tiles (0.38 bytes per pixel): 183,800 bytes at 800x600, 882 kB at 1920x1200.
  *
+ * Two rasterizers (member `rasterizer`; both obey the contract above, the tests run both):
+ * - Exact: per tile, each edge function in double at the tile's first pixel centre, its range
+ *   over the tile from its gradients; the coverage mask of partial tiles row by row.
+ * - Float (the default; SSE2, the x86-64 baseline, elsewhere the exact one draws): per row of
+ *   tiles, each edge's crossings of the row's four scanlines, x = px + (y - py) dx / dy, in one
+ *   float register, turned into each scanline's first and last covered pixel; a tile's 32-bit
+ *   mask is then a few byte compares of those bounds against the tile's columns. Triangles
+ *   with a window coordinate beyond 2^14 pixels, an edge flatter than 1 / 65536 (but not
+ *   horizontal) or an edge collapsed in float go to the exact rasterizer. Why it is
+ *   conservative:
+ *   - Outline edges: the float crossing differs from the crossing of the double edge by at most
+ *     a bound computed per edge (the vertices' rounding to float, 2^-24 of the coordinates,
+ *     carried along the edge's extension to the scanlines tested, plus the rounding of the
+ *     crossing's few operations), taken four times over; the crossing is moved inward by the
+ *     coverage margin plus that bound, and a pixel counts only if its centre is strictly on the
+ *     inner side. So every pixel claimed is inside the double triangle by the margin.
+ *   - Horizontal edges decide whole scanlines, in double from the float coordinates, with the
+ *     same margin and bound.
+ *   - Interior edges (shared, same facing): both triangles round the shared vertices to the
+ *     same floats and compute the crossing from the canonical end point with the same
+ *     operations, so the crossing is the same bit for bit and the tie rule gives every pixel
+ *     centre to exactly one of them (watertight, as in the exact rasterizer); the float error
+ *     only moves which of the two (both drawn by OpenGL) owns a centre within the bound of the
+ *     edge. The depth there is the neighbour's, which differs from this triangle's plane by at
+ *     most the distance times the gradient: that product is added to the tile's depth bound.
+ *     A triangle drawn by the exact rasterizer next to one drawn in float may leave a centre on
+ *     their shared edge to neither (a crack: less occlusion, never a false one).
+ *   - Depth: the tile's bound is the exact rasterizer's (double plane at the tile's corner
+ *     centres, rounding bound, farthest vertex, polygon offset), rounded up to float, plus the
+ *     interior-edge term above: never nearer than what OpenGL writes at a claimed pixel.
+ *
  * Units: the caller gives the clip-from-world matrix (glm, OpenGL clip conventions as in
  * Frustum.h) and the viewport size in pixels; triangles are given in clip space (x, y, z, w),
  * so a caller transforms each mesh's points once with clipFromWorld * worldFromModel.
@@ -139,6 +170,14 @@ public:
     std::uint32_t mask; ///< working layer coverage, bit (y * 8 + x) for pixel (x, y) of the tile
   };
 
+  /// Which arithmetic rasterizes triangles (see "Two rasterizers" in the file comment).
+  enum class Rasterizer
+  {
+    Exact, ///< double edge functions per tile
+    Float  ///< float scanline crossings, a row of tiles at a time (SSE2; elsewhere Exact)
+  };
+  Rasterizer rasterizer = Rasterizer::Float;
+
   /// Pixels inward from every triangle edge that a covered pixel centre must keep.
   double coverageMargin = 1.0 / 64.0;
   /// Window-depth margin added to occluder depths and taken from occludee depths.
@@ -225,6 +264,10 @@ private:
     FaceCulling culling, unsigned outlineEdges);
   /// A triangle OpenGL draws (doubled signed area @p area2) whose centres lie in @p span.
   void drawFrontTriangle(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c,
+    double area2, const CentreSpan& span, unsigned outlineEdges);
+  /// drawFrontTriangle() by the float rasterizer; false (nothing done) for a triangle it leaves
+  /// to the exact one (coordinates beyond its range, nearly horizontal edges, no SSE2).
+  bool drawFrontTriangleFloat(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c,
     double area2, const CentreSpan& span, unsigned outlineEdges);
   void updateTile(Tile& tile, std::uint32_t mask, float depth, std::uint32_t outside);
   /// Whether a triangle whose centres lie in @p span is behind the whole-tile depth of every
