@@ -154,6 +154,7 @@ CullPlan PlanCulling(
     const vtkScenePlanChoice choice = vtkScenePlanRule::ChooseCulling(facts);
     plan.method = choice.Method;
     plan.reason = choice.Reason + " (" + facts.Summary() + ")";
+    plan.chunkSize = choice.ChunkSize;
   }
   if ((plan.method == "portals" || plan.method == "pvs") && !rooms)
   {
@@ -259,6 +260,8 @@ ScenePlan PlanScene(const Options& options, const LoadedScene& scene, const std:
       why;
   }
   plan.cull.pvsBudget = options.pvsBudget;
+  if (options.chunkSize > 0)
+    plan.cull.chunkSize = options.chunkSize;
   if (plan.instanced)
   {
     if (plan.cull.chunked)

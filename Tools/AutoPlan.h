@@ -42,6 +42,7 @@ struct CullPlan
   double smallPixels = 0.0;
   std::string roomArray = "RoomId"; ///< the cell array the portal culler reads rooms from
   double pvsBudget = 0.0;           ///< --cull pvs: the precompute's budget in seconds (0: none)
+  int chunkSize = 0;                ///< chunked: triangles per chunk (0: the mapper's default)
 };
 
 /// The --cull plan applied to a loaded scene: the groups drawn as actors and the sort method.

@@ -124,7 +124,11 @@ CullSetup::CullSetup(const CullPlan& plan, const MethodPipeline& pipeline, vtkRe
   // "none" really draws everything: not even VTK's default frustum coverage culler.
   renderer->GetCullers()->RemoveAllItems();
   if (vtkChunkedPolyDataMapper* chunked = pipeline.GetChunkedMapper())
+  {
     chunked->SetOcclusionCulling(plan.method == "chunked-occlusion");
+    if (plan.chunkSize > 0)
+      chunked->SetChunkSize(plan.chunkSize);
+  }
   // Triangles per actor, of the scene's polygons before any sorting splits them (one actor:
   // the whole scene, whose mapper may read a sorter that has not run yet).
   const auto& actors = pipeline.GetActors();

@@ -98,8 +98,10 @@ render and cull:
                         Prop culling modes draw one actor per part (--part-array, and room
                         where present); with those, --sort takes none, oit, multi-actor or
                         peel:N.
-                        auto: rooms and portals -> portals; 100+ parts, at most 25 %
-                        translucent, under 90 % of the triangles in the first view (with
+                        auto: rooms and portals -> portals; 100+ opaque parts of under 16
+                        triangles on average (a game level's surfaces) -> one mesh: none, or
+                        chunked-occlusion in chunks of 64 from 10,000 triangles; 100+ parts, at
+                        most 25 % translucent, under 90 % of the triangles in the first view (with
                         --instances: 100+ placements, any view) -> octree, or occlusion when
                         the opaque parts' screen rectangles cover the area they span 4+ times;
                         an opaque mesh of 500k+ triangles -> chunked (with --instances:
@@ -111,6 +113,9 @@ render and cull:
                         used its share closes with what it might still see (conservative,
                         larger sets), and the report says how many
                         (culling.portals.pvs.degraded_portals, budget_exceeded)
+  --chunk-size N        with --cull chunked or chunked-occlusion (or auto when it picks them):
+                        at most N triangles per chunk (default 2048; the chunks' tree is
+                        built once)
 
 render:
   --sort METHOD         auto (default), none (unsorted alpha), oit (VTK's default weighted
@@ -359,6 +364,8 @@ Options ParseOptions(int argc, char* argv[])
       if (!(options.pvsBudget > 0.0) || options.pvsBudget > 1e6)
         throw UsageError(flag + " expects seconds in (0, 1000000], got '" + text + "'");
     }
+    else if (flag == "--chunk-size")
+      options.chunkSize = ParseCount(flag, value(), 1, 1 << 24);
     else if (flag == "--sort")
       options.sort = value();
     else if (flag == "--size")
@@ -426,6 +433,12 @@ Options ParseOptions(int argc, char* argv[])
   {
     throw UsageError(
       "--pvs-budget is the budget of --cull pvs's precompute (got --cull " + c + ")");
+  }
+  if (options.chunkSize > 0 && c != "chunked" && c != "chunked-occlusion" && c != "auto")
+  {
+    throw UsageError("--chunk-size sets the chunks of --cull chunked or chunked-occlusion (got "
+                     "--cull " +
+      c + ")");
   }
   if ((!options.exportScene.empty() || options.exact) && options.command != "cull")
   {

@@ -57,6 +57,9 @@ struct Options
   bool exact = false;      ///< cull --exact: compare with the ID-buffer visible set
   /// --pvs-budget SECONDS: wall-clock budget of the PVS precompute of --cull pvs (0: none).
   double pvsBudget = 0.0;
+  /// --chunk-size N: triangles per chunk of --cull chunked / chunked-occlusion (0: the mapper's
+  /// default).
+  int chunkSize = 0;
   int width = 800;
   int height = 600;
   int frames = 1;

@@ -18,10 +18,13 @@ Over-draw = parts kept / parts visible per camera; the table gives the median an
 the cameras, the frame-time ratio octree / occlusion likewise (per camera, then median and worst).
 
     python3 scripts/level-occlusion-report.py [--tool PATH] [--levels a,b] [--exact-cameras N]
-        [--render-cameras N] [--repeat N] [--with-none] [--steps exact,time] [--out-dir DIR]
+        [--render-cameras N] [--repeat N] [--with-none] [--also MODES] [--steps exact,time]
+        [--out-dir DIR]
 
 --with-none also times `--cull none` (the whole level as one actor: one draw call, no culling),
-the floor a culler of many actors competes with.
+the floor a culler of many actors competes with. --also MODES times more --cull modes beside
+(comma-separated, e.g. auto,chunked-occlusion); with them a second table gives each mode's median
+frame, the octree / mode ratio (per camera, then median and worst) and what auto chose.
 
 Writes DIR/levels-occlusion.json (every number) and prints the Markdown table of BENCHMARKS.md.
 Times depend on the machine and its load: compare rows within one run.
@@ -87,10 +90,12 @@ def frames(tool, scene, cameras_file, count, mode, workdir):
     run([tool, "render", "--scene", scene, "--cull", mode, "--cameras", cameras_file,
          "--size", "800x600", "--out", os.path.join(workdir, f"{mode}.png"), "--report", report],
         env)
-    timed = json.load(open(report))["frames"][count:]
+    out = json.load(open(report))
+    method = out["culling"]["method"]
     return [{"frame_ms": f["cull_ms"] + f["render_ms"], "cull_ms": f["cull_ms"],
              "render_ms": f["render_ms"], "props_drawn": f["props_drawn"],
-             "triangles_drawn": f["triangles_drawn"]} for f in timed]
+             "triangles_drawn": f["triangles_drawn"], "method": method}
+            for f in out["frames"][count:]]
 
 
 def level_info(scene):
@@ -117,6 +122,9 @@ def main():
     parser.add_argument("--render-cameras", type=int, default=12)
     parser.add_argument("--with-none", action="store_true",
                         help="also time --cull none: the whole level as one actor, one draw call")
+    parser.add_argument("--also", default="",
+                        help="more --cull modes to time beside octree and occlusion "
+                        "(comma-separated)")
     parser.add_argument("--exact-cameras", type=int, default=0,
                         help="at most this many cameras (evenly spaced) in the exact step "
                         "(default 0: all)")
@@ -165,6 +173,7 @@ def main():
             json.dump(timed_cameras + timed_cameras, open(doubled, "w"))
             level["render_cameras"] = len(timed_cameras)
             timed_modes = MODES + (("none",) if args.with_none else ())
+            timed_modes += tuple(m for m in args.also.split(",") if m and m not in timed_modes)
             runs = {mode: [] for mode in timed_modes}
             for _ in range(args.repeat):
                 for mode in timed_modes:
@@ -217,6 +226,38 @@ def main():
         none = [f["frame_ms"] for f in level.get("none_frames", [])]
         row.append(f"{statistics.median(none):.0f}" if none else "")
         print("| " + " | ".join(row) + " |")
+    also = [m for m in args.also.split(",") if m]
+    if also:
+        print_modes_table(results, ("occlusion", "none") + tuple(also))
+
+
+def print_modes_table(results, modes):
+    """Each mode's median frame beside the octree's, and octree / mode per camera."""
+    print()
+    print("| level | triangles per surface | auto chose | octree frame ms | " +
+          " | ".join(f"{m} frame ms (octree / {m}: median, worst)" for m in modes) + " |")
+    print("|---" * (4 + len(modes)) + "|")
+    ratios = {m: [] for m in modes}
+    for name, level in results.items():
+        if "octree_frames" not in level:
+            continue
+        octree = [f["frame_ms"] for f in level["octree_frames"]]
+        auto = level.get("auto_frames", [{}])[0].get("method", "")
+        per_surface = level.get("triangles", 0) / max(level.get("surfaces", 1), 1)
+        row = [name, f"{per_surface:.1f}", auto, f"{statistics.median(octree):.1f}"]
+        for mode in modes:
+            frames = [f["frame_ms"] for f in level.get(f"{mode}_frames", [])]
+            if not frames:
+                row.append("")
+                continue
+            ratio = [a / b for a, b in zip(octree, frames)]
+            ratios[mode].extend(ratio)
+            med, worst = median_worst(ratio, min)
+            row.append(f"{statistics.median(frames):.1f} (**{med:.2f}×**, {worst:.2f}×)")
+        print("| " + " | ".join(row) + " |")
+    print("| all cameras | | | | " + " | ".join(
+        f"**{statistics.median(ratios[m]):.2f}×** median, ≥ 3× on {sum(r >= 3 for r in ratios[m])}"
+        f" of {len(ratios[m])}" if ratios[m] else "" for m in modes) + " |")
 
 
 if __name__ == "__main__":

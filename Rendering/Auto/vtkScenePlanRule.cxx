@@ -39,6 +39,31 @@ vtkScenePlanChoice vtkScenePlanRule::ChooseCulling(const vtkScenePlanFacts& fact
     why << facts.rooms << " rooms and " << facts.portals
         << " portals: cells and portals skip the rooms the eye cannot see through them";
   }
+  else if (facts.parts >= ManyProps && !facts.fixedActors && opaque &&
+    static_cast<double>(facts.triangles) < SmallPartTriangles * static_cast<double>(facts.parts))
+  {
+    const double perPart = static_cast<double>(facts.triangles) / static_cast<double>(facts.parts);
+    why << facts.parts << " opaque parts of " << std::setprecision(3) << perPart
+        << " triangles on average (< " << SmallPartTriangles
+        << "): an actor per part costs more than its triangles, so they are drawn as one mesh";
+    if (facts.triangles >= ChunkOcclusionTriangles)
+    {
+      const bool hidden = facts.depthComplexity >= OcclusionDepthComplexity;
+      plan.Method = hidden ? "chunked-occlusion" : "chunked";
+      plan.ChunkSize = SmallPartChunkSize;
+      why << " in chunks of " << SmallPartChunkSize << " triangles (" << facts.triangles
+          << " triangles >= " << ChunkOcclusionTriangles << ")";
+      if (hidden)
+        why << ", chunks hidden behind nearer ones culled (estimated depth complexity "
+            << facts.depthComplexity << " >= " << OcclusionDepthComplexity << ")";
+    }
+    else
+    {
+      plan.Method = "none";
+      why << ", whole (" << facts.triangles << " triangles < " << ChunkOcclusionTriangles
+          << ": culling its chunks does not pay)";
+    }
+  }
   else if (facts.parts >= ManyProps &&
     (facts.fixedActors ||
       (facts.translucentFraction <= MaxTranslucentForActors &&

@@ -16,6 +16,11 @@
  *   MaxTranslucentForActors translucent and less than MinInViewForNoCulling of the triangles in
  *   view (vtkOcclusionCuller);
  * - "octree": the same with a lower depth complexity (vtkOcclusionCuller without occlusion);
+ * - "chunked-occlusion" / "none" for ManyProps+ small opaque parts that may be drawn as one mesh
+ *   (not fixed actors; fewer than SmallPartTriangles triangles per part on average, as the
+ *   surfaces of a game level): one mesh in chunks of SmallPartChunkSize triangles, with occlusion
+ *   between the chunks from ChunkOcclusionTriangles triangles on (when the estimated opaque depth
+ *   complexity reaches OcclusionDepthComplexity; "chunked" below it), else "none";
  * - "chunked": HugeMesh+ opaque triangles otherwise (vtkChunkedPolyDataMapper);
  * - "none": small scenes, and scenes whose parts may be drawn as one mesh instead (not fixed
  *   actors) that are in full view or translucent.
@@ -71,6 +76,9 @@ struct SCENEVISRENDERINGAUTO_EXPORT vtkScenePlanChoice
 {
   std::string Method;
   std::string Reason;
+  /// "chunked" / "chunked-occlusion": the triangles per chunk the rule chose (0: the mapper's
+  /// default).
+  int ChunkSize = 0;
 };
 
 /// A part's world box and triangles: what the view estimate (MeasureView) looks at.
@@ -111,6 +119,25 @@ public:
   /// culling, 2 with occlusion; BENCHMARKS.md). The value 4 is a first estimate, not yet
   /// calibrated over many scenes.
   static constexpr double OcclusionDepthComplexity = 4.0;
+  /**
+   * Below this many triangles per part on average, ManyProps+ opaque parts that may be merged are
+   * drawn as one mesh rather than one actor each: an actor costs VTK about 37 us per frame
+   * (llvmpipe; 1,319 actors of a level seen from far away: 49 ms against 2.6 ms as one mesh),
+   * more than its few triangles. Measured on 12 real game levels (3.9-11.3 triangles per
+   * surface, 8 cameras each; BENCHMARKS.md "Game levels drawn as one mesh"): drawing the level
+   * as one mesh ("none") was faster than the octree on every level (median ratio 2.03) and than
+   * occlusion culling of the actors on 10 of 12.
+   */
+  static constexpr double SmallPartTriangles = 16.0;
+  /// From this many triangles, such a merged mesh is drawn in chunks with occlusion between them
+  /// ("chunked-occlusion"); below it, whole ("none"). The same levels: chunked-occlusion beat
+  /// "none" on each of the 4 levels of 16k-29k triangles (octree / this 2.82 vs 2.61, 2.59 vs
+  /// 2.05, 4.11 vs 2.95, 1.81 vs 1.60), and lost or tied on each of the 8 of 2k-8k.
+  static constexpr vtkIdType ChunkOcclusionTriangles = 10000;
+  /// Triangles per chunk for the merged mesh of small parts: a level's 16k-29k triangles in a
+  /// few hundred chunks (64 and 256 measured alike; the mapper's 2,048 leaves 2-14 chunks,
+  /// too few to cull).
+  static constexpr int SmallPartChunkSize = 64;
 
   /// The culling method for @p facts and why.
   static vtkScenePlanChoice ChooseCulling(const vtkScenePlanFacts& facts);
