@@ -13,7 +13,9 @@
 // translucency, in scenes with translucent cells, the exact multi-actor order
 // (vtkOrderedTranslucentPass + vtkBSPTranslucentPass), and for a one-actor scene the BSP mapper
 // (vtkBSPSortedPolyDataMapper + vtkOrderedTranslucentPass). All are exact; "best fixed" is the
-// fastest of them on this path. Not here: portals (the planner does not know rooms yet).
+// fastest of them on this path. The building (scenes::building, one actor per room and one for
+// the outside, each with its room as "RoomId" field data) is also drawn with its portals: the
+// planner gets them with SetPortals(), and "opaque + portals" is a vtkPortalCuller with them.
 //
 // The path: frame 0 is the overview (the scene's bounds fitted in a three-quarter view), the last
 // frame is "inside": the first camera of the scene's camera file (real levels), or an eye at 15 %
@@ -21,26 +23,32 @@
 // clipping range is reset to the props every frame.
 //
 // Run: build/bin/scenevis_planner_path_bench [--frames N] [--size WxH] [--scene NAME]...
-//   NAME: cad, cad-opaque, spheres, cyclic-quads (demos), engine (engine-glb), bunny (bunny-stl,
-//   opacity 0.4), level-MAP (the data cache).
+//   NAME: cad, cad-opaque, spheres, cyclic-quads, building (demos; the building 3 floors of
+//   10 x 10 rooms, inside: the middle of a ground-floor room), engine (engine-glb), bunny
+//   (bunny-stl, opacity 0.4), level-MAP (the data cache).
 //   --smoke: one small scene, 4 frames (CI).
 #include "vtkSceneVisPlanner.h"
 
 #include "../Tools/CameraFile.h"
 #include "../Tools/SplitParts.h"
+#include "scenevis/Scenes.h"
 #include "scenevis/testing/Models.h"
 #include "scenevis/testing/RenderWindow.h"
+#include "scenevis/testing/Scenes.h"
 #include "vtkBSPSortedPolyDataMapper.h"
 #include "vtkBSPTranslucentPass.h"
 #include "vtkDemoSceneSource.h"
 #include "vtkOcclusionCuller.h"
 #include "vtkOrderedTranslucentPass.h"
+#include "vtkPortalCuller.h"
 
 #include <vtkActor.h>
 #include <vtkCamera.h>
 #include <vtkCellData.h>
 #include <vtkCullerCollection.h>
 #include <vtkDataArray.h>
+#include <vtkFieldData.h>
+#include <vtkIntArray.h>
 #include <vtkMath.h>
 #include <vtkNew.h>
 #include <vtkPolyData.h>
@@ -83,7 +91,40 @@ struct PathScene
   double opacity = 1.0; ///< given to every actor (models without colours of their own)
   bool hasInside = false;
   scenevis::tool::CameraSpec inside;
+  vtkSmartPointer<vtkPolyData> portals; ///< rooms and portals (the building), else null
 };
+
+/// The building as an application with rooms has it: one actor per room and one for the outside,
+/// the room as "RoomId" field data, the portals in vtkPortalCuller's format.
+PathScene BuildingScene()
+{
+  namespace st = scenevis::testing;
+  PathScene scene;
+  scene.name = "building";
+  const scenevis::scenes::BuildingScene b = scenevis::scenes::building(3, 10, 10, 1);
+  const int rooms = static_cast<int>(b.rooms.size());
+  for (int r = -1; r < rooms; ++r)
+  {
+    vtkSmartPointer<vtkPolyData> pd = st::MakeRoomPolyData(b, r, rooms);
+    vtkNew<vtkIntArray> id;
+    id->SetName("RoomId");
+    id->InsertNextValue(r);
+    pd->GetFieldData()->AddArray(id);
+    scene.parts.push_back(pd);
+  }
+  scene.portals = st::MakePortalPolyData(b);
+  // Inside: the middle of a ground-floor room near the centre, looking along x.
+  const auto& box = b.rooms[static_cast<std::size_t>(5 * 10 + 4)].bounds;
+  scene.inside.eye[0] = (box.lo.x + box.hi.x) / 2;
+  scene.inside.eye[1] = (box.lo.y + box.hi.y) / 2;
+  scene.inside.eye[2] = box.lo.z + 0.6 * (box.hi.z - box.lo.z);
+  scene.inside.focal[0] = scene.inside.eye[0] + 1.0;
+  scene.inside.focal[1] = scene.inside.eye[1] + 0.3;
+  scene.inside.focal[2] = scene.inside.eye[2] - 0.1;
+  scene.inside.viewAngle = 60.0;
+  scene.hasInside = true;
+  return scene;
+}
 
 bool HasTranslucentCells(vtkPolyData* pd)
 {
@@ -107,6 +148,8 @@ void MakeOpaque(vtkPolyData* pd)
 /// The scene @p name, split into parts by its PartId array; empty parts when it cannot be had.
 PathScene LoadScene(const std::string& name, std::string& error)
 {
+  if (name == "building")
+    return BuildingScene();
   PathScene scene;
   scene.name = name;
   vtkSmartPointer<vtkPolyData> pd;
@@ -159,6 +202,7 @@ struct Method
   std::vector<vtkSmartPointer<vtkActor>> actors;
   vtkSmartPointer<vtkSceneVisPlanner> planner;
   vtkNew<vtkOcclusionCuller> culler;
+  vtkNew<vtkPortalCuller> portalCuller;
   vtkNew<vtkOrderedTranslucentPass> ordered;
   vtkNew<vtkBSPTranslucentPass> sorted;
   std::vector<double> frameMs;
@@ -187,6 +231,8 @@ struct Method
     if (methodName == "planner")
     {
       this->planner = vtkSceneVisPlanner::Attach(this->renderer);
+      if (scene.portals)
+        this->planner->SetPortals(scene.portals);
       return;
     }
     const std::string cull = methodName.substr(methodName.find("+ ") + 2);
@@ -195,6 +241,12 @@ struct Method
       this->renderer->GetCullers()->RemoveAllItems();
       this->culler->SetOcclusionCulling(cull == "occlusion");
       this->renderer->AddCuller(this->culler);
+    }
+    else if (cull == "portals")
+    {
+      this->renderer->GetCullers()->RemoveAllItems();
+      this->portalCuller->SetPortals(scene.portals);
+      this->renderer->AddCuller(this->portalCuller);
     }
     if (methodName.rfind("multi-actor", 0) == 0)
     {
@@ -313,8 +365,8 @@ bool ParseOptions(int argc, char** argv, Options& options)
       options.scenes = { "cad" };
   }
   if (options.scenes.empty())
-    options.scenes = { "cad", "cad-opaque", "spheres", "cyclic-quads", "engine", "bunny",
-      "level-ctf_inyard" };
+    options.scenes = { "cad", "cad-opaque", "spheres", "cyclic-quads", "building", "engine",
+      "bunny", "level-ctf_inyard" };
   return true;
 }
 } // namespace
@@ -340,6 +392,8 @@ int main(int argc, char** argv)
       names.push_back(std::string(scene.translucent ? "multi-actor" : "opaque") + " + " + cull);
     if (scene.translucent && scene.parts.size() == 1)
       names.emplace_back("bsp-mapper + none");
+    if (scene.portals)
+      names.push_back(std::string(scene.translucent ? "multi-actor" : "opaque") + " + portals");
     std::vector<std::unique_ptr<Method>> methods;
     for (const auto& methodName : names)
       methods.push_back(std::make_unique<Method>(methodName, scene, options));
