@@ -61,13 +61,15 @@ inline MaskedDepthBuffer::CentreSpan MaskedDepthBuffer::centreSpan(
     std::max(-1, iy + (sy > iy ? 1 : 0)), std::min(height, iy - (sy < iy ? 1 : 0)) };
 }
 
-MaskedDepthBuffer::CentreSpan MaskedDepthBuffer::triangleSpan(
+inline MaskedDepthBuffer::CentreSpan MaskedDepthBuffer::triangleSpan(
   const CentreSpan& a, const CentreSpan& b, const CentreSpan& c) const
 {
-  return { std::max(0, std::min({ a.x0, b.x0, c.x0 })),
-    std::min(width_ - 1, std::max({ a.x1, b.x1, c.x1 })),
-    std::max(0, std::min({ a.y0, b.y0, c.y0 })),
-    std::min(height_ - 1, std::max({ a.y1, b.y1, c.y1 })) };
+  // Pairwise: the initializer-list overloads cost four times the instructions here (one call
+  // per triangle reaching the span test).
+  return { std::max(0, std::min(std::min(a.x0, b.x0), c.x0)),
+    std::min(width_ - 1, std::max(std::max(a.x1, b.x1), c.x1)),
+    std::max(0, std::min(std::min(a.y0, b.y0), c.y0)),
+    std::min(height_ - 1, std::max(std::max(a.y1, b.y1), c.y1)) };
 }
 
 void MaskedDepthBuffer::resize(int width, int height)
@@ -236,14 +238,20 @@ void MaskedDepthBuffer::drawTriangles(const glm::dvec4* clip,
     }
     for (std::size_t t = begin; t < end; ++t)
     {
-      if (!valid(t))
+      const std::uint32_t* tri = indices + 3 * t;
+      // valid(t), with the three states read once (they give the facing case too).
+      if (tri[0] >= vertexCount || tri[1] >= vertexCount || tri[2] >= vertexCount)
       {
         ++stats_.trianglesRejected;
         continue;
       }
-      const std::uint32_t* tri = indices + 3 * t;
-      const bool front =
-        vertexState_[tri[0]] == 1 && vertexState_[tri[1]] == 1 && vertexState_[tri[2]] == 1;
+      const unsigned s0 = state(tri[0]), s1 = state(tri[1]), s2 = state(tri[2]);
+      if (s0 == 0 || s1 == 0 || s2 == 0)
+      {
+        ++stats_.trianglesRejected;
+        continue;
+      }
+      const bool front = (s0 & s1 & s2) == 1;
       // Pixels whose centres can be inside (most triangles of a detailed mesh have none), then
       // the face: both from what was computed per vertex (and per triangle for the facing).
       CentreSpan span;
