@@ -298,10 +298,28 @@ bool MaskedDepthBuffer::boxBehindTiles(const glm::dmat4& clipFromModel, const do
 {
   constexpr double inf = std::numeric_limits<double>::infinity();
   double x0 = inf, y0 = inf, zNear = inf, x1 = -inf, y1 = -inf;
+  // The corners as the lowest one plus the matrix's columns scaled by the box's extents (three
+  // additions per corner instead of a matrix product; the rounding differs from the product's
+  // by a few ulps of the clip coordinates, far inside the pixel and depth margins below).
+  const glm::dvec4 base = clipFromModel * glm::dvec4(box[0], box[2], box[4], 1.0);
+  const glm::dvec4 ex = clipFromModel[0] * (box[1] - box[0]);
+  const glm::dvec4 ey = clipFromModel[1] * (box[3] - box[2]);
+  const glm::dvec4 ez = clipFromModel[2] * (box[5] - box[4]);
   for (int k = 0; k < 8; ++k)
   {
-    const glm::dvec4 c =
-      clipFromModel * glm::dvec4(box[k & 1], box[2 + ((k >> 1) & 1)], box[4 + ((k >> 2) & 1)], 1.0);
+    glm::dvec4 c = base;
+    if (k & 1)
+    {
+      c += ex;
+    }
+    if (k & 2)
+    {
+      c += ey;
+    }
+    if (k & 4)
+    {
+      c += ez;
+    }
     // Every corner in front of the near plane: then the box's projection is inside its corners'
     // (a point of the box projects into their convex hull) and its nearest window depth is at a
     // corner (depth is a ratio of affine functions with a positive denominator).
