@@ -53,9 +53,9 @@
  * and 4 per 4 x 4 tiles (0.38 bytes per pixel): 183,800 bytes at 800x600, 882 kB at 1920x1200.
  *
  * Two rasterizers (member `rasterizer`; both obey the contract above, the tests run both):
- * - Exact: per tile, each edge function in double at the tile's first pixel centre, its range
- *   over the tile from its gradients; the coverage mask of partial tiles row by row.
- * - Float (the default; SSE2, the x86-64 baseline, elsewhere the exact one draws): per row of
+ * - Exact (the default): per tile, each edge function in double at the tile's first pixel centre,
+ *   its range over the tile from its gradients; the coverage mask of partial tiles row by row.
+ * - Float (opt-in; SSE2, the x86-64 baseline, elsewhere the exact one draws): per row of
  *   tiles, each edge's crossings of the row's four scanlines, x = px + (y - py) dx / dy, in one
  *   float register, turned into each scanline's first and last covered pixel; a tile's 32-bit
  *   mask is then a few byte compares of those bounds against the tile's columns. Triangles
@@ -176,7 +176,11 @@ public:
     Exact, ///< double edge functions per tile
     Float  ///< float scanline crossings, a row of tiles at a time (SSE2; elsewhere Exact)
   };
-  Rasterizer rasterizer = Rasterizer::Float;
+  /// Exact by default: Float runs about 11 % fewer instructions in drawTriangles, but its wider
+  /// outline margins occlude less. Measured through vtkOcclusionCuller (BENCHMARKS.md, "Float or
+  /// exact by default"): engine row 38 parts kept for 18 visible (Exact: 36); 12 real levels,
+  /// 137 cameras, median over-draw 2.02 (Exact: 1.99); no cull-time gain above the noise.
+  Rasterizer rasterizer = Rasterizer::Exact;
 
   /// Pixels inward from every triangle edge that a covered pixel centre must keep.
   double coverageMargin = 1.0 / 64.0;
