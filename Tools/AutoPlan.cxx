@@ -1,6 +1,7 @@
 // Auto mode: the facts of a scene and the plan made from them.
 #include "AutoPlan.h"
 
+#include "GeneratedRooms.h"
 #include "Progress.h"
 #include "SplitParts.h"
 
@@ -14,6 +15,8 @@
 
 #include <algorithm>
 #include <chrono>
+#include <iomanip>
+#include <sstream>
 #include <unordered_map>
 #include <unordered_set>
 
@@ -135,6 +138,56 @@ std::vector<PartBox> InstanceBoxes(const InstancedScene& scene)
   return boxes;
 }
 
+/**
+ * --cull auto on a scene without rooms and portals: when it looks architectural
+ * (LooksArchitectural), rooms and portals generated in memory, used when they are at least 2
+ * rooms and 1 portal with no leak; the room array of @p pd is then replaced and @p facts count
+ * them. Returns what was found and why, for the culling reason ("" when nothing was tried).
+ */
+std::string GenerateRoomsForAuto(vtkPolyData* pd, const std::string& roomArray, SceneFacts& facts,
+  vtkSmartPointer<vtkPolyData>& portals, double& ms)
+{
+  const auto start = std::chrono::steady_clock::now();
+  const ArchitecturalLook look = LooksArchitectural(pd);
+  if (!look.looksArchitectural)
+  {
+    ms = Milliseconds(start);
+    return "; rooms and portals not generated: " + look.reason;
+  }
+  const GeneratedRooms generated = GenerateRooms(pd, roomArray);
+  const portals::GeneratedPortals& result = generated.result;
+  ms = Milliseconds(start);
+  std::ostringstream why;
+  why << std::fixed << std::setprecision(0);
+  if (result.status != portals::GenerationStatus::Ok)
+  {
+    why << "; generating rooms and portals failed (" << result.message << ") in " << ms
+        << " ms, so not used";
+    return why.str();
+  }
+  const portals::GenerationStatistics& s = result.statistics;
+  if (result.roomCount < 2 || result.portals.empty() || s.leakCells > 0)
+  {
+    why << "; rooms and portals generated (" << look.reason << "): " << result.roomCount
+        << " rooms, " << result.portals.size() << " portals, " << s.leakCells << " leak cells in "
+        << ms << " ms, not used (needs >= 2 rooms, >= 1 portal, no leak)";
+    return why.str();
+  }
+  pd->GetCellData()->RemoveArray(roomArray.c_str());
+  pd->GetCellData()->AddArray(generated.rooms);
+  portals = generated.portals;
+  const auto before = facts.rooms;
+  facts.rooms = result.roomCount;
+  facts.portals = static_cast<vtkIdType>(result.portals.size());
+  why << "auto: generated " << result.roomCount << " rooms, " << result.portals.size()
+      << " portals (" << s.exteriorPortals << " to the outside, 0 leak cells) in " << ms
+      << " ms because " << look.reason;
+  if (before > 0)
+    why << "; the scene's " << before << " rooms (" << roomArray
+        << ") came without portals and were replaced";
+  return why.str();
+}
+
 bool IsPropCulling(const std::string& mode)
 {
   return mode == "frustum" || mode == "octree" || mode == "normal-cones" || mode == "occlusion" ||
@@ -248,7 +301,27 @@ ScenePlan PlanScene(const Options& options, const LoadedScene& scene, const std:
       &plan.facts.depthComplexity);
   }
   plan.inspectMs = Milliseconds(inspectStart);
+  plan.portals = scene.portals;
+  std::string generation;
+  // Portal culling draws one actor per room: a sort method that orders one mesh cannot follow.
+  const bool sortAcrossActors = sort == "auto" || sort == "none" || sort == "oit" ||
+    sort == "multi-actor" || sort.rfind("peel:", 0) == 0;
+  if (options.cull == "auto" && !plan.instanced &&
+    !(plan.facts.rooms > 0 && plan.facts.portals > 0) && !sortAcrossActors)
+  {
+    generation = "; rooms and portals not generated: --sort " + sort + " orders one mesh";
+  }
+  else if (options.cull == "auto" && !plan.instanced &&
+    !(plan.facts.rooms > 0 && plan.facts.portals > 0))
+  {
+    generation = GenerateRoomsForAuto(
+      scene.polydata, options.roomArray, plan.facts, plan.portals, plan.generateMs);
+  }
   plan.cull = PlanCulling(options.cull, plan.facts, options.roomArray);
+  if (generation.rfind("auto: ", 0) == 0)
+    plan.cull.reason = generation + "; " + plan.cull.reason;
+  else
+    plan.cull.reason += generation;
   if (plan.instanced && options.cull == "auto" && plan.cull.chunked)
   {
     // The rule's choice for one big opaque mesh; placements are drawn as they are, one actor

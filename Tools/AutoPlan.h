@@ -61,14 +61,20 @@ struct ScenePlan
   bool instancedProps = false;
   double inspectMs = 0.0; ///< reading the scene's facts (parts, rooms, translucency, view)
   double splitMs = 0.0;   ///< splitting it into one polydata per part / room
+  /// The portals the portal culler reads: the scene's, or those --cull auto generated (then the
+  /// scene's polydata holds the generated rooms in its room array).
+  vtkSmartPointer<vtkPolyData> portals;
+  double generateMs = 0.0; ///< --cull auto: the architectural test and room generation
 };
 
 /// The plan for @p scene: its facts (with 100+ parts, also what the first camera sees), the
 /// --cull mode (auto: chosen from the facts), the groups drawn as actors and the translucency
-/// method for @p sort (auto: chosen with the culling). @p renderer: its camera already set up,
-/// for what the first frame sees. With @p releaseSplitScene, a split leaves the scene without
-/// its polygons (the caller draws the parts only and lets the scene go; see SplitByKeys). Throws
-/// UsageError for a mode the scene cannot take.
+/// method for @p sort (auto: chosen with the culling). --cull auto on a scene without rooms and
+/// portals that looks architectural (GeneratedRooms.h) generates them: the scene's room array
+/// is replaced by the generated rooms and plan.portals holds the generated portals. @p renderer:
+/// its camera already set up, for what the first frame sees. With @p releaseSplitScene, a split
+/// leaves the scene without its polygons (the caller draws the parts only and lets the scene go;
+/// see SplitByKeys). Throws UsageError for a mode the scene cannot take.
 ScenePlan PlanScene(const Options& options, const LoadedScene& scene, const std::string& sort,
   vtkRenderer* renderer, bool releaseSplitScene = false);
 

@@ -263,7 +263,7 @@ int RunCull(const Options& options)
   }
   SetUpCamera(cameras[0], renderer, bounds, scene.zUp); // again: the clipping range from the actors
   const CullSetup culling(
-    plan.cull, pipeline, renderer, pd, scene.portals, ProgressBar::OnTerminal());
+    plan.cull, pipeline, renderer, pd, plan.portals, ProgressBar::OnTerminal());
   const std::unordered_map<vtkProp*, long long> placementOf =
     plan.instanced ? PlacementOfActor(pipeline) : std::unordered_map<vtkProp*, long long>();
   const std::vector<std::string> keys = plan.instanced

@@ -97,7 +97,7 @@ int RunRender(const Options& options)
   }
   SetUpCamera(cameras[0], renderer, bounds, scene.zUp); // again: the clipping range from the actors
   const auto cullersStart = std::chrono::steady_clock::now();
-  const CullSetup culling(plan.cull, pipeline, renderer, pd, scene.portals, onTerminal);
+  const CullSetup culling(plan.cull, pipeline, renderer, pd, plan.portals, onTerminal);
   const double cullersMs = Milliseconds(cullersStart);
 
   struct Frame

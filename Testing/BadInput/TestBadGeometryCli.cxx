@@ -9,6 +9,10 @@
 //   Rejected   exit 1 with exactly one "scenevis: ..." line on stderr matching the pattern.
 //
 // A crash, a hang, exit 0 with an empty image or any other outcome than the table's fails.
+// These renders run with the default --cull auto: on the files with few polygons mostly in axis
+// planes (the extreme scales, the offsets), auto generates rooms and portals in memory
+// (Tools/GeneratedRooms.h), so bad geometry reaches that path too; the methods that order one
+// mesh (--sort bsp and the like) skip it.
 //
 // A second table holds bad inputs beside the geometry, each run once and Rejected (exit 1, one
 // line, no image written): part arrays that are not one integer per cell or have more than a

@@ -1,0 +1,276 @@
+// Rooms and portals found from a scene's geometry, as VTK data; the test --cull auto tries first.
+#include "GeneratedRooms.h"
+
+#include "Progress.h"
+#include "vtkBSPSortUtilities.h"
+
+#include <vtkCellArray.h>
+#include <vtkCellData.h>
+#include <vtkNew.h>
+#include <vtkPoints.h>
+#include <vtkType.h>
+#include <vtkUnsignedCharArray.h>
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <iomanip>
+#include <map>
+#include <sstream>
+#include <vector>
+
+namespace scenevis
+{
+namespace tool
+{
+namespace
+{
+/// The portals as polygons with RoomA and RoomB.
+vtkSmartPointer<vtkPolyData> PortalPolyData(const std::vector<portals::PortalDesc>& descs)
+{
+  vtkNew<vtkPoints> points;
+  points->SetDataTypeToDouble();
+  vtkNew<vtkCellArray> polys;
+  vtkNew<vtkIntArray> roomA;
+  roomA->SetName("RoomA");
+  vtkNew<vtkIntArray> roomB;
+  roomB->SetName("RoomB");
+  for (const portals::PortalDesc& portal : descs)
+  {
+    polys->InsertNextCell(static_cast<vtkIdType>(portal.polygon.size()));
+    for (const glm::dvec3& p : portal.polygon)
+    {
+      polys->InsertCellPoint(points->InsertNextPoint(p.x, p.y, p.z));
+    }
+    roomA->InsertNextValue(portal.roomA);
+    roomB->InsertNextValue(portal.roomB);
+  }
+  auto data = vtkSmartPointer<vtkPolyData>::New();
+  data->SetPoints(points);
+  data->SetPolys(polys);
+  data->GetCellData()->AddArray(roomA);
+  data->GetCellData()->AddArray(roomB);
+  return data;
+}
+
+/**
+ * Of the area of the polygons facing along an axis (within 1 degree), the share that faces a
+ * polygon turned towards it further along that axis: a floor under a ceiling, a wall across a
+ * room from another. On a 64 x 64 grid over the other two axes, each polygon's box marks the
+ * farthest (nearest) facing-back polygon of every grid cell; a polygon's centre cell is then
+ * looked up. Linear in the polygons (and their boxes' grid cells).
+ */
+double EnclosedArea(vtkPolyData* model, double alongCos)
+{
+  constexpr int kGrid = 64;
+  double bounds[6];
+  model->GetBounds(bounds);
+  struct Facing
+  {
+    int axis;
+    bool positive;
+    double coordinate;
+    double area;
+    double box[6];
+  };
+  std::vector<Facing> facing;
+  vtkPoints* points = model->GetPoints();
+  vtkCellArray* polys = model->GetPolys();
+  vtkIdType npts = 0;
+  const vtkIdType* pts = nullptr;
+  for (polys->InitTraversal(); points && polys->GetNextCell(npts, pts);)
+  {
+    double n[3] = { 0.0, 0.0, 0.0 };
+    double a[3];
+    double b[3];
+    Facing f{};
+    for (int k = 0; k < 3; ++k)
+    {
+      f.box[2 * k] = VTK_DOUBLE_MAX;
+      f.box[2 * k + 1] = -VTK_DOUBLE_MAX;
+    }
+    for (vtkIdType k = 0; k < npts; ++k)
+    {
+      points->GetPoint(pts[k], a);
+      points->GetPoint(pts[(k + 1) % npts], b);
+      n[0] += (a[1] - b[1]) * (a[2] + b[2]);
+      n[1] += (a[2] - b[2]) * (a[0] + b[0]);
+      n[2] += (a[0] - b[0]) * (a[1] + b[1]);
+      for (int c = 0; c < 3; ++c)
+      {
+        f.box[2 * c] = std::min(f.box[2 * c], a[c]);
+        f.box[2 * c + 1] = std::max(f.box[2 * c + 1], a[c]);
+      }
+    }
+    const double area = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    if (!(area > 0.0) || !std::isfinite(area))
+      continue;
+    for (int axis = 0; axis < 3; ++axis)
+    {
+      if (std::abs(n[axis]) / area >= alongCos)
+      {
+        f.axis = axis;
+        f.positive = n[axis] > 0.0;
+        f.coordinate = 0.5 * (f.box[2 * axis] + f.box[2 * axis + 1]);
+        f.area = area;
+        facing.push_back(f);
+      }
+    }
+  }
+  // Per axis: the largest coordinate of a polygon facing -axis and the smallest of one facing
+  // +axis over each grid cell.
+  std::vector<double> farthestBack(3 * kGrid * kGrid, -VTK_DOUBLE_MAX);
+  std::vector<double> nearestFront(3 * kGrid * kGrid, VTK_DOUBLE_MAX);
+  auto cellRange = [&](int axis, int which, double lo, double hi, int& first, int& last)
+  {
+    const int d = (axis + 1 + which) % 3;
+    const double size = bounds[2 * d + 1] - bounds[2 * d];
+    auto index = [&](double x)
+    {
+      const double t = size > 0.0 ? (x - bounds[2 * d]) / size : 0.0;
+      return std::clamp(static_cast<int>(t * kGrid), 0, kGrid - 1);
+    };
+    first = index(lo);
+    last = index(hi);
+  };
+  for (const Facing& f : facing)
+  {
+    int u0, u1, v0, v1;
+    const int du = (f.axis + 1) % 3, dv = (f.axis + 2) % 3;
+    cellRange(f.axis, 0, f.box[2 * du], f.box[2 * du + 1], u0, u1);
+    cellRange(f.axis, 1, f.box[2 * dv], f.box[2 * dv + 1], v0, v1);
+    for (int u = u0; u <= u1; ++u)
+      for (int v = v0; v <= v1; ++v)
+      {
+        const std::size_t cell = static_cast<std::size_t>((f.axis * kGrid + u) * kGrid + v);
+        if (f.positive)
+          nearestFront[cell] = std::min(nearestFront[cell], f.coordinate);
+        else
+          farthestBack[cell] = std::max(farthestBack[cell], f.coordinate);
+      }
+  }
+  double total = 0.0;
+  double enclosed = 0.0;
+  for (const Facing& f : facing)
+  {
+    int u, v, unused;
+    const int du = (f.axis + 1) % 3, dv = (f.axis + 2) % 3;
+    cellRange(f.axis, 0, 0.5 * (f.box[2 * du] + f.box[2 * du + 1]), 0.0, u, unused);
+    cellRange(f.axis, 1, 0.5 * (f.box[2 * dv] + f.box[2 * dv + 1]), 0.0, v, unused);
+    const std::size_t cell = static_cast<std::size_t>((f.axis * kGrid + u) * kGrid + v);
+    total += f.area;
+    if (f.positive ? farthestBack[cell] > f.coordinate : nearestFront[cell] < f.coordinate)
+      enclosed += f.area;
+  }
+  return total > 0.0 ? enclosed / total : 0.0;
+}
+} // namespace
+
+GeneratedRooms GenerateRooms(vtkPolyData* model, const std::string& roomArray)
+{
+  GeneratedRooms generated;
+  PolygonMesh mesh;
+  std::vector<vtkIdType> cellOf;
+  vtkBSPSortUtilities::AppendPolygons(model, nullptr, mesh, cellOf);
+  portals::GenerationInput input;
+  input.mesh = &mesh;
+  auto* colors = vtkUnsignedCharArray::SafeDownCast(model->GetCellData()->GetScalars());
+  if (colors && colors->GetNumberOfComponents() == 4)
+  {
+    for (const vtkIdType cell : cellOf)
+    {
+      input.seeThrough.push_back(colors->GetTypedComponent(cell, 3) < 255 ? 1 : 0);
+      generated.seeThroughPolygons += input.seeThrough.back();
+    }
+  }
+  generated.result = portals::generatePortals(input);
+  if (generated.result.status != portals::GenerationStatus::Ok)
+  {
+    return generated;
+  }
+  generated.rooms = vtkSmartPointer<vtkIntArray>::New();
+  generated.rooms->SetName(roomArray.c_str());
+  generated.rooms->SetNumberOfTuples(model->GetNumberOfCells());
+  generated.rooms->FillValue(portals::kOutsideRoom);
+  std::vector<char> assigned(static_cast<std::size_t>(model->GetNumberOfCells()), 0);
+  for (std::size_t i = 0; i < cellOf.size(); ++i)
+  {
+    if (!assigned[static_cast<std::size_t>(cellOf[i])])
+    {
+      generated.rooms->SetValue(cellOf[i], generated.result.roomOfPolygon[i]);
+      assigned[static_cast<std::size_t>(cellOf[i])] = 1;
+    }
+  }
+  generated.portals = PortalPolyData(generated.result.portals);
+  return generated;
+}
+
+ArchitecturalLook LooksArchitectural(vtkPolyData* model)
+{
+  const auto start = std::chrono::steady_clock::now();
+  ArchitecturalLook look;
+  look.polygons = static_cast<std::size_t>(
+    model->GetPolys()->GetNumberOfCells() + model->GetStrips()->GetNumberOfCells());
+  std::ostringstream why;
+  why << std::fixed << std::setprecision(2);
+  if (look.polygons > kMaxGenerationPolygons)
+  {
+    look.ms = Milliseconds(start);
+    why << look.polygons << " polygons (> " << kMaxGenerationPolygons
+        << ", too many to generate rooms and portals for)";
+    look.reason = why.str();
+    return look;
+  }
+  // Within 1 degree of an axis plane: facing along the axis, or perpendicular to it.
+  const double alongCos = std::cos(std::acos(-1.0) / 180.0);
+  const double acrossSin = std::sin(std::acos(-1.0) / 180.0);
+  std::array<double, 3> aligned{ 0.0, 0.0, 0.0 };
+  double total = 0.0;
+  vtkPoints* points = model->GetPoints();
+  vtkCellArray* polys = model->GetPolys();
+  vtkIdType npts = 0;
+  const vtkIdType* pts = nullptr;
+  for (polys->InitTraversal(); points && polys->GetNextCell(npts, pts);)
+  {
+    double n[3] = { 0.0, 0.0, 0.0 }; // Newell's normal: twice the area, along the normal
+    double a[3];
+    double b[3];
+    for (vtkIdType k = 0; k < npts; ++k)
+    {
+      points->GetPoint(pts[k], a);
+      points->GetPoint(pts[(k + 1) % npts], b);
+      n[0] += (a[1] - b[1]) * (a[2] + b[2]);
+      n[1] += (a[2] - b[2]) * (a[0] + b[0]);
+      n[2] += (a[0] - b[0]) * (a[1] + b[1]);
+    }
+    const double area = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    if (!(area > 0.0) || !std::isfinite(area))
+      continue;
+    total += area;
+    for (int axis = 0; axis < 3; ++axis)
+    {
+      const double c = std::abs(n[axis]) / area;
+      if (c >= alongCos || c <= acrossSin)
+        aligned[axis] += area;
+    }
+  }
+  look.enclosedArea = EnclosedArea(model, alongCos);
+  const double best = std::max({ aligned[0], aligned[1], aligned[2] });
+  look.alignedArea = total > 0.0 ? best / total : 0.0;
+  look.looksArchitectural =
+    look.alignedArea >= kMinAlignedArea && look.enclosedArea >= kMinEnclosedArea;
+  look.ms = Milliseconds(start);
+  why << look.polygons << " polygons, " << 100.0 * look.alignedArea
+      << " % of their area in axis-aligned planes ("
+      << (look.alignedArea >= kMinAlignedArea ? ">=" : "<") << " " << 100.0 * kMinAlignedArea
+      << " %), " << 100.0 * look.enclosedArea
+      << " % of that area faces another polygon across open space ("
+      << (look.enclosedArea >= kMinEnclosedArea ? ">=" : "<") << " " << 100.0 * kMinEnclosedArea
+      << " %), tested in " << look.ms << " ms";
+  look.reason = why.str();
+  return look;
+}
+
+} // namespace tool
+} // namespace scenevis
