@@ -167,7 +167,7 @@ double EnclosedArea(vtkPolyData* model, double alongCos)
 }
 } // namespace
 
-GeneratedRooms GenerateRooms(vtkPolyData* model, const std::string& roomArray)
+GeneratedRooms GenerateRooms(vtkPolyData* model, const std::string& roomArray, double budgetSeconds)
 {
   GeneratedRooms generated;
   PolygonMesh mesh;
@@ -184,7 +184,9 @@ GeneratedRooms GenerateRooms(vtkPolyData* model, const std::string& roomArray)
       generated.seeThroughPolygons += input.seeThrough.back();
     }
   }
-  generated.result = portals::generatePortals(input);
+  portals::GenerationConfig config;
+  config.budgetSeconds = budgetSeconds;
+  generated.result = portals::generatePortals(input, config);
   if (generated.result.status != portals::GenerationStatus::Ok)
   {
     return generated;

@@ -31,7 +31,10 @@ struct GeneratedRooms
 
 /// Rooms and portals of @p model. Translucent cells (alpha below 255 in RGBA cell scalars) are
 /// see-through: they do not close an opening. Never throws for bad geometry (see result.status).
-GeneratedRooms GenerateRooms(vtkPolyData* model, const std::string& roomArray);
+/// @p budgetSeconds: wall-clock limit of the generation (0: none; past it, result.status is
+/// OverBudget and there are no rooms).
+GeneratedRooms GenerateRooms(
+  vtkPolyData* model, const std::string& roomArray, double budgetSeconds = 0.0);
 
 /// Whether --cull auto tries GenerateRooms on a scene without rooms and portals, and why.
 struct ArchitecturalLook
@@ -54,10 +57,15 @@ constexpr double kMinAlignedArea = 0.7;
 /// Measured: the demo building 0.74, MAP01 0.98, ctf_gate1 0.72; the cad demo 0.01-0.02 (a box's
 /// face looks at the next part only where one happens to stand), spheres and the bunny 0.
 constexpr double kMinEnclosedArea = 0.5;
-/// Generation is not linear and cannot be cancelled: the demo building's 3,484 polygons take
-/// 1.0 s, MAP01's 6,857 2.3 s, the 200-part cad demo's 9,776 8.5 s, MAP12's 67,170 25 s. Above
-/// this many polygons --cull auto does not try it (`scenevis portals` once, then --portals).
+/// Generation is not linear: the demo building's 3,484 polygons take 1.0 s, MAP01's 6,857 2.3 s,
+/// the oa_koth2 level's 7,668 11 s (it leaks: not used), the 200-part cad demo's 9,776 8.5 s,
+/// MAP12's 67,170 25 s. Above this many polygons --cull auto does not try it (`scenevis portals`
+/// once, then --portals).
 constexpr std::size_t kMaxGenerationPolygons = 10000;
+/// And it stops after this many seconds (GenerationConfig::budgetSeconds): what a scene that
+/// looks architectural but leaks (every real level tried) costs --cull auto before its first
+/// frame. Three times the building's 1.0 s under load.
+constexpr double kAutoGenerationBudgetSeconds = 3.0;
 
 /// A cheap test, linear in the polygons (0.2-10 ms on the scenes above): at most
 /// kMaxGenerationPolygons polygons, at least kMinAlignedArea of their area in axis-aligned planes

@@ -436,6 +436,32 @@ TEST(PortalGeneration, FarFromTheOriginTheSameRoomsAndPortals)
   expectOpeningsCovered(s, g, 1e-6 * 1e7);
 }
 
+TEST(PortalGeneration, PastItsBudgetGenerationStopsWithNoRooms)
+{
+  ArchitectureSoup s = rowOfRooms(6);
+  s.finish();
+  GenerationInput in;
+  in.mesh = &s.mesh;
+  GenerationConfig config;
+  config.budgetSeconds = 1e-9; // over after the first step
+  const GeneratedPortals stopped = generatePortals(in, config);
+  EXPECT_EQ(stopped.status, GenerationStatus::OverBudget);
+  EXPECT_NE(stopped.message.find("over the budget"), std::string::npos) << stopped.message;
+  EXPECT_EQ(stopped.roomCount, 0);
+  EXPECT_TRUE(stopped.portals.empty());
+  ASSERT_EQ(stopped.roomOfPolygon.size(), s.mesh.polygonCount());
+  for (const std::int32_t r : stopped.roomOfPolygon)
+  {
+    EXPECT_EQ(r, kOutsideRoom);
+  }
+  // A budget it fits in gives the same answer as none.
+  config.budgetSeconds = 600.0;
+  const GeneratedPortals within = generatePortals(in, config);
+  ASSERT_EQ(within.status, GenerationStatus::Ok) << within.message;
+  EXPECT_EQ(within.roomCount, 6);
+  EXPECT_EQ(within.portals.size(), 5u);
+}
+
 TEST(PortalGenerationBadInput, EmptyInputGivesAStatus)
 {
   GenerationInput none;

@@ -314,6 +314,23 @@ GeneratedPortals generatePortals(const GenerationInput& input, const GenerationC
   const PolygonMesh& mesh = *input.mesh;
   const std::size_t polygons = mesh.polygonCount();
   stats.inputPolygons = polygons;
+  // Past the budget: no rooms, and the step it stopped after in the message.
+  auto overBudget = [&](const char* step)
+  {
+    const double seconds = secondsSince(start);
+    if (config.budgetSeconds <= 0.0 || seconds <= config.budgetSeconds)
+    {
+      return false;
+    }
+    out.status = GenerationStatus::OverBudget;
+    out.message = "stopped after " + std::to_string(seconds) + " s (" + step +
+      "), over the budget of " + std::to_string(config.budgetSeconds) + " s";
+    out.roomOfPolygon.assign(polygons, kOutsideRoom);
+    out.portals.clear();
+    out.roomCount = 0;
+    stats.totalSeconds = seconds;
+    return true;
+  };
   out.roomOfPolygon.assign(polygons, kOutsideRoom);
 
   // The cells are made by the polygons that block sight only.
@@ -347,6 +364,10 @@ GeneratedPortals generatePortals(const GenerationInput& input, const GenerationC
     stats.totalSeconds = secondsSince(start);
     return out;
   }
+  if (overBudget("the BSP"))
+  {
+    return out;
+  }
 
   Box inner;
   for (const std::uint32_t id : tree.fragmentVertices)
@@ -362,11 +383,19 @@ GeneratedPortals generatePortals(const GenerationInput& input, const GenerationC
   CellComplex cx = detail::buildCellComplex(tree, box);
   for (int round = 0; round < 64; ++round)
   {
+    if (overBudget("the cells"))
+    {
+      return out;
+    }
     const std::size_t splits = detail::splitCellsAtOpenings(tree, cx);
     stats.openingSplits += splits;
     if (splits == 0)
     {
       break;
+    }
+    if (overBudget("the splits at openings"))
+    {
+      return out;
     }
     cx = detail::buildCellComplex(tree, box);
   }
@@ -425,6 +454,10 @@ GeneratedPortals generatePortals(const GenerationInput& input, const GenerationC
     findOpenings(tree, cx, airPieces, config.openingEnclosure, step, regions);
 
   stats.openingSeconds = secondsSince(openingsStart);
+  if (overBudget("the openings"))
+  {
+    return out;
+  }
 
   // Rooms: air cells joined across everything that is not an opening.
   UnionFind rooms(cells);
@@ -453,6 +486,10 @@ GeneratedPortals generatePortals(const GenerationInput& input, const GenerationC
   // Leaks: cells joined to the outside without an opening, yet enclosed by geometry.
   for (std::uint32_t c = 0; c < cells; ++c)
   {
+    if (c % 256 == 255 && overBudget("the leak search"))
+    {
+      return out;
+    }
     // Only space that polygons face into: the void inside a level's pillars is enclosed too,
     // but its walls turn their backs on it.
     if (!isAir[c] || !outside[rooms.find(c)] || !contains(inner, cx.centroid[c], 0.0) ||

@@ -100,6 +100,12 @@ struct GenerationConfig
   double passageThickness = 0.5;
   /// Growth of the scene box around the input bounds, as a fraction of their diagonal.
   double margin = 0.1;
+  /// Wall-clock seconds the generation may take (0: no limit). Checked between its steps (after
+  /// the BSP, each round of opening splits, the openings) and every 256 cells of the leak search;
+  /// past it, generation stops with GenerationStatus::OverBudget and no rooms (never a partial,
+  /// unchecked answer). A caller that tries generation on speculation (`--cull auto`) bounds what
+  /// a scene that turns out to leak costs it.
+  double budgetSeconds = 0.0;
   /// The BSP over the blocking polygons. allowFreePlanes is ignored (always off): every node's
   /// plane must hold all the polygons in it that its region contains. The plane tolerance is
   /// coarser than the sorter's (1e-6 of the diagonal, not 1e-10): converted levels store points
@@ -127,8 +133,9 @@ struct GenerationInput
 enum class GenerationStatus
 {
   Ok,
-  EmptyInput,     ///< No mesh or no polygons.
-  NoValidPolygons ///< Every polygon was degenerate or touched a NaN/Inf point.
+  EmptyInput,      ///< No mesh or no polygons.
+  NoValidPolygons, ///< Every polygon was degenerate or touched a NaN/Inf point.
+  OverBudget       ///< Stopped after GenerationConfig::budgetSeconds; no rooms.
 };
 
 /// Numbers a test can assert on; times only for reports.
