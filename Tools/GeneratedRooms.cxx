@@ -61,6 +61,40 @@ vtkSmartPointer<vtkPolyData> PortalPolyData(const std::vector<portals::PortalDes
  * farthest (nearest) facing-back polygon of every grid cell; a polygon's centre cell is then
  * looked up. Linear in the polygons (and their boxes' grid cells).
  */
+/// Newell's normal of polygon @p pts in @p n (twice its area, along its normal); returns its length.
+double NewellNormal(vtkPoints* points, vtkIdType npts, const vtkIdType* pts, double n[3])
+{
+  n[0] = n[1] = n[2] = 0.0;
+  for (vtkIdType k = 0; k < npts; ++k)
+  {
+    double a[3], b[3];
+    points->GetPoint(pts[k], a);
+    points->GetPoint(pts[(k + 1) % npts], b);
+    n[0] += (a[1] - b[1]) * (a[2] + b[2]);
+    n[1] += (a[2] - b[2]) * (a[0] + b[0]);
+    n[2] += (a[0] - b[0]) * (a[1] + b[1]);
+  }
+  return std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+}
+
+/// Calls @p visit(npts, pts, n, area) for each polygon of @p model with a finite, non-zero
+/// Newell normal @p n (see NewellNormal).
+template <typename Visit>
+void ForEachPolygonNormal(vtkPolyData* model, Visit&& visit)
+{
+  vtkPoints* points = model->GetPoints();
+  vtkCellArray* polys = model->GetPolys();
+  vtkIdType npts = 0;
+  const vtkIdType* pts = nullptr;
+  for (polys->InitTraversal(); points && polys->GetNextCell(npts, pts);)
+  {
+    double n[3];
+    const double area = NewellNormal(points, npts, pts, n);
+    if (area > 0.0 && std::isfinite(area))
+      visit(npts, pts, n, area);
+  }
+}
+
 double EnclosedArea(vtkPolyData* model, double alongCos)
 {
   constexpr int kGrid = 64;
@@ -76,14 +110,9 @@ double EnclosedArea(vtkPolyData* model, double alongCos)
   };
   std::vector<Facing> facing;
   vtkPoints* points = model->GetPoints();
-  vtkCellArray* polys = model->GetPolys();
-  vtkIdType npts = 0;
-  const vtkIdType* pts = nullptr;
-  for (polys->InitTraversal(); points && polys->GetNextCell(npts, pts);)
-  {
-    double n[3] = { 0.0, 0.0, 0.0 };
-    double a[3];
-    double b[3];
+  ForEachPolygonNormal(model,
+    [&](vtkIdType npts, const vtkIdType* pts, const double n[3], double area)
+    {
     Facing f{};
     for (int k = 0; k < 3; ++k)
     {
@@ -92,20 +121,14 @@ double EnclosedArea(vtkPolyData* model, double alongCos)
     }
     for (vtkIdType k = 0; k < npts; ++k)
     {
+      double a[3];
       points->GetPoint(pts[k], a);
-      points->GetPoint(pts[(k + 1) % npts], b);
-      n[0] += (a[1] - b[1]) * (a[2] + b[2]);
-      n[1] += (a[2] - b[2]) * (a[0] + b[0]);
-      n[2] += (a[0] - b[0]) * (a[1] + b[1]);
       for (int c = 0; c < 3; ++c)
       {
         f.box[2 * c] = std::min(f.box[2 * c], a[c]);
         f.box[2 * c + 1] = std::max(f.box[2 * c + 1], a[c]);
       }
     }
-    const double area = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-    if (!(area > 0.0) || !std::isfinite(area))
-      continue;
     for (int axis = 0; axis < 3; ++axis)
     {
       if (std::abs(n[axis]) / area >= alongCos)
@@ -117,7 +140,7 @@ double EnclosedArea(vtkPolyData* model, double alongCos)
         facing.push_back(f);
       }
     }
-  }
+    });
   // Per axis: the largest coordinate of a polygon facing -axis and the smallest of one facing
   // +axis over each grid cell.
   std::vector<double> farthestBack(3 * kGrid * kGrid, -VTK_DOUBLE_MAX);
@@ -229,34 +252,17 @@ ArchitecturalLook LooksArchitectural(vtkPolyData* model)
   const double acrossSin = std::sin(std::acos(-1.0) / 180.0);
   std::array<double, 3> aligned{ 0.0, 0.0, 0.0 };
   double total = 0.0;
-  vtkPoints* points = model->GetPoints();
-  vtkCellArray* polys = model->GetPolys();
-  vtkIdType npts = 0;
-  const vtkIdType* pts = nullptr;
-  for (polys->InitTraversal(); points && polys->GetNextCell(npts, pts);)
-  {
-    double n[3] = { 0.0, 0.0, 0.0 }; // Newell's normal: twice the area, along the normal
-    double a[3];
-    double b[3];
-    for (vtkIdType k = 0; k < npts; ++k)
+  ForEachPolygonNormal(model,
+    [&](vtkIdType, const vtkIdType*, const double n[3], double area)
     {
-      points->GetPoint(pts[k], a);
-      points->GetPoint(pts[(k + 1) % npts], b);
-      n[0] += (a[1] - b[1]) * (a[2] + b[2]);
-      n[1] += (a[2] - b[2]) * (a[0] + b[0]);
-      n[2] += (a[0] - b[0]) * (a[1] + b[1]);
-    }
-    const double area = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-    if (!(area > 0.0) || !std::isfinite(area))
-      continue;
-    total += area;
-    for (int axis = 0; axis < 3; ++axis)
-    {
-      const double c = std::abs(n[axis]) / area;
-      if (c >= alongCos || c <= acrossSin)
-        aligned[axis] += area;
-    }
-  }
+      total += area;
+      for (int axis = 0; axis < 3; ++axis)
+      {
+        const double c = std::abs(n[axis]) / area;
+        if (c >= alongCos || c <= acrossSin)
+          aligned[axis] += area;
+      }
+    });
   look.enclosedArea = EnclosedArea(model, alongCos);
   const double best = std::max({ aligned[0], aligned[1], aligned[2] });
   look.alignedArea = total > 0.0 ? best / total : 0.0;
