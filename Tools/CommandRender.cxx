@@ -190,7 +190,7 @@ int RunRender(const Options& options)
   const vtkIdType cells = plan.facts.polygons;
   const ResidentMemory memory = ReadResidentMemory();
   const double accountedMs = scene.loadMs + scene.checkMs + scene.normalsMs + windowMs + boundsMs +
-    plan.inspectMs + plan.splitMs + actorsMs + cullersMs + firstFrameTotalMs;
+    plan.inspectMs + plan.generateMs + plan.splitMs + actorsMs + cullersMs + firstFrameTotalMs;
   std::ostringstream json;
   std::ostringstream details;
   json << std::fixed << std::setprecision(3);
@@ -212,6 +212,7 @@ int RunRender(const Options& options)
        << "],\n  \"load_ms\": " << scene.loadMs << ",\n  \"check_ms\": " << scene.checkMs
        << ",\n  \"normals_ms\": " << scene.normalsMs << ",\n  \"window_ms\": " << windowMs
        << ",\n  \"bounds_ms\": " << boundsMs << ",\n  \"inspect_ms\": " << plan.inspectMs
+       << ",\n  \"rooms_ms\": " << plan.generateMs
        << ",\n  \"split_ms\": " << plan.splitMs << ",\n  \"actors_ms\": " << actorsMs
        << ",\n  \"cullers_ms\": " << cullersMs << ",\n  \"build_ms\": " << buildMs
        << ",\n  \"cull_setup_ms\": " << culling.SetupMs()
@@ -261,7 +262,8 @@ int RunRender(const Options& options)
     std::cout << ", PVS " << culling.SetupMs() << " ms";
   std::cout << "\n  first frame after " << firstFrameMs / 1000.0 << " s (load "
             << scene.loadMs / 1000.0 << ", checks " << scene.checkMs / 1000.0 << ", normals "
-            << scene.normalsMs / 1000.0 << ", facts " << plan.inspectMs / 1000.0 << ", split "
+            << scene.normalsMs / 1000.0 << ", facts " << plan.inspectMs / 1000.0 << ", rooms "
+            << plan.generateMs / 1000.0 << ", split "
             << plan.splitMs / 1000.0 << ", actors " << actorsMs / 1000.0 << ", cullers "
             << cullersMs / 1000.0 << ", frame " << firstFrameTotalMs / 1000.0 << " s)\n";
   std::cout << "  memory: peak " << FormatBytes(memory.peak) << " = " << std::setprecision(2)
