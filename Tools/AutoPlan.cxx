@@ -303,19 +303,16 @@ ScenePlan PlanScene(const Options& options, const LoadedScene& scene, const std:
   plan.inspectMs = Milliseconds(inspectStart);
   plan.portals = scene.portals;
   std::string generation;
-  // Portal culling draws one actor per room: a sort method that orders one mesh cannot follow.
-  const bool sortAcrossActors = sort == "auto" || sort == "none" || sort == "oit" ||
-    sort == "multi-actor" || sort.rfind("peel:", 0) == 0;
   if (options.cull == "auto" && !plan.instanced &&
-    !(plan.facts.rooms > 0 && plan.facts.portals > 0) && !sortAcrossActors)
-  {
-    generation = "; rooms and portals not generated: --sort " + sort + " orders one mesh";
-  }
-  else if (options.cull == "auto" && !plan.instanced &&
     !(plan.facts.rooms > 0 && plan.facts.portals > 0))
   {
-    generation = GenerateRoomsForAuto(
-      scene.polydata, options.roomArray, plan.facts, plan.portals, plan.generateMs);
+    // Portal culling draws one actor per room: a sort method that orders one mesh cannot follow.
+    const bool sortAcrossActors = sort == "auto" || sort == "none" || sort == "oit" ||
+      sort == "multi-actor" || sort.rfind("peel:", 0) == 0;
+    generation = sortAcrossActors
+      ? GenerateRoomsForAuto(
+          scene.polydata, options.roomArray, plan.facts, plan.portals, plan.generateMs)
+      : "; rooms and portals not generated: --sort " + sort + " orders one mesh";
   }
   plan.cull = PlanCulling(options.cull, plan.facts, options.roomArray);
   if (generation.rfind("auto: ", 0) == 0)

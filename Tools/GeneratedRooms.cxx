@@ -54,14 +54,8 @@ vtkSmartPointer<vtkPolyData> PortalPolyData(const std::vector<portals::PortalDes
   return data;
 }
 
-/**
- * Of the area of the polygons facing along an axis (within 1 degree), the share that faces a
- * polygon turned towards it further along that axis: a floor under a ceiling, a wall across a
- * room from another. On a 64 x 64 grid over the other two axes, each polygon's box marks the
- * farthest (nearest) facing-back polygon of every grid cell; a polygon's centre cell is then
- * looked up. Linear in the polygons (and their boxes' grid cells).
- */
-/// Newell's normal of polygon @p pts in @p n (twice its area, along its normal); returns its length.
+/// Newell's normal of polygon @p pts in @p n (twice its area, along its normal); returns its
+/// length.
 double NewellNormal(vtkPoints* points, vtkIdType npts, const vtkIdType* pts, double n[3])
 {
   n[0] = n[1] = n[2] = 0.0;
@@ -95,6 +89,13 @@ void ForEachPolygonNormal(vtkPolyData* model, Visit&& visit)
   }
 }
 
+/**
+ * Of the area of the polygons facing along an axis (within 1 degree), the share that faces a
+ * polygon turned towards it further along that axis: a floor under a ceiling, a wall across a
+ * room from another. On a 64 x 64 grid over the other two axes, each polygon's box marks the
+ * farthest (nearest) facing-back polygon of every grid cell; a polygon's centre cell is then
+ * looked up. Linear in the polygons (and their boxes' grid cells).
+ */
 double EnclosedArea(vtkPolyData* model, double alongCos)
 {
   constexpr int kGrid = 64;
@@ -113,33 +114,33 @@ double EnclosedArea(vtkPolyData* model, double alongCos)
   ForEachPolygonNormal(model,
     [&](vtkIdType npts, const vtkIdType* pts, const double n[3], double area)
     {
-    Facing f{};
-    for (int k = 0; k < 3; ++k)
-    {
-      f.box[2 * k] = VTK_DOUBLE_MAX;
-      f.box[2 * k + 1] = -VTK_DOUBLE_MAX;
-    }
-    for (vtkIdType k = 0; k < npts; ++k)
-    {
-      double a[3];
-      points->GetPoint(pts[k], a);
-      for (int c = 0; c < 3; ++c)
+      Facing f{};
+      for (int k = 0; k < 3; ++k)
       {
-        f.box[2 * c] = std::min(f.box[2 * c], a[c]);
-        f.box[2 * c + 1] = std::max(f.box[2 * c + 1], a[c]);
+        f.box[2 * k] = VTK_DOUBLE_MAX;
+        f.box[2 * k + 1] = -VTK_DOUBLE_MAX;
       }
-    }
-    for (int axis = 0; axis < 3; ++axis)
-    {
-      if (std::abs(n[axis]) / area >= alongCos)
+      for (vtkIdType k = 0; k < npts; ++k)
       {
-        f.axis = axis;
-        f.positive = n[axis] > 0.0;
-        f.coordinate = 0.5 * (f.box[2 * axis] + f.box[2 * axis + 1]);
-        f.area = area;
-        facing.push_back(f);
+        double a[3];
+        points->GetPoint(pts[k], a);
+        for (int c = 0; c < 3; ++c)
+        {
+          f.box[2 * c] = std::min(f.box[2 * c], a[c]);
+          f.box[2 * c + 1] = std::max(f.box[2 * c + 1], a[c]);
+        }
       }
-    }
+      for (int axis = 0; axis < 3; ++axis)
+      {
+        if (std::abs(n[axis]) / area >= alongCos)
+        {
+          f.axis = axis;
+          f.positive = n[axis] > 0.0;
+          f.coordinate = 0.5 * (f.box[2 * axis] + f.box[2 * axis + 1]);
+          f.area = area;
+          facing.push_back(f);
+        }
+      }
     });
   // Per axis: the largest coordinate of a polygon facing -axis and the smallest of one facing
   // +axis over each grid cell.
