@@ -27,6 +27,8 @@
 //   10 x 10 rooms, inside: the middle of a ground-floor room), engine (engine-glb), bunny
 //   (bunny-stl, opacity 0.4), level-MAP (the data cache).
 //   --smoke: one small scene, 4 frames (CI).
+//   --csv FILE: also one row per scene in FILE (docs/planner-path.csv is written this way): what
+//   the planner chose, its total, the best fixed choice and each fixed choice's total.
 #include "vtkSceneVisPlanner.h"
 
 #include "../Tools/CameraFile.h"
@@ -66,6 +68,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <fstream>
 #include <iostream>
 #include <map>
 #include <memory>
@@ -81,7 +84,19 @@ struct Options
   int height = 480;
   std::vector<std::string> scenes;
   bool smoke = false;
+  std::string csv; ///< --csv FILE: one row per scene
 };
+
+/// @p text as one CSV field: quoted (quotes doubled) when it holds a comma or a quote.
+std::string CsvField(const std::string& text)
+{
+  if (text.find_first_of(",\"") == std::string::npos)
+    return text;
+  std::string quoted = "\"";
+  for (const char c : text)
+    quoted += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return quoted + "\"";
+}
 
 struct PathScene
 {
@@ -349,10 +364,12 @@ bool ParseOptions(int argc, char** argv, Options& options)
       options.scenes.emplace_back(argv[++i]);
     else if (arg == "--smoke")
       options.smoke = true;
+    else if (arg == "--csv" && hasValue)
+      options.csv = argv[++i];
     else
     {
       std::cerr << "usage: scenevis_planner_path_bench [--frames N] [--size WxH] [--scene NAME]... "
-                   "[--smoke]\n";
+                   "[--smoke] [--csv FILE]\n";
       return false;
     }
   }
@@ -376,6 +393,18 @@ int main(int argc, char** argv)
   Options options;
   if (!ParseOptions(argc, argv, options))
     return 2;
+  std::ofstream csv;
+  if (!options.csv.empty())
+  {
+    csv.open(options.csv);
+    if (!csv)
+    {
+      std::cerr << "scenevis_planner_path_bench: cannot write " << options.csv << "\n";
+      return 2;
+    }
+    csv << "scene,parts,translucent,frames,planner_chose,planner_ms,best_fixed,best_fixed_ms,"
+           "planner_over_best,fixed\n";
+  }
   std::printf("%-18s %-26s %10s %9s  %s\n", "scene", "method", "total ms", "/ best", "plan");
   bool ok = true;
   for (const std::string& name : options.scenes)
@@ -434,6 +463,25 @@ int main(int argc, char** argv)
     std::printf("%-18s planner / best fixed (%s) = %.2f over %d frames, %zu parts%s\n",
       name.c_str(), bestName.c_str(), methods.front()->Total() / best, options.frames,
       scene.parts.size(), scene.translucent ? ", translucent" : ", opaque");
+    if (csv.is_open())
+    {
+      std::string chose, fixed;
+      for (const auto& choice : methods.front()->planFrames)
+        chose += (chose.empty() ? "" : "; ") + choice.first + " (" + std::to_string(choice.second) +
+          " frames)";
+      char figure[64];
+      for (std::size_t m = 1; m < methods.size(); ++m)
+      {
+        std::snprintf(figure, sizeof figure, " %.1f ms", methods[m]->Total());
+        fixed += (fixed.empty() ? "" : "; ") + methods[m]->name + figure;
+      }
+      char numbers[160];
+      std::snprintf(numbers, sizeof numbers, "%.1f,%s,%.1f,%.2f", methods.front()->Total(),
+        CsvField(bestName).c_str(), best, methods.front()->Total() / best);
+      csv << CsvField(name) << ',' << scene.parts.size() << ',' << (scene.translucent ? 1 : 0)
+          << ',' << options.frames << ',' << CsvField(chose) << ',' << numbers << ','
+          << CsvField(fixed) << '\n';
+    }
     ok = ok && !methods.front()->frameMs.empty();
   }
   return ok ? 0 : 1;
