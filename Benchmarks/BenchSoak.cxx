@@ -37,7 +37,8 @@
 //    10-30x a view from inside it), so they differ by 5x and more on a steady renderer.
 //
 // Usage: scenevis_soak_bench [--grid N] [--size WxH] [--frames K] [--modes LIST] [--seed S]
-//        [--warm-up F] [--window W] [--passes P] [--smoke]
+//        [--warm-up F] [--window W] [--passes P] [--smoke] [--abandon]
+//   --abandon: _exit right after the first mode's last frame (for heaptrack, see Options).
 //   --frames K: the path's length; P passes render K x P frames.
 //   LIST: comma-separated from none,frustum,occlusion,chunked (default all four).
 //   --smoke: 2 x 2 engines at 160x120, 20 frames (warm-up 5, windows of 10): a check that it runs,
@@ -281,6 +282,10 @@ struct Options
   int passes = 1; ///< times the whole path is rendered; with 2+, the first pass is the warm-up
   std::uint64_t seed = 13;
   std::vector<std::string> modes{ "none", "frustum", "occlusion", "chunked" };
+  /// --abandon: leave the process right after the last frame of the first mode, freeing nothing,
+  /// so that a heap profiler (heaptrack) reports what is live then, by call stack, as "leaked".
+  /// Two runs, --passes 1 and --passes 2, then diffed: what the second pass added.
+  bool abandon = false;
 };
 
 /// Median, p95 and max of @p ms.
@@ -379,6 +384,13 @@ SoakResult Soak(const std::string& mode, vtkRenderer* renderer, const double bou
   }
   r.rssEnd = ResidentBytes();
   r.heapEnd = HeapInUseBytes();
+  if (o.abandon)
+  {
+    std::fprintf(stderr, "[%s] abandoned after %zu frames (--abandon), RSS %.1f MiB\n",
+      mode.c_str(), total, r.rssEnd / kMiB);
+    std::fflush(nullptr);
+    _exit(0);
+  }
   r.meanDrawn = drawnSum / std::max<std::size_t>(1, total);
   // The same cameras again: frames warm-up .. warm-up + replay - 1.
   for (int f = o.warmUp; f < o.warmUp + o.replay && f < static_cast<int>(path.size()); ++f)
@@ -514,6 +526,8 @@ bool ParseOptions(int argc, char* argv[], Options& o)
         o.modes.push_back(m);
       }
     }
+    else if (a == "--abandon")
+      o.abandon = true;
     else if (a == "--smoke")
     {
       o.grid = 2;
@@ -528,7 +542,7 @@ bool ParseOptions(int argc, char* argv[], Options& o)
     {
       std::cerr << "usage: scenevis_soak_bench [--grid N] [--size WxH] [--frames K] [--modes "
                    "none,frustum,occlusion,chunked] [--seed S] [--warm-up F] [--window W] "
-                   "[--passes P] [--smoke]\n";
+                   "[--passes P] [--smoke] [--abandon]\n";
       return false;
     }
   }
