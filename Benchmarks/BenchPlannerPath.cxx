@@ -5,7 +5,8 @@
 // application that splits its model would have them: plain mappers, cell colours), the same
 // camera path for all. The frames are interleaved (frame i of every method, then frame i + 1), so
 // a load change on this shared machine hits every method alike. A method's time is the sum of its
-// frames' Render() wall times (OSMesa: the render is finished when Render() returns), the
+// frames' wall times, Render() and glFinish (WaitForCompletion: llvmpipe's rasterizer thread
+// may still draw when Render() returns), the
 // planner's Plan() (the renderer's StartEvent) included.
 //
 // The fixed choices are what an application can install on the same actors: culling none (VTK's
@@ -288,6 +289,9 @@ struct Method
     this->renderer->ResetCameraClippingRange();
     const auto start = std::chrono::steady_clock::now();
     this->window->Render();
+    // Render() returns while llvmpipe may still rasterize; without the wait that work would be
+    // timed in the next method's frame.
+    this->window->WaitForCompletion();
     this->frameMs.push_back(
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
     if (this->planner)

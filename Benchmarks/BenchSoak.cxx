@@ -21,7 +21,8 @@
 //  - chunked:   the grid flattened into ONE polydata drawn by vtkChunkedPolyDataMapper with
 //               OcclusionCullingOn() (frustum + occlusion culling of its spatial chunks).
 //
-// Measured per mode: frame time (wall clock of vtkRenderWindow::Render(): cull + llvmpipe draw)
+// Measured per mode: frame time (wall clock of vtkRenderWindow::Render() and glFinish: cull +
+// llvmpipe draw, the rasterizer's work included)
 // median / p95 / max per window of 250 frames; resident memory (/proc/self/statm) and the heap's
 // live bytes (glibc mallinfo2: what is allocated and not freed, against what malloc keeps) after
 // frame 100, at the end of every window and at the end, and the process's peak (VmHWM of
@@ -39,6 +40,7 @@
 // Usage: scenevis_soak_bench [--grid N] [--size WxH] [--frames K] [--modes LIST] [--seed S]
 //        [--warm-up F] [--window W] [--passes P] [--smoke] [--abandon]
 //   --abandon: _exit right after the first mode's last frame (for heaptrack, see Options).
+//   --no-finish: no glFinish after each Render() (see Options::finish).
 //   --frames K: the path's length; P passes render K x P frames.
 //   LIST: comma-separated from none,frustum,occlusion,chunked (default all four).
 //   --smoke: 2 x 2 engines at 160x120, 20 frames (warm-up 5, windows of 10): a check that it runs,
@@ -286,6 +288,9 @@ struct Options
   /// so that a heap profiler (heaptrack) reports what is live then, by call stack, as "leaked".
   /// Two runs, --passes 1 and --passes 2, then diffed: what the second pass added.
   bool abandon = false;
+  /// Each frame ends with glFinish (WaitForCompletion), inside its time; --no-finish leaves
+  /// llvmpipe free to rasterize a frame while the next one is culled and binned.
+  bool finish = true;
 };
 
 /// Median, p95 and max of @p ms.
@@ -319,6 +324,7 @@ struct SoakResult
   /// With 2+ passes: RSS and live heap at the end of the first pass (every camera seen once).
   double rssPass1 = 0, heapPass1 = 0, peakPass1 = 0;
   double meanDrawn = 0; ///< props (actor modes) or triangles (chunked) drawn per frame
+  double finishMs = 0;  ///< time spent in WaitForCompletion() after Render() returned, summed
   std::string drawnUnit;
   double rssFrom = 0, growth = 0; ///< the verdict's reference RSS and the growth from it, in %
   bool rssPass = false, framesStable = false;
@@ -345,6 +351,14 @@ SoakResult Soak(const std::string& mode, vtkRenderer* renderer, const double bou
     renderer->ResetCameraClippingRange(bounds);
     const auto start = Clock::now();
     window->Render();
+    if (o.finish)
+    {
+      // Render() returns while llvmpipe's rasterizer thread may still draw the frame (a frame
+      // shown on screen or read back waits for it); glFinish makes the time the whole frame's.
+      const auto returned = Clock::now();
+      window->WaitForCompletion();
+      r.finishMs += Milliseconds(returned);
+    }
     return Milliseconds(start);
   };
   const auto start = Clock::now();
@@ -410,6 +424,12 @@ void Report(SoakResult& r, const std::vector<Pose>& path, const Options& o)
               "average\n",
     r.mode.c_str(), r.frameMs.size(), r.replayMs.size(), r.seconds, r.meanDrawn,
     r.drawnUnit.c_str());
+  if (o.finish)
+  {
+    std::printf("  waiting for llvmpipe after Render() returned (glFinish): %.2f ms per frame on "
+                "average\n",
+      r.finishMs / std::max<std::size_t>(1, r.frameMs.size() + r.replayMs.size()));
+  }
   std::printf("  %-7s %-11s %10s %10s %10s %12s %13s\n", "window", "frames", "median ms", "p95 ms",
     "max ms", "RSS MiB end", "heap MiB end");
   std::vector<double> medians;
@@ -528,6 +548,8 @@ bool ParseOptions(int argc, char* argv[], Options& o)
     }
     else if (a == "--abandon")
       o.abandon = true;
+    else if (a == "--no-finish")
+      o.finish = false;
     else if (a == "--smoke")
     {
       o.grid = 2;
@@ -542,7 +564,7 @@ bool ParseOptions(int argc, char* argv[], Options& o)
     {
       std::cerr << "usage: scenevis_soak_bench [--grid N] [--size WxH] [--frames K] [--modes "
                    "none,frustum,occlusion,chunked] [--seed S] [--warm-up F] [--window W] "
-                   "[--passes P] [--smoke] [--abandon]\n";
+                   "[--passes P] [--smoke] [--abandon] [--no-finish]\n";
       return false;
     }
   }
