@@ -5,9 +5,8 @@
 // application that splits its model would have them: plain mappers, cell colours), the same
 // camera path for all. The frames are interleaved (frame i of every method, then frame i + 1), so
 // a load change on this shared machine hits every method alike. A method's time is the sum of its
-// frames' wall times, Render() and glFinish (WaitForCompletion: llvmpipe's rasterizer thread
-// may still draw when Render() returns), the
-// planner's Plan() (the renderer's StartEvent) included.
+// frames' wall times, Render() and glFinish (WaitForCompletion: llvmpipe's rasterizer thread may
+// still draw when Render() returns), the planner's Plan() (the renderer's StartEvent) included.
 //
 // The fixed choices are what an application can install on the same actors: culling none (VTK's
 // vtkFrustumCoverageCuller), octree or occlusion (vtkOcclusionCuller with and without occlusion);
