@@ -656,9 +656,59 @@ TEST_P(OcclusionBuffer, HiddenTriangleClustersAreSkippedWithTheSameBuffer)
     EXPECT_EQ(all.stats().trianglesDrawn, runsSkipped.stats().trianglesDrawn) << "scene " << scene;
     tested += runsSkipped.stats().clustersTested;
     skipped += runsSkipped.stats().clustersHidden;
+
+    // The same model points handed over untransformed (ModelVertices, double and float): the
+    // buffer transforms the points it needs and must come out bit for bit as from clip space.
+    std::vector<float> xyzFloat(xyz.begin(), xyz.end());
+    std::vector<glm::dvec4> clipOfFloat(clip.size());
+    for (std::size_t i = 0; i < clip.size(); ++i)
+    {
+      clipOfFloat[i] =
+        clipFromModel * glm::dvec4(xyzFloat[3 * i], xyzFloat[3 * i + 1], xyzFloat[3 * i + 2], 1.0);
+    }
+    for (int precision = 0; precision < 2; ++precision)
+    {
+      ModelVertices model;
+      model.clipFromModel = clipFromModel;
+      if (precision)
+      {
+        model.xyzFloat = xyzFloat.data();
+      }
+      else
+      {
+        model.xyzDouble = xyz.data();
+      }
+      MaskedDepthBuffer fromClip = bufferFor(cam), fromModel = bufferFor(cam);
+      draw(fromClip, cam, front);
+      draw(fromModel, cam, front);
+      fromClip.drawTriangles(precision ? clipOfFloat.data() : clip.data(), clip.size(),
+        indices.data(), triangles, culling, neighbors.data(), &clusters);
+      fromModel.drawTriangles(
+        model, clip.size(), indices.data(), triangles, culling, neighbors.data(), &clusters);
+      for (std::size_t i = 0; i < fromClip.tiles().size(); ++i)
+      {
+        const MaskedDepthBuffer::Tile& a = fromClip.tiles()[i];
+        const MaskedDepthBuffer::Tile& b = fromModel.tiles()[i];
+        ASSERT_TRUE(a.z0 == b.z0 && a.mask == b.mask && a.z1 == b.z1)
+          << "scene " << scene << " tile " << i << (precision ? " float" : " double");
+      }
+      EXPECT_EQ(fromClip.stats().trianglesDrawn, fromModel.stats().trianglesDrawn);
+      EXPECT_EQ(fromClip.stats().trianglesRejected, fromModel.stats().trianglesRejected);
+      EXPECT_EQ(fromClip.stats().tilesUpdated, fromModel.stats().tilesUpdated);
+    }
   }
   // Not the same by skipping nothing.
   EXPECT_GT(skipped, tested / 10) << skipped << " of " << tested << " runs skipped";
+}
+
+TEST_P(OcclusionBuffer, ModelVerticesWithoutPointsDrawNothing)
+{
+  const Camera cam = perspectiveCamera({ 0, 0, 10 }, { 0, 0, 0 }, 60.0, 64, 48, 0.1, 100.0);
+  MaskedDepthBuffer buffer = bufferFor(cam);
+  const std::uint32_t indices[3] = { 0, 1, 2 };
+  buffer.drawTriangles(ModelVertices(), 3, indices, 1);
+  EXPECT_EQ(buffer.stats().trianglesRejected, 1u);
+  EXPECT_FALSE(buffer.boxOccluded({ -1, -1, -6 }, { 1, 1, -4 }));
 }
 
 namespace

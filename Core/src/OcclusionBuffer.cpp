@@ -155,6 +155,28 @@ void MaskedDepthBuffer::drawTriangles(const glm::dvec4* clip,
   const std::uint32_t* neighbors,
   const TriangleClusters* clusters)
 {
+  drawTrianglesFrom(
+    clip, nullptr, vertexCount, indices, triangleCount, culling, neighbors, clusters);
+}
+
+void MaskedDepthBuffer::drawTriangles(const ModelVertices& model, std::size_t vertexCount,
+  const std::uint32_t* indices, std::size_t triangleCount, FaceCulling culling,
+  const std::uint32_t* neighbors, const TriangleClusters* clusters)
+{
+  if (!model.xyzFloat && !model.xyzDouble)
+  {
+    stats_.trianglesIn += triangleCount;
+    stats_.trianglesRejected += triangleCount;
+    return;
+  }
+  drawTrianglesFrom(
+    nullptr, &model, vertexCount, indices, triangleCount, culling, neighbors, clusters);
+}
+
+void MaskedDepthBuffer::drawTrianglesFrom(const glm::dvec4* clip, const ModelVertices* model,
+  std::size_t vertexCount, const std::uint32_t* indices, std::size_t triangleCount,
+  FaceCulling culling, const std::uint32_t* neighbors, const TriangleClusters* clusters)
+{
   stats_.trianglesIn += triangleCount;
   if (tiles_.empty() || culling == FaceCulling::Both)
   {
@@ -169,10 +191,35 @@ void MaskedDepthBuffer::drawTriangles(const glm::dvec4* clip,
   window_.resize(vertexCount);
   centres_.resize(vertexCount);
   vertexState_.assign(vertexCount, 3);
+  if (model)
+  {
+    clip_.resize(vertexCount); // grows only: no allocation per call once warm
+    clip = clip_.data();
+  }
   auto state = [&](std::uint32_t i) -> unsigned char {
     unsigned char& s = vertexState_[i];
     if (s == 3)
     {
+      if (model)
+      {
+        // Left to right, as glm's matrix-vector product (see ModelVertices).
+        const glm::dmat4& m = model->clipFromModel;
+        double x, y, z;
+        if (model->xyzFloat)
+        {
+          const float* p = model->xyzFloat + 3 * std::size_t(i);
+          x = p[0], y = p[1], z = p[2];
+        }
+        else
+        {
+          const double* p = model->xyzDouble + 3 * std::size_t(i);
+          x = p[0], y = p[1], z = p[2];
+        }
+        clip_[i] = glm::dvec4(m[0][0] * x + m[1][0] * y + m[2][0] * z + m[3][0],
+          m[0][1] * x + m[1][1] * y + m[2][1] * z + m[3][1],
+          m[0][2] * x + m[1][2] * y + m[2][2] * z + m[3][2],
+          m[0][3] * x + m[1][3] * y + m[2][3] * z + m[3][3]);
+      }
       const glm::dvec4& v = clip[i];
       if (!finite(v))
       {

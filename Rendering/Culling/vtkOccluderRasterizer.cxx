@@ -324,42 +324,6 @@ void vtkOccluderRasterizer::Draw(vtkProp* prop, const double bounds[6], const do
     vtkMatrix4x4::Multiply4x4(this->ClipFromWorld, model, m);
     vtkPoints* points = data->GetPoints();
     const vtkIdType n = points->GetNumberOfPoints();
-    this->Clip.resize(static_cast<std::size_t>(n));
-    auto transform = [this, &m](vtkIdType i, double x, double y, double z)
-    {
-      glm::dvec4& c = this->Clip[static_cast<std::size_t>(i)];
-      c.x = m[0] * x + m[1] * y + m[2] * z + m[3];
-      c.y = m[4] * x + m[5] * y + m[6] * z + m[7];
-      c.z = m[8] * x + m[9] * y + m[10] * z + m[11];
-      c.w = m[12] * x + m[13] * y + m[14] * z + m[15];
-    };
-    // The points' own array read directly when it is a plain float or double one (no virtual
-    // call per point).
-    if (vtkFloatArray* f = vtkFloatArray::FastDownCast(points->GetData()))
-    {
-      const float* p = f->GetPointer(0);
-      for (vtkIdType i = 0; i < n; ++i, p += 3)
-      {
-        transform(i, p[0], p[1], p[2]);
-      }
-    }
-    else if (vtkDoubleArray* d = vtkDoubleArray::FastDownCast(points->GetData()))
-    {
-      const double* p = d->GetPointer(0);
-      for (vtkIdType i = 0; i < n; ++i, p += 3)
-      {
-        transform(i, p[0], p[1], p[2]);
-      }
-    }
-    else
-    {
-      for (vtkIdType i = 0; i < n; ++i)
-      {
-        double p[3];
-        points->GetPoint(i, p);
-        transform(i, p[0], p[1], p[2]);
-      }
-    }
     // Runs of triangles behind what the buffer already has are skipped before their vertices
     // are projected (most of a part seen beside or behind a nearer one).
     so::TriangleClusters clusters;
@@ -372,12 +336,44 @@ void vtkOccluderRasterizer::Draw(vtkProp* prop, const double bounds[6], const do
     }
     clusters.boxes = mesh->Clusters.data();
     clusters.trianglesPerCluster = kTrianglesPerCluster;
-    buffer.drawTriangles(this->Clip.data(), this->Clip.size(), mesh->Triangles.data(),
-      mesh->Triangles.size() / 3, culling, mesh->Neighbors.data(),
-      mesh->Clusters.size() ==
-          6 * ((mesh->Triangles.size() / 3 + kTrianglesPerCluster - 1) / kTrianglesPerCluster)
-        ? &clusters
-        : nullptr);
+    const so::TriangleClusters* runs = mesh->Clusters.size() ==
+        6 * ((mesh->Triangles.size() / 3 + kTrianglesPerCluster - 1) / kTrianglesPerCluster)
+      ? &clusters
+      : nullptr;
+    // A plain float or double point array is handed over as it is: the buffer transforms only
+    // the points of the triangles it looks at (not those of skipped runs), with the same
+    // arithmetic as below.
+    so::ModelVertices vertices;
+    vertices.clipFromModel = clusters.clipFromModel;
+    if (vtkFloatArray* f = vtkFloatArray::FastDownCast(points->GetData()))
+    {
+      vertices.xyzFloat = f->GetPointer(0);
+    }
+    else if (vtkDoubleArray* d = vtkDoubleArray::FastDownCast(points->GetData()))
+    {
+      vertices.xyzDouble = d->GetPointer(0);
+    }
+    if (vertices.xyzFloat || vertices.xyzDouble)
+    {
+      buffer.drawTriangles(vertices, static_cast<std::size_t>(n), mesh->Triangles.data(),
+        mesh->Triangles.size() / 3, culling, mesh->Neighbors.data(), runs);
+    }
+    else
+    {
+      this->Clip.resize(static_cast<std::size_t>(n));
+      for (vtkIdType i = 0; i < n; ++i)
+      {
+        double p[3];
+        points->GetPoint(i, p);
+        glm::dvec4& c = this->Clip[static_cast<std::size_t>(i)];
+        c.x = m[0] * p[0] + m[1] * p[1] + m[2] * p[2] + m[3];
+        c.y = m[4] * p[0] + m[5] * p[1] + m[6] * p[2] + m[7];
+        c.z = m[8] * p[0] + m[9] * p[1] + m[10] * p[2] + m[11];
+        c.w = m[12] * p[0] + m[13] * p[1] + m[14] * p[2] + m[15];
+      }
+      buffer.drawTriangles(this->Clip.data(), this->Clip.size(), mesh->Triangles.data(),
+        mesh->Triangles.size() / 3, culling, mesh->Neighbors.data(), runs);
+    }
     ++this->OccludersDrawn;
     this->OccluderTriangles += static_cast<vtkIdType>(mesh->Triangles.size() / 3);
   }

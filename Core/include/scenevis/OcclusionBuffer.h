@@ -139,6 +139,22 @@ struct TriangleClusters
   std::size_t trianglesPerCluster = 0;
 };
 
+/**
+ * An occluder's points in model space, for the drawTriangles() overload that maps them to clip
+ * space itself: only the points of triangles that are looked at (not those of runs skipped by
+ * TriangleClusters) are transformed, each once, when a triangle first uses it. Exactly one of
+ * @p xyzFloat and @p xyzDouble (3 coordinates per point). A point's clip coordinates are
+ * m[0][r] x + m[1][r] y + m[2][r] z + m[3][r] for row r of @p clipFromModel, summed left to right
+ * in double: the same bits as glm's clipFromModel * (x, y, z, 1), so both overloads give the same
+ * buffer.
+ */
+struct ModelVertices
+{
+  glm::dmat4 clipFromModel{ 1.0 };
+  const float* xyzFloat = nullptr;
+  const double* xyzDouble = nullptr;
+};
+
 /// Model-space boxes of runs of @p trianglesPerCluster triangles (6 doubles per run, see
 /// TriangleClusters). @p xyz: 3 coordinates per point; indices out of range are ignored.
 std::vector<double> buildTriangleClusters(const double* xyz, std::size_t pointCount,
@@ -225,6 +241,12 @@ public:
     FaceCulling culling = FaceCulling::None,
     const std::uint32_t* neighbors = nullptr,
     const TriangleClusters* clusters = nullptr);
+  /// drawTriangles() of model-space points transformed lazily (see ModelVertices): the same
+  /// buffer as transforming every point first, without the cost of the skipped runs' points.
+  void drawTriangles(const ModelVertices& model, std::size_t vertexCount,
+    const std::uint32_t* indices, std::size_t triangleCount,
+    FaceCulling culling = FaceCulling::None, const std::uint32_t* neighbors = nullptr,
+    const TriangleClusters* clusters = nullptr);
 
   /// Whether the world-space box [lo, hi] is hidden behind the occluders drawn so far (see the
   /// file comment). Only the part of the box inside the frustum (sides and near plane) is
@@ -263,6 +285,11 @@ private:
   /// The centres of the viewport that a triangle with vertices' spans @p a, @p b, @p c may
   /// cover (empty: x0 > x1 or y0 > y1).
   CentreSpan triangleSpan(const CentreSpan& a, const CentreSpan& b, const CentreSpan& c) const;
+  /// Both drawTriangles(): @p model null, @p clip holds every vertex; otherwise @p clip is
+  /// ignored and vertices are transformed into clip_ when first used.
+  void drawTrianglesFrom(const glm::dvec4* clip, const ModelVertices* model,
+    std::size_t vertexCount, const std::uint32_t* indices, std::size_t triangleCount,
+    FaceCulling culling, const std::uint32_t* neighbors, const TriangleClusters* clusters);
   void drawClippedTriangle(const glm::dvec4* v, FaceCulling culling, unsigned outlineEdges);
   void drawWindowTriangle(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c,
     FaceCulling culling, unsigned outlineEdges);
@@ -303,6 +330,7 @@ private:
   /// Per tile column / row: bits of pixels beyond the viewport (they count as covered).
   std::vector<std::uint32_t> outsideX_, outsideY_;
   // drawTriangles scratch: window coordinates, centre spans and state per vertex.
+  std::vector<glm::dvec4> clip_; // ModelVertices transformed (valid where vertexState_ != 3)
   std::vector<glm::dvec3> window_;
   std::vector<CentreSpan> centres_;
   std::vector<unsigned char> vertexState_;
