@@ -2,6 +2,9 @@
 // of up to 3 x 3 closed box rooms (zero-thickness walls, each room's faces facing into it) with
 // doors and windows of random sizes and places in the walls between them, now and then a window to
 // the outside, a 1e7 offset, degenerate and NaN/Inf polygons mixed in, or free triangles anywhere.
+// Flag 32 drops one polygon of the rooms (a leak, sanity checks only). Flag 16 also runs it with
+// GenerationConfig::stopAtFirstLeak, which must give the same answer without a leak and one leak
+// cell with no rooms when there is one.
 //
 // Oracle (the scene is built from known rooms and openings; not just "no crash"):
 // - always: a sane answer (a status of the enum; without Ok no rooms and no portals; a room id in
@@ -265,6 +268,24 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   {
     s.faces(r);
   }
+  const bool missingWall = flags & 32;
+  if (missingWall)
+  {
+    // One wall, floor or ceiling polygon gone: the room behind it leaks (or, a sliver beside a
+    // door gone, the door grows); only the sanity checks and stopAtFirstLeak's consistency.
+    const std::size_t gone = in.byte() % s.mesh.polygonCount();
+    PolygonMesh kept;
+    kept.points = s.mesh.points;
+    for (std::size_t i = 0; i < s.mesh.polygonCount(); ++i)
+    {
+      if (i != gone)
+      {
+        kept.addPolygon(s.mesh.polygon(i), s.mesh.polygonSize(i));
+      }
+    }
+    s.mesh = kept;
+    s.authoredRoom.pop_back();
+  }
   const std::size_t goodPolygons = s.mesh.polygonCount();
 
   if (badPolygons)
@@ -313,6 +334,39 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   input.mesh = &s.mesh;
   GeneratedPortals g = generatePortals(input);
   checkSane(g, s.mesh.polygonCount());
+  if (flags & 16)
+  {
+    // GenerationConfig::stopAtFirstLeak (--cull auto): without a leak the same answer, with one
+    // a single leak cell and no rooms.
+    GenerationConfig stopping;
+    stopping.stopAtFirstLeak = true;
+    const GeneratedPortals h = generatePortals(input, stopping);
+    checkSane(h, s.mesh.polygonCount());
+    if (h.status != g.status)
+    {
+      fail("stopAtFirstLeak changed the status", static_cast<long long>(h.status));
+    }
+    if (g.status == GenerationStatus::Ok && g.statistics.leakCells == 0)
+    {
+      bool same = h.statistics.leakCells == 0 && h.roomCount == g.roomCount &&
+        h.roomOfPolygon == g.roomOfPolygon && h.portals.size() == g.portals.size();
+      for (std::size_t i = 0; same && i < g.portals.size(); ++i)
+      {
+        same = h.portals[i].roomA == g.portals[i].roomA &&
+          h.portals[i].roomB == g.portals[i].roomB && h.portals[i].polygon == g.portals[i].polygon;
+      }
+      if (!same)
+      {
+        fail("stopAtFirstLeak changed the rooms or portals of a scene without leaks", 0);
+      }
+    }
+    else if (g.status == GenerationStatus::Ok &&
+      (h.statistics.leakCells != 1 || h.roomCount != 0 || !h.portals.empty()))
+    {
+      fail("stopAtFirstLeak on a leaking scene: not one leak cell and no rooms",
+        static_cast<long long>(h.statistics.leakCells));
+    }
+  }
   if (std::getenv("SCENEVIS_FUZZ_SELFTEST"))
   {
     for (PortalDesc& p : g.portals)
@@ -358,7 +412,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       std::fprintf(stderr, "\n");
     }
   }
-  if (freeTriangles)
+  if (freeTriangles || missingWall)
   {
     return 0;
   }

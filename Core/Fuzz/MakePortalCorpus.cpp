@@ -1,9 +1,10 @@
 // Writes the seed corpus of FuzzPortalGeneration into <dir> (CTest runs it before replaying the
 // seeds as Fuzz.PortalCorpus; nothing is committed). Usage: scenevis_fuzz_make_portal_corpus <dir>
 // Byte layout (see FuzzPortalGeneration.cpp): flags (1 offset 1e7, 2 degenerate/NaN polygons,
-// 4 free triangles, 8 a window to the outside), rooms along x and y (1 + b % 3 each), their sizes,
-// the height, then per wall between neighbours a byte (b % 3 == 0: closed) and the opening's
-// width, place, door or window, bottom and top.
+// 4 free triangles, 8 a window to the outside, 16 again with stopAtFirstLeak, 32 one polygon
+// dropped), rooms along x and y (1 + b % 3 each), their sizes, the height, then per wall between
+// neighbours a byte (b % 3 == 0: closed) and the opening's width, place, door or window, bottom and
+// top.
 #include <cstdint>
 #include <cstdio>
 #include <fstream>
@@ -37,6 +38,12 @@ int main(int argc, char** argv)
     { "degenerate-and-nan-polygons",
       { 2, 1, 0, 2, 2, 2, 1, 1, 128, 128, 0, 0, 200, 3, 10, 20, 30, 0, 40, 50, 60, 1, 70, 80, 90, 2,
         100, 110, 120, 3 } },
+    { "stop-at-first-leak-three-by-three",
+      { 16, 2, 2, 0, 1, 2, 3, 4, 5, 1, 1, 10, 20, 0, 0, 200, 2, 200, 100, 1, 50, 50, 1, 30, 40 } },
+    { "stop-at-first-leak-free-triangles",
+      { 20, 1, 0, 2, 2, 2, 1, 1, 128, 128, 0, 0, 200, 7, 0, 0, 0, 0, 0, 255, 0, 0, 0, 0, 255, 0, 0,
+        0, 255, 0, 0, 255, 255, 0 } },
+    { "stop-at-first-leak-missing-ceiling", { 48, 2, 0, 1, 2, 3, 4, 1, 1, 90, 30, 0, 0, 180, 7 } },
     { "free-triangles",
       { 4, 1, 0, 2, 2, 2, 1, 1, 128, 128, 0, 0, 200, 7, 0, 10, 20, 30, 1, 40, 50, 60, 2, 70, 80, 90,
         0, 128, 128, 128, 0, 200, 10, 100, 0, 10, 200, 100 } },
