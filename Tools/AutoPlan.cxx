@@ -154,7 +154,7 @@ std::string GenerateRoomsForAuto(vtkPolyData* pd, const std::string& roomArray, 
     ms = Milliseconds(start);
     return "; rooms and portals not generated: " + look.reason;
   }
-  const GeneratedRooms generated = GenerateRooms(pd, roomArray, kAutoGenerationBudgetSeconds);
+  const GeneratedRooms generated = GenerateRooms(pd, roomArray, kAutoGenerationBudgetSeconds, true);
   const portals::GeneratedPortals& result = generated.result;
   ms = Milliseconds(start);
   std::ostringstream why;

@@ -78,7 +78,10 @@ int RunPortals(const Options& options)
             << ", \"exterior_portals\": " << s.exteriorPortals
             << ", \"leak_cells\": " << s.leakCells
             << ", \"polygons_without_room\": " << s.polygonsWithoutRoom
-            << ", \"seconds\": " << s.totalSeconds << ", \"model\": " << JsonString(modelPath)
+            << ", \"seconds\": " << s.totalSeconds << ", \"bsp_seconds\": " << s.bspSeconds
+            << ", \"cell_seconds\": " << s.cellSeconds
+            << ", \"opening_seconds\": " << s.openingSeconds
+            << ", \"model\": " << JsonString(modelPath)
             << ", \"portals_file\": " << JsonString(portalsPath) << "}\n";
   return EXIT_SUCCESS;
 }

@@ -191,7 +191,8 @@ double EnclosedArea(vtkPolyData* model, double alongCos)
 }
 } // namespace
 
-GeneratedRooms GenerateRooms(vtkPolyData* model, const std::string& roomArray, double budgetSeconds)
+GeneratedRooms GenerateRooms(
+  vtkPolyData* model, const std::string& roomArray, double budgetSeconds, bool stopAtFirstLeak)
 {
   GeneratedRooms generated;
   PolygonMesh mesh;
@@ -210,6 +211,7 @@ GeneratedRooms GenerateRooms(vtkPolyData* model, const std::string& roomArray, d
   }
   portals::GenerationConfig config;
   config.budgetSeconds = budgetSeconds;
+  config.stopAtFirstLeak = stopAtFirstLeak;
   generated.result = portals::generatePortals(input, config);
   if (generated.result.status != portals::GenerationStatus::Ok)
   {

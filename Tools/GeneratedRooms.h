@@ -32,9 +32,10 @@ struct GeneratedRooms
 /// Rooms and portals of @p model. Translucent cells (alpha below 255 in RGBA cell scalars) are
 /// see-through: they do not close an opening. Never throws for bad geometry (see result.status).
 /// @p budgetSeconds: wall-clock limit of the generation (0: none; past it, result.status is
-/// OverBudget and there are no rooms).
-GeneratedRooms GenerateRooms(
-  vtkPolyData* model, const std::string& roomArray, double budgetSeconds = 0.0);
+/// OverBudget and there are no rooms). @p stopAtFirstLeak: GenerationConfig::stopAtFirstLeak
+/// (a leaking scene then gives no rooms and one leak cell, sooner).
+GeneratedRooms GenerateRooms(vtkPolyData* model, const std::string& roomArray,
+  double budgetSeconds = 0.0, bool stopAtFirstLeak = false);
 
 /// Whether --cull auto tries GenerateRooms on a scene without rooms and portals, and why.
 struct ArchitecturalLook

@@ -12,6 +12,7 @@
 #   SCENEVIS_FUZZ_SECONDS     length of the fuzz run (default 60; 0 skips fuzzing)
 #   SCENEVIS_FUZZ_OCCLUSION_SECONDS  length of the occlusion fuzz run after it (default 30)
 #   SCENEVIS_FUZZ_PART_ORDER_SECONDS length of the two-level order fuzz run after that (default 20)
+#   SCENEVIS_FUZZ_PORTAL_SECONDS     length of the portal generation fuzz run after that (default 30)
 #   SCENEVIS_SANITIZE_CXX     compiler for the ASan build (default: CMake's default, g++ on Debian)
 #
 # Only SceneVis' own code is instrumented (CMake option SCENEVIS_SANITIZE); VTK, GoogleTest and the
@@ -24,6 +25,7 @@ fuzzbuild=${SCENEVIS_FUZZ_BUILD_DIR:-$root/build-fuzz}
 fuzzseconds=${SCENEVIS_FUZZ_SECONDS:-60}
 occlusionseconds=${SCENEVIS_FUZZ_OCCLUSION_SECONDS:-30}
 partorderseconds=${SCENEVIS_FUZZ_PART_ORDER_SECONDS:-20}
+portalseconds=${SCENEVIS_FUZZ_PORTAL_SECONDS:-30}
 jobs=$(nproc)
 start=$(date +%s)
 
@@ -48,7 +50,8 @@ export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
 
 # gtest_discover_tests runs the test binary at build time, so the options above already apply.
 cmake --build "$build" -j"$jobs" --target scenevis_core_tests scenevis_fuzz_bsp_replay \
-  scenevis_fuzz_occlusion_replay scenevis_fuzz_part_order_replay scenevis_split_parts_tests scenevis_instances_tests \
+  scenevis_fuzz_occlusion_replay scenevis_fuzz_part_order_replay scenevis_fuzz_portal_generation_replay \
+  scenevis_fuzz_make_portal_corpus scenevis_split_parts_tests scenevis_instances_tests \
   scenevis_huge_pages_tests \
   SceneVisFiltersSortingCxxTests SceneVisFiltersSortingRenderingCxxTests \
   SceneVisFiltersSourcesCxxTests SceneVisIOModelsCxxTests SceneVisRenderingCullingCxxTests \
@@ -98,7 +101,7 @@ cmake -S "$root" -B "$fuzzbuild" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   -DBUILD_TESTING=OFF -DSCENEVIS_BUILD_BENCHMARKS=OFF -DSCENEVIS_BUILD_EXAMPLES=OFF \
   -DSCENEVIS_WRAP_PYTHON=OFF >"$fuzzbuild.configure.log" 2>&1 || { cat "$fuzzbuild.configure.log"; exit 1; }
 cmake --build "$fuzzbuild" -j"$jobs" --target scenevis_fuzz_bsp scenevis_fuzz_occlusion \
-  scenevis_fuzz_part_order
+  scenevis_fuzz_part_order scenevis_fuzz_portal_generation scenevis_fuzz_make_portal_corpus
 # New inputs go to a scratch directory; the committed seed corpus is only read.
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
@@ -136,5 +139,20 @@ if [ "$partorderseconds" != "0" ]; then
   }
   grep -E '^(#[0-9]+ +DONE|stat::number_of_executed_units)' "$work/part-order.log" || true
 fi
-echo "sanitize: fuzzing ${fuzzseconds} s + occlusion ${occlusionseconds} s + two-level order ${partorderseconds} s passed (build+run $(( $(date +%s) - fuzzstart )) s)"
+# Rooms and portals against the box rooms they were built from (Core/Fuzz/FuzzPortalGeneration.cpp);
+# its seeds are written by code (scenevis_fuzz_make_portal_corpus).
+if [ "$portalseconds" != "0" ]; then
+  mkdir -p "$work/portal" "$work/portal-seeds"
+  "$fuzzbuild/bin/scenevis_fuzz_make_portal_corpus" "$work/portal-seeds" >/dev/null
+  (cd "$work/portal" && "$fuzzbuild/bin/scenevis_fuzz_portal_generation" \
+    -max_total_time="$portalseconds" -timeout=20 -rss_limit_mb=2048 -print_final_stats=1 \
+    "$work/portal" "$work/portal-seeds" 2>"$work/portal.log") || {
+    tail -n 40 "$work/portal.log"
+    echo "sanitize: the portal generation fuzzer failed; reproducer:"
+    ls -l "$work"/portal/crash-* 2>/dev/null || true
+    exit 1
+  }
+  grep -E '^(#[0-9]+ +DONE|stat::number_of_executed_units)' "$work/portal.log" || true
+fi
+echo "sanitize: fuzzing ${fuzzseconds} s + occlusion ${occlusionseconds} s + two-level order ${partorderseconds} s + portal generation ${portalseconds} s passed (build+run $(( $(date +%s) - fuzzstart )) s)"
 echo "sanitize: done in $(( $(date +%s) - start )) s"

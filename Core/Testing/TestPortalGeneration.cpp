@@ -363,6 +363,35 @@ TEST(PortalGeneration, AMissingWallIsReportedAsALeak)
   EXPECT_EQ(g.portals[0].roomB, kOutsideRoom);
 }
 
+TEST(PortalGeneration, StoppingAtTheFirstLeakReportsOneLeakInTheOpenRoomAndNoRooms)
+{
+  ArchitectureSoup s = rowOfRooms(3);
+  s.opening(2, -1, 0, 15.0, { 0, 0, 0 }, { 0, 4, 3 }); // room 2's far wall is gone
+  s.finish();
+  GenerationInput in;
+  in.mesh = &s.mesh;
+  GenerationConfig config;
+  config.stopAtFirstLeak = true;
+  const GeneratedPortals g = generatePortals(in, config);
+  ASSERT_EQ(g.status, GenerationStatus::Ok) << g.message;
+  EXPECT_EQ(g.statistics.leakCells, 1u);
+  ASSERT_EQ(g.leakPoints.size(), 1u);
+  const glm::dvec3 p = g.leakPoints[0];
+  EXPECT_TRUE(p.x > 10.0 && p.x < 15.0 && p.y > 0.0 && p.y < 4.0 && p.z > 0.0 && p.z < 3.0)
+    << "leak point outside the open room: " << p.x << ", " << p.y << ", " << p.z;
+  EXPECT_EQ(g.roomCount, 0);
+  EXPECT_TRUE(g.portals.empty());
+  EXPECT_NE(g.message.find("first leak"), std::string::npos) << g.message;
+  for (const std::int32_t r : g.roomOfPolygon)
+  {
+    EXPECT_EQ(r, kOutsideRoom);
+  }
+  // Without it, every leak cell is counted and the closed rooms are found (`scenevis portals`).
+  const GeneratedPortals all = generatePortals(in);
+  EXPECT_GE(all.statistics.leakCells, 1u);
+  EXPECT_EQ(all.roomCount, 2);
+}
+
 TEST(PortalGeneration, AWallWoundTheWrongWayStillBelongsToItsRoom)
 {
   // Room 1's far wall (x = 10) faces the outside instead of the room, as the back side's wall

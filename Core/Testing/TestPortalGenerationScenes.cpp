@@ -150,7 +150,8 @@ Comparison compare(const scenes::BuildingScene& scene, const GeneratedPortals& g
   return c;
 }
 
-GeneratedPortals generateFor(const scenes::BuildingScene& scene)
+GeneratedPortals generateFor(
+  const scenes::BuildingScene& scene, const GenerationConfig& config = {})
 {
   GenerationInput in;
   in.mesh = &scene.mesh;
@@ -160,7 +161,7 @@ GeneratedPortals generateFor(const scenes::BuildingScene& scene)
   {
     in.seeThrough[i] = scene.parts[scene.part[i]].name == "glass";
   }
-  return generatePortals(in);
+  return generatePortals(in, config);
 }
 
 /// Whether the segment from @p a to @p b meets a polygon of @p mesh that is not see-through
@@ -240,6 +241,30 @@ TEST(PortalGenerationScenes, DemoBuildingRoomsFoundAndEveryAuthoredPortalCovered
     PortalGraphReport report;
     PortalGraph::build(g.cellScene(b.mesh), &report);
     EXPECT_EQ(report.errors(), 0u) << report.summary();
+  }
+}
+
+// --cull auto stops at the first leak; on a building that does not leak the flood from the outside
+// changes nothing: the same rooms of the same polygons and the same portals, point for point.
+TEST(PortalGenerationScenes, StoppingAtTheFirstLeakChangesNothingOnADemoBuildingThatDoesNotLeak)
+{
+  const scenes::BuildingScene b = scenes::building(2, 4, 3, 1);
+  GenerationConfig stopping;
+  stopping.stopAtFirstLeak = true;
+  const GeneratedPortals full = generateFor(b), stopped = generateFor(b, stopping);
+  ASSERT_EQ(full.status, GenerationStatus::Ok) << full.message;
+  ASSERT_EQ(stopped.status, GenerationStatus::Ok) << stopped.message;
+  std::printf("building: %.3f s in full, %.3f s stopping at the first leak\n",
+    full.statistics.totalSeconds, stopped.statistics.totalSeconds);
+  EXPECT_EQ(stopped.statistics.leakCells, 0u);
+  EXPECT_EQ(stopped.roomCount, full.roomCount);
+  EXPECT_EQ(stopped.roomOfPolygon, full.roomOfPolygon);
+  ASSERT_EQ(stopped.portals.size(), full.portals.size());
+  for (std::size_t i = 0; i < full.portals.size(); ++i)
+  {
+    EXPECT_EQ(stopped.portals[i].roomA, full.portals[i].roomA);
+    EXPECT_EQ(stopped.portals[i].roomB, full.portals[i].roomB);
+    EXPECT_EQ(stopped.portals[i].polygon, full.portals[i].polygon) << "portal " << i;
   }
 }
 

@@ -487,8 +487,10 @@ BoxGrid::BoxGrid(const std::vector<Box>& boxes, double tolerance)
     std::cbrt(volume / static_cast<double>(std::max<std::size_t>(boxes.size(), 1)));
   for (int k = 0; k < 3; ++k)
   {
-    this->Dims[k] =
-      extent[k] > 0.0 && size > 0.0 ? std::clamp(static_cast<int>(extent[k] / size), 1, 256) : 1;
+    // Clamped as a double: a flat set of boxes makes `size` tiny and the ratio too large for an
+    // int (UB the portal generation fuzzer found); NaN gives 1.
+    const double cells = extent[k] / size;
+    this->Dims[k] = cells >= 1.0 ? static_cast<int>(std::min(cells, 256.0)) : 1;
   }
   this->Cells.resize(static_cast<std::size_t>(this->Dims[0]) * this->Dims[1] * this->Dims[2]);
   for (std::uint32_t i = 0; i < boxes.size(); ++i)

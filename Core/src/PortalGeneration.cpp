@@ -105,51 +105,97 @@ Box boundsOf(const std::vector<glm::dvec3>& poly)
 /**
  * Marks the open pieces that belong to openings (see the file comment of PortalGeneration.h):
  * pieces of one plane that touch are one region; samples just outside each piece's edges tell
- * whether the outline runs along a polygon of the plane ("wall") or not.
+ * whether the outline runs along a polygon of the plane ("wall") or not. A region lies in one
+ * plane, so each plane (group) is classified on its own, all at once (classifyAll) or when a
+ * piece of it is first asked about (isOpening: the flood that stops at the first leak).
  */
-std::vector<std::uint8_t> findOpenings(const bsp::Tree& tree, const CellComplex& cx,
-  const std::vector<std::uint32_t>& airPieces, double enclosure, double step, UnionFind& regions)
+class OpeningClassifier
 {
-  const double tol = tree.tolerance;
-  const double quantum = std::max(1e3 * tol, 1e-300);
-  std::map<std::array<long long, 4>, std::uint32_t> groupOfKey;
-  std::vector<std::uint32_t> groupOfNode(tree.nodes.size(), bsp::kNone);
-  auto groupOf = [&](std::uint32_t node)
+public:
+  OpeningClassifier(const bsp::Tree& bspTree, const CellComplex& complex,
+    const std::vector<std::uint32_t>& airPieces, double enclosureShare, double sampleStep,
+    UnionFind& regionSets)
+    : tree(bspTree)
+    , cx(complex)
+    , enclosure(enclosureShare)
+    , step(sampleStep)
+    , regions(regionSets)
+    , tol(bspTree.tolerance)
+    , groupOfPiece(complex.open.size(), bsp::kNone)
+    , opening(complex.open.size(), 0)
+    , wall(complex.open.size(), 0.0)
+    , other(complex.open.size(), 0.0)
+    , regionWall(complex.open.size(), 0.0)
+    , regionOther(complex.open.size(), 0.0)
   {
-    if (groupOfNode[node] == bsp::kNone)
+    const double quantum = std::max(1e3 * tol, 1e-300);
+    std::map<std::array<long long, 4>, std::uint32_t> groupOfKey;
+    std::vector<std::uint32_t> groupOfNode(tree.nodes.size(), bsp::kNone);
+    auto groupOf = [&](std::uint32_t node)
     {
-      const auto key = planeKey(tree.nodes[node].plane, quantum);
-      groupOfNode[node] =
-        groupOfKey.emplace(key, static_cast<std::uint32_t>(groupOfKey.size())).first->second;
-    }
-    return groupOfNode[node];
-  };
-  std::vector<std::vector<std::uint32_t>> piecesOf, nodesOf;
-  for (const std::uint32_t i : airPieces)
-  {
-    const std::uint32_t g = groupOf(cx.faces[cx.open[i].face].node);
-    piecesOf.resize(std::max<std::size_t>(piecesOf.size(), g + 1));
-    piecesOf[g].push_back(i);
-  }
-  nodesOf.resize(piecesOf.size());
-  for (std::uint32_t n = 0; n < tree.nodes.size(); ++n)
-  {
-    if (tree.nodes[n].fragmentCount > 0)
-    {
-      const auto key = planeKey(tree.nodes[n].plane, quantum);
-      const auto it = groupOfKey.find(key);
-      if (it != groupOfKey.end())
+      if (groupOfNode[node] == bsp::kNone)
       {
-        nodesOf[it->second].push_back(n);
+        const auto key = planeKey(tree.nodes[node].plane, quantum);
+        groupOfNode[node] =
+          groupOfKey.emplace(key, static_cast<std::uint32_t>(groupOfKey.size())).first->second;
+      }
+      return groupOfNode[node];
+    };
+    for (const std::uint32_t i : airPieces)
+    {
+      const std::uint32_t g = groupOf(cx.faces[cx.open[i].face].node);
+      piecesOf.resize(std::max<std::size_t>(piecesOf.size(), g + 1));
+      piecesOf[g].push_back(i);
+      groupOfPiece[i] = g;
+    }
+    nodesOf.resize(piecesOf.size());
+    done.assign(piecesOf.size(), 0);
+    for (std::uint32_t n = 0; n < tree.nodes.size(); ++n)
+    {
+      if (tree.nodes[n].fragmentCount > 0)
+      {
+        const auto key = planeKey(tree.nodes[n].plane, quantum);
+        const auto it = groupOfKey.find(key);
+        if (it != groupOfKey.end())
+        {
+          nodesOf[it->second].push_back(n);
+        }
       }
     }
   }
 
-  std::vector<double> wall(cx.open.size(), 0.0), other(cx.open.size(), 0.0);
-  std::vector<std::vector<glm::dvec3>> fragments;
-  std::vector<Box> fragmentBounds, pieceBounds;
-  for (std::size_t g = 0; g < piecesOf.size(); ++g)
+  /// Whether air piece @p i belongs to an opening (its plane classified now if not yet).
+  bool isOpening(std::uint32_t i)
   {
+    const std::uint32_t g = groupOfPiece[i];
+    if (g == bsp::kNone)
+    {
+      return false;
+    }
+    if (!done[g])
+    {
+      classify(g);
+    }
+    return opening[i] != 0;
+  }
+
+  /// Every plane classified: per open piece, 1 when it belongs to an opening.
+  const std::vector<std::uint8_t>& classifyAll()
+  {
+    for (std::uint32_t g = 0; g < piecesOf.size(); ++g)
+    {
+      if (!done[g])
+      {
+        classify(g);
+      }
+    }
+    return opening;
+  }
+
+private:
+  void classify(std::uint32_t g)
+  {
+    done[g] = 1;
     const auto& pieces = piecesOf[g];
     fragments.clear();
     fragmentBounds.clear();
@@ -226,23 +272,33 @@ std::vector<std::uint8_t> findOpenings(const bsp::Tree& tree, const CellComplex&
         }
       }
     }
+    // Regions never leave their plane: the group's sums are final.
+    for (const std::uint32_t i : pieces)
+    {
+      const std::uint32_t r = regions.find(i);
+      regionWall[r] += wall[i];
+      regionOther[r] += other[i];
+    }
+    for (const std::uint32_t i : pieces)
+    {
+      const std::uint32_t r = regions.find(i);
+      opening[i] =
+        regionWall[r] > 0.0 && regionWall[r] >= enclosure * (regionWall[r] + regionOther[r]);
+    }
   }
-  std::vector<double> regionWall(cx.open.size(), 0.0), regionOther(cx.open.size(), 0.0);
-  for (const std::uint32_t i : airPieces)
-  {
-    const std::uint32_t r = regions.find(i);
-    regionWall[r] += wall[i];
-    regionOther[r] += other[i];
-  }
-  std::vector<std::uint8_t> opening(cx.open.size(), 0);
-  for (const std::uint32_t i : airPieces)
-  {
-    const std::uint32_t r = regions.find(i);
-    opening[i] =
-      regionWall[r] > 0.0 && regionWall[r] >= enclosure * (regionWall[r] + regionOther[r]);
-  }
-  return opening;
-}
+
+  const bsp::Tree& tree;
+  const CellComplex& cx;
+  const double enclosure, step;
+  UnionFind& regions;
+  const double tol;
+  std::vector<std::vector<std::uint32_t>> piecesOf, nodesOf;
+  std::vector<std::uint32_t> groupOfPiece;
+  std::vector<std::uint8_t> done, opening;
+  std::vector<double> wall, other, regionWall, regionOther;
+  std::vector<std::vector<glm::dvec3>> fragments;
+  std::vector<Box> fragmentBounds, pieceBounds;
+};
 
 /// Area-weighted centroid and Newell normal of input polygon @p i (local coordinates); false for
 /// an invalid or degenerate polygon.
@@ -450,8 +506,79 @@ GeneratedPortals generatePortals(const GenerationInput& input, const GenerationC
   const auto openingsStart = Clock::now();
   UnionFind regions(cx.open.size());
   const double step = std::max(1e-4 * diagonal, 100.0 * tree.tolerance);
-  const std::vector<std::uint8_t> opening =
-    findOpenings(tree, cx, airPieces, config.openingEnclosure, step, regions);
+  OpeningClassifier openings(tree, cx, airPieces, config.openingEnclosure, step, regions);
+
+  // Only space that polygons face into: the void inside a level's pillars is enclosed too, but
+  // its walls turn their backs on it. @p c is an air cell joined to the outside.
+  auto leaks = [&](std::uint32_t c)
+  {
+    if (!contains(inner, cx.centroid[c], 0.0) || cx.facedArea[c] <= cx.backedArea[c])
+    {
+      return false;
+    }
+    int hits = 0;
+    for (int k = 0; k < 3; ++k)
+    {
+      for (const double to : { box.lo[k], box.hi[k] })
+      {
+        glm::dvec3 end = cx.centroid[c];
+        end[k] = to;
+        hits += detail::segmentHitsFragment(tree, cx.centroid[c], end);
+      }
+    }
+    return hits >= 5;
+  };
+
+  if (config.stopAtFirstLeak)
+  {
+    // Flood from the box across open faces that are not openings, classifying a plane's openings
+    // only when the flood reaches it: a leak usually shows in the first cells flooded, long
+    // before every plane is classified. The cells reached are exactly the outside's below.
+    std::vector<std::vector<std::uint32_t>> piecesOfCell(cells);
+    for (const std::uint32_t i : airPieces)
+    {
+      piecesOfCell[cx.faces[cx.open[i].face].front].push_back(i);
+      piecesOfCell[cx.faces[cx.open[i].face].back].push_back(i);
+    }
+    std::vector<std::uint8_t> reached(cells, 0);
+    std::vector<std::uint32_t> queue;
+    for (std::uint32_t c = 0; c < cells; ++c)
+    {
+      if (isAir[c] && cx.touchesBox[c])
+      {
+        reached[c] = 1;
+        queue.push_back(c);
+      }
+    }
+    for (std::size_t at = 0; at < queue.size(); ++at)
+    {
+      if (at % 256 == 255 && overBudget("the flood from the outside"))
+      {
+        return out;
+      }
+      const std::uint32_t c = queue[at];
+      if (leaks(c))
+      {
+        stats.leakCells = 1;
+        out.leakPoints.push_back(cx.centroid[c] + tree.origin);
+        stats.openingSeconds = secondsSince(openingsStart);
+        stats.totalSeconds = secondsSince(start);
+        out.message = "stopped at the first leak (stopAtFirstLeak): no rooms";
+        return out;
+      }
+      for (const std::uint32_t i : piecesOfCell[c])
+      {
+        const detail::CellFace& f = cx.faces[cx.open[i].face];
+        const std::uint32_t next = f.front == c ? f.back : f.front;
+        if (!reached[next] && !openings.isOpening(i))
+        {
+          reached[next] = 1;
+          queue.push_back(next);
+        }
+      }
+    }
+  }
+  const std::vector<std::uint8_t>& opening = openings.classifyAll();
 
   stats.openingSeconds = secondsSince(openingsStart);
   if (overBudget("the openings"))
@@ -490,24 +617,7 @@ GeneratedPortals generatePortals(const GenerationInput& input, const GenerationC
     {
       return out;
     }
-    // Only space that polygons face into: the void inside a level's pillars is enclosed too,
-    // but its walls turn their backs on it.
-    if (!isAir[c] || !outside[rooms.find(c)] || !contains(inner, cx.centroid[c], 0.0) ||
-      cx.facedArea[c] <= cx.backedArea[c])
-    {
-      continue;
-    }
-    int hits = 0;
-    for (int k = 0; k < 3; ++k)
-    {
-      for (const double to : { box.lo[k], box.hi[k] })
-      {
-        glm::dvec3 end = cx.centroid[c];
-        end[k] = to;
-        hits += detail::segmentHitsFragment(tree, cx.centroid[c], end);
-      }
-    }
-    if (hits >= 5)
+    if (isAir[c] && outside[rooms.find(c)] && leaks(c))
     {
       ++stats.leakCells;
       if (out.leakPoints.size() < 64)

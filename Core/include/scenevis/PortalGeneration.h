@@ -106,6 +106,13 @@ struct GenerationConfig
   /// unchecked answer). A caller that tries generation on speculation (`--cull auto`) bounds what
   /// a scene that turns out to leak costs it.
   double budgetSeconds = 0.0;
+  /// Stop at the first leak cell found (status Ok, no rooms, statistics.leakCells 1, its point in
+  /// leakPoints, a message saying so). The cells joined to the outside are flooded from the box
+  /// first, each plane's openings classified only when the flood reaches it, so a leaking scene
+  /// costs the cells and a few planes instead of every plane. For callers that use rooms only
+  /// without leaks (`--cull auto`); off, every leak cell is counted (`scenevis portals`). The
+  /// rooms and portals of a scene that does not leak are the same either way.
+  bool stopAtFirstLeak = false;
   /// The BSP over the blocking polygons. allowFreePlanes is ignored (always off): every node's
   /// plane must hold all the polygons in it that its region contains. The plane tolerance is
   /// coarser than the sorter's (1e-6 of the diagonal, not 1e-10): converted levels store points
