@@ -31,7 +31,7 @@ struct GeneratedRooms
 
 /// Rooms and portals of @p model. Translucent cells (alpha below 255 in RGBA cell scalars) are
 /// see-through: they do not close an opening. Never throws for bad geometry (see result.status).
-/// @p budgetSeconds: wall-clock limit of the generation (0: none; past it, result.status is
+/// @p budgetSeconds: processor-time limit of the generation (0: none; past it, result.status is
 /// OverBudget and there are no rooms). @p stopAtFirstLeak: GenerationConfig::stopAtFirstLeak
 /// (a leaking scene then gives no rooms and one leak cell, sooner).
 GeneratedRooms GenerateRooms(vtkPolyData* model, const std::string& roomArray,
@@ -63,9 +63,10 @@ constexpr double kMinEnclosedArea = 0.5;
 /// MAP12's 67,170 25 s. Above this many polygons --cull auto does not try it (`scenevis portals`
 /// once, then --portals).
 constexpr std::size_t kMaxGenerationPolygons = 10000;
-/// And it stops after this many seconds (GenerationConfig::budgetSeconds): what a scene that
-/// looks architectural but leaks (every real level tried) costs --cull auto before its first
-/// frame. Three times the building's 1.0 s under load.
+/// And it stops after this many processor seconds (GenerationConfig::budgetSeconds): what a
+/// scene that looks architectural but leaks (every real level tried) costs --cull auto before its
+/// first frame on a quiet machine. Three times the building's 1.0 s; processor time, so the
+/// building is not stopped on a loaded machine (at load 5-9 its wall time reached 3.1 s).
 constexpr double kAutoGenerationBudgetSeconds = 3.0;
 
 /// A cheap test, linear in the polygons (0.2-10 ms on the scenes above): at most

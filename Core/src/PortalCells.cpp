@@ -480,16 +480,31 @@ BoxGrid::BoxGrid(const std::vector<Box>& boxes, double tolerance)
   {
     this->All.extend(glm::dvec3(0.0));
   }
+  // About one box per cell over the axes the boxes spread along: a flat set (the fragments of
+  // one plane) gets a 2D grid, a set on a line a 1D one. Sizing a flat set by its volume made
+  // the cells tiny and the ratio below too large for an int (UB the portal generation fuzzer
+  // found; on x86 it happened to give one cell), and clamping it gave 256 x 256 mostly empty
+  // cells per plane, which made the openings step 3-10x slower.
   const glm::dvec3 extent = this->All.hi - this->All.lo;
-  const double volume =
-    std::max(extent.x, 1e-300) * std::max(extent.y, 1e-300) * std::max(extent.z, 1e-300);
-  const double size =
-    std::cbrt(volume / static_cast<double>(std::max<std::size_t>(boxes.size(), 1)));
+  const double largest = std::max({ extent.x, extent.y, extent.z });
+  bool spread[3];
+  int axes = 0;
+  double measure = 1.0;
   for (int k = 0; k < 3; ++k)
   {
-    // Clamped as a double: a flat set of boxes makes `size` tiny and the ratio too large for an
-    // int (UB the portal generation fuzzer found); NaN gives 1.
-    const double cells = extent[k] / size;
+    spread[k] = extent[k] > 1e-6 * largest; // false for NaN
+    if (spread[k])
+    {
+      ++axes;
+      measure *= extent[k];
+    }
+  }
+  const double size = axes > 0
+    ? std::pow(measure / static_cast<double>(std::max<std::size_t>(boxes.size(), 1)), 1.0 / axes)
+    : 0.0;
+  for (int k = 0; k < 3; ++k)
+  {
+    const double cells = spread[k] && size > 0.0 ? extent[k] / size : 0.0;
     this->Dims[k] = cells >= 1.0 ? static_cast<int>(std::min(cells, 256.0)) : 1;
   }
   this->Cells.resize(static_cast<std::size_t>(this->Dims[0]) * this->Dims[1] * this->Dims[2]);

@@ -100,7 +100,8 @@ struct GenerationConfig
   double passageThickness = 0.5;
   /// Growth of the scene box around the input bounds, as a fraction of their diagonal.
   double margin = 0.1;
-  /// Wall-clock seconds the generation may take (0: no limit). Checked between its steps (after
+  /// Processor seconds the generation may take (0: no limit; std::clock, so a loaded machine
+  /// stretches the wall time but not the answer). Checked between its steps (after
   /// the BSP, each round of opening splits, the openings) and every 256 cells of the leak search;
   /// past it, generation stops with GenerationStatus::OverBudget and no rooms (never a partial,
   /// unchecked answer). A caller that tries generation on speculation (`--cull auto`) bounds what
