@@ -305,6 +305,17 @@ struct Method
       sum += ms;
     return sum;
   }
+
+  /// The planner's choices and on how many frames each, e.g. "occlusion + none (13 frames);
+  /// octree + none (27 frames)"; empty for a fixed method.
+  std::string PlanSummary() const
+  {
+    std::string plan;
+    for (const auto& choice : this->planFrames)
+      plan += (plan.empty() ? "" : "; ") + choice.first + " (" + std::to_string(choice.second) +
+        " frames)";
+    return plan;
+  }
 };
 
 /// The path's camera at @p t in [0, 1] for a scene with @p bounds.
@@ -456,22 +467,15 @@ int main(int argc, char** argv)
       }
     for (const auto& method : methods)
     {
-      std::string plan;
-      for (const auto& choice : method->planFrames)
-        plan += (plan.empty() ? "" : ", ") + choice.first + " (" + std::to_string(choice.second) +
-          " frames)";
       std::printf("%-18s %-26s %10.1f %9.2f  %s\n", name.c_str(), method->name.c_str(),
-        method->Total(), method->Total() / best, plan.c_str());
+        method->Total(), method->Total() / best, method->PlanSummary().c_str());
     }
     std::printf("%-18s planner / best fixed (%s) = %.2f over %d frames, %zu parts%s\n",
       name.c_str(), bestName.c_str(), methods.front()->Total() / best, options.frames,
       scene.parts.size(), scene.translucent ? ", translucent" : ", opaque");
     if (csv.is_open())
     {
-      std::string chose, fixed;
-      for (const auto& choice : methods.front()->planFrames)
-        chose += (chose.empty() ? "" : "; ") + choice.first + " (" + std::to_string(choice.second) +
-          " frames)";
+      std::string fixed;
       char figure[64];
       for (std::size_t m = 1; m < methods.size(); ++m)
       {
@@ -482,8 +486,8 @@ int main(int argc, char** argv)
       std::snprintf(numbers, sizeof numbers, "%.1f,%s,%.1f,%.2f", methods.front()->Total(),
         CsvField(bestName).c_str(), best, methods.front()->Total() / best);
       csv << CsvField(name) << ',' << scene.parts.size() << ',' << (scene.translucent ? 1 : 0)
-          << ',' << options.frames << ',' << CsvField(chose) << ',' << numbers << ','
-          << CsvField(fixed) << '\n';
+          << ',' << options.frames << ',' << CsvField(methods.front()->PlanSummary()) << ','
+          << numbers << ',' << CsvField(fixed) << '\n';
     }
     ok = ok && !methods.front()->frameMs.empty();
   }

@@ -340,9 +340,9 @@ void vtkOccluderRasterizer::Draw(vtkProp* prop, const double bounds[6], const do
         6 * ((mesh->Triangles.size() / 3 + kTrianglesPerCluster - 1) / kTrianglesPerCluster)
       ? &clusters
       : nullptr;
-    // A plain float or double point array is handed over as it is: the buffer transforms only
-    // the points of the triangles it looks at (not those of skipped runs), with the same
-    // arithmetic as below.
+    // A plain float or double point array is handed over as it is (other arrays are copied to
+    // doubles first): the buffer transforms only the points of the triangles it looks at, not
+    // those of skipped runs.
     so::ModelVertices vertices;
     vertices.clipFromModel = clusters.clipFromModel;
     if (vtkFloatArray* f = vtkFloatArray::FastDownCast(points->GetData()))
@@ -353,27 +353,17 @@ void vtkOccluderRasterizer::Draw(vtkProp* prop, const double bounds[6], const do
     {
       vertices.xyzDouble = d->GetPointer(0);
     }
-    if (vertices.xyzFloat || vertices.xyzDouble)
-    {
-      buffer.drawTriangles(vertices, static_cast<std::size_t>(n), mesh->Triangles.data(),
-        mesh->Triangles.size() / 3, culling, mesh->Neighbors.data(), runs);
-    }
     else
     {
-      this->Clip.resize(static_cast<std::size_t>(n));
+      this->Points.resize(3 * static_cast<std::size_t>(n));
       for (vtkIdType i = 0; i < n; ++i)
       {
-        double p[3];
-        points->GetPoint(i, p);
-        glm::dvec4& c = this->Clip[static_cast<std::size_t>(i)];
-        c.x = m[0] * p[0] + m[1] * p[1] + m[2] * p[2] + m[3];
-        c.y = m[4] * p[0] + m[5] * p[1] + m[6] * p[2] + m[7];
-        c.z = m[8] * p[0] + m[9] * p[1] + m[10] * p[2] + m[11];
-        c.w = m[12] * p[0] + m[13] * p[1] + m[14] * p[2] + m[15];
+        points->GetPoint(i, this->Points.data() + 3 * i);
       }
-      buffer.drawTriangles(this->Clip.data(), this->Clip.size(), mesh->Triangles.data(),
-        mesh->Triangles.size() / 3, culling, mesh->Neighbors.data(), runs);
+      vertices.xyzDouble = this->Points.data();
     }
+    buffer.drawTriangles(vertices, static_cast<std::size_t>(n), mesh->Triangles.data(),
+      mesh->Triangles.size() / 3, culling, mesh->Neighbors.data(), runs);
     ++this->OccludersDrawn;
     this->OccluderTriangles += static_cast<vtkIdType>(mesh->Triangles.size() / 3);
   }

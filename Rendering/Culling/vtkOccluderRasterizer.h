@@ -105,7 +105,8 @@ private:
   scenevis::occlusion::MaskedDepthBuffer DepthBuffer;
   double ClipFromWorld[16] = { 0 };
   std::unordered_map<vtkPolyData*, Mesh> Meshes;
-  std::vector<glm::dvec4> Clip;
+  std::vector<double> Points; // an occluder's points as doubles, when its array is neither
+                              // float nor double
   std::uint64_t Frame = 0;
 };
 
