@@ -2,21 +2,20 @@
 #include "GeneratedRooms.h"
 
 #include "Progress.h"
-#include "vtkBSPSortUtilities.h"
+#include "vtkGenerateRooms.h"
 
+#include <vtkCallbackCommand.h>
 #include <vtkCellArray.h>
 #include <vtkCellData.h>
 #include <vtkNew.h>
 #include <vtkPoints.h>
 #include <vtkType.h>
-#include <vtkUnsignedCharArray.h>
 
 #include <algorithm>
 #include <array>
 #include <chrono>
 #include <cmath>
 #include <iomanip>
-#include <map>
 #include <sstream>
 #include <vector>
 
@@ -26,34 +25,6 @@ namespace tool
 {
 namespace
 {
-/// The portals as polygons with RoomA and RoomB.
-vtkSmartPointer<vtkPolyData> PortalPolyData(const std::vector<portals::PortalDesc>& descs)
-{
-  vtkNew<vtkPoints> points;
-  points->SetDataTypeToDouble();
-  vtkNew<vtkCellArray> polys;
-  vtkNew<vtkIntArray> roomA;
-  roomA->SetName("RoomA");
-  vtkNew<vtkIntArray> roomB;
-  roomB->SetName("RoomB");
-  for (const portals::PortalDesc& portal : descs)
-  {
-    polys->InsertNextCell(static_cast<vtkIdType>(portal.polygon.size()));
-    for (const glm::dvec3& p : portal.polygon)
-    {
-      polys->InsertCellPoint(points->InsertNextPoint(p.x, p.y, p.z));
-    }
-    roomA->InsertNextValue(portal.roomA);
-    roomB->InsertNextValue(portal.roomB);
-  }
-  auto data = vtkSmartPointer<vtkPolyData>::New();
-  data->SetPoints(points);
-  data->SetPolys(polys);
-  data->GetCellData()->AddArray(roomA);
-  data->GetCellData()->AddArray(roomB);
-  return data;
-}
-
 /// Newell's normal of polygon @p pts in @p n (twice its area, along its normal); returns its
 /// length.
 double NewellNormal(vtkPoints* points, vtkIdType npts, const vtkIdType* pts, double n[3])
@@ -194,43 +165,25 @@ double EnclosedArea(vtkPolyData* model, double alongCos)
 GeneratedRooms GenerateRooms(
   vtkPolyData* model, const std::string& roomArray, double budgetSeconds, bool stopAtFirstLeak)
 {
+  vtkNew<vtkGenerateRooms> filter;
+  filter->SetInputData(model);
+  filter->SetRoomArrayName(roomArray.c_str());
+  filter->SetBudgetSeconds(budgetSeconds);
+  filter->SetStopAtFirstLeak(stopAtFirstLeak);
+  // The tool reports the status, leaks and dropped polygons itself (report and one line each).
+  vtkNew<vtkCallbackCommand> quiet;
+  filter->AddObserver(vtkCommand::WarningEvent, quiet);
+  filter->Update();
   GeneratedRooms generated;
-  PolygonMesh mesh;
-  std::vector<vtkIdType> cellOf;
-  vtkBSPSortUtilities::AppendPolygons(model, nullptr, mesh, cellOf);
-  portals::GenerationInput input;
-  input.mesh = &mesh;
-  auto* colors = vtkUnsignedCharArray::SafeDownCast(model->GetCellData()->GetScalars());
-  if (colors && colors->GetNumberOfComponents() == 4)
-  {
-    for (const vtkIdType cell : cellOf)
-    {
-      input.seeThrough.push_back(colors->GetTypedComponent(cell, 3) < 255 ? 1 : 0);
-      generated.seeThroughPolygons += input.seeThrough.back();
-    }
-  }
-  portals::GenerationConfig config;
-  config.budgetSeconds = budgetSeconds;
-  config.stopAtFirstLeak = stopAtFirstLeak;
-  generated.result = portals::generatePortals(input, config);
+  generated.result = filter->GetResult();
+  generated.seeThroughPolygons = static_cast<std::size_t>(filter->GetNumberOfSeeThroughPolygons());
   if (generated.result.status != portals::GenerationStatus::Ok)
   {
     return generated;
   }
-  generated.rooms = vtkSmartPointer<vtkIntArray>::New();
-  generated.rooms->SetName(roomArray.c_str());
-  generated.rooms->SetNumberOfTuples(model->GetNumberOfCells());
-  generated.rooms->FillValue(portals::kOutsideRoom);
-  std::vector<char> assigned(static_cast<std::size_t>(model->GetNumberOfCells()), 0);
-  for (std::size_t i = 0; i < cellOf.size(); ++i)
-  {
-    if (!assigned[static_cast<std::size_t>(cellOf[i])])
-    {
-      generated.rooms->SetValue(cellOf[i], generated.result.roomOfPolygon[i]);
-      assigned[static_cast<std::size_t>(cellOf[i])] = 1;
-    }
-  }
-  generated.portals = PortalPolyData(generated.result.portals);
+  generated.rooms =
+    vtkIntArray::SafeDownCast(filter->GetOutput()->GetCellData()->GetArray(roomArray.c_str()));
+  generated.portals = filter->GetPortalsOutput();
   return generated;
 }
 

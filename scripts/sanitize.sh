@@ -54,7 +54,8 @@ cmake --build "$build" -j"$jobs" --target scenevis_core_tests scenevis_fuzz_bsp_
   scenevis_fuzz_make_portal_corpus scenevis_split_parts_tests scenevis_instances_tests \
   scenevis_huge_pages_tests \
   SceneVisFiltersSortingCxxTests SceneVisFiltersSortingRenderingCxxTests \
-  SceneVisFiltersSourcesCxxTests SceneVisIOModelsCxxTests SceneVisRenderingCullingCxxTests \
+  SceneVisFiltersSourcesCxxTests SceneVisFiltersPortalsCxxTests SceneVisIOModelsCxxTests \
+  SceneVisRenderingCullingCxxTests \
   SceneVisRenderingPortalsCxxTests SceneVisRenderingTranslucencyCxxTests \
   SceneVisRenderingAutoCxxTests scenevis_soak_bench
 echo "sanitize: asan build done in $(( $(date +%s) - start )) s ($build)"
@@ -67,7 +68,8 @@ echo "sanitize: asan build done in $(( $(date +%s) - start )) s ($build)"
 # Every VTK-level test of the modules too (they render with OSMesa, no X needed): LeakSanitizer
 # is the leak check of the filters, mappers, passes, cullers, the model reader and the auto planner
 # (bad input included: SceneVis::IOModelsCxx-TestSceneVisModelReaderBadInput,
-# SceneVis::RenderingAutoCxx-TestSceneVisPlannerBadInput); and the tool's own code paths
+# SceneVis::RenderingAutoCxx-TestSceneVisPlannerBadInput,
+# SceneVis::FiltersPortalsCxx-TestGenerateRoomsBadInput); and the tool's own code paths
 # that take files and split them (Tool.SplitParts, Tool.Instances: glTF and VRML instancing, the
 # VRML USE checks and refused matrices, flattening placements for sort and cull --exact) or read
 # the command line to decide on huge pages (Tool.HugePages). Bench.SoakLeaks: 300 frames of

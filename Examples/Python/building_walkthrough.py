@@ -34,34 +34,39 @@ def door_y(i):
     return 1.0 if i % 2 == 0 else 3.0
 
 
-def quad(points, polys, corners):
+def quad(points, polys, corners, flip=False):
+    """One quad; its front (counter-clockwise corners) faces into the room it bounds, reversed
+    with flip."""
     polys.InsertNextCell(4)
-    for c in corners:
+    for c in (reversed(corners) if flip else corners):
         polys.InsertCellPoint(points.InsertNextPoint(*c))
 
 
-def x_wall(points, polys, x, door=None):
-    """The wall x = const over the row's width, with a door hole centred at y = door."""
+def x_wall(points, polys, x, door=None, facing=1):
+    """The wall x = const over the row's width, with a door hole centred at y = door, facing +x
+    (facing=1) or -x (facing=-1): into its room."""
+    flip = facing < 0
     if door is None:
-        quad(points, polys, [(x, 0, 0), (x, SIZE, 0), (x, SIZE, HEIGHT), (x, 0, HEIGHT)])
+        quad(points, polys, [(x, 0, 0), (x, SIZE, 0), (x, SIZE, HEIGHT), (x, 0, HEIGHT)], flip)
         return
     y0, y1 = door - DOOR_WIDTH / 2, door + DOOR_WIDTH / 2
-    quad(points, polys, [(x, 0, 0), (x, y0, 0), (x, y0, HEIGHT), (x, 0, HEIGHT)])
-    quad(points, polys, [(x, y1, 0), (x, SIZE, 0), (x, SIZE, HEIGHT), (x, y1, HEIGHT)])
+    quad(points, polys, [(x, 0, 0), (x, y0, 0), (x, y0, HEIGHT), (x, 0, HEIGHT)], flip)
+    quad(points, polys, [(x, y1, 0), (x, SIZE, 0), (x, SIZE, HEIGHT), (x, y1, HEIGHT)], flip)
     quad(points, polys, [(x, y0, DOOR_HEIGHT), (x, y1, DOOR_HEIGHT), (x, y1, HEIGHT),
-                         (x, y0, HEIGHT)])
+                         (x, y0, HEIGHT)], flip)
 
 
 def half_doorway(points, polys, x_wall_face, x_portal, door):
     """The room's half of the doorway through a wall WALL thick: its floor, jambs and lintel
-    between the wall face and the portal in the middle of the wall."""
+    between the wall face and the portal in the middle of the wall, facing into the doorway."""
     y0, y1 = door - DOOR_WIDTH / 2, door + DOOR_WIDTH / 2
     a, b = x_wall_face, x_portal
-    quad(points, polys, [(a, y0, 0), (b, y0, 0), (b, y1, 0), (a, y1, 0)])
-    quad(points, polys, [(a, y0, 0), (a, y0, DOOR_HEIGHT), (b, y0, DOOR_HEIGHT), (b, y0, 0)])
-    quad(points, polys, [(a, y1, 0), (b, y1, 0), (b, y1, DOOR_HEIGHT), (a, y1, DOOR_HEIGHT)])
+    flip = b < a
+    quad(points, polys, [(a, y0, 0), (b, y0, 0), (b, y1, 0), (a, y1, 0)], flip)
+    quad(points, polys, [(a, y0, 0), (a, y0, DOOR_HEIGHT), (b, y0, DOOR_HEIGHT), (b, y0, 0)], flip)
+    quad(points, polys, [(a, y1, 0), (b, y1, 0), (b, y1, DOOR_HEIGHT), (a, y1, DOOR_HEIGHT)], flip)
     quad(points, polys, [(a, y0, DOOR_HEIGHT), (a, y1, DOOR_HEIGHT), (b, y1, DOOR_HEIGHT),
-                         (b, y0, DOOR_HEIGHT)])
+                         (b, y0, DOOR_HEIGHT)], flip)
 
 
 def room_polydata(i):
@@ -81,9 +86,9 @@ def room_polydata(i):
         x_wall(points, polys, x0, door_y(i - 1))
         half_doorway(points, polys, x0, SIZE * i, door_y(i - 1))
     if i == ROOMS - 1:
-        x_wall(points, polys, x1)
+        x_wall(points, polys, x1, facing=-1)
     else:
-        x_wall(points, polys, x1, door_y(i))
+        x_wall(points, polys, x1, door_y(i), facing=-1)
         half_doorway(points, polys, x1, SIZE * (i + 1), door_y(i))
     room = vtk.vtkPolyData()
     room.SetPoints(points)

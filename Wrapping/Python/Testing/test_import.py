@@ -10,6 +10,8 @@ CLASSES = [
     "vtkBSPSortFilter", "vtkPainterSortFilter", "vtkVisibilityOrderFilter", "vtkBSPSortUtilities",
     # SceneVis::FiltersSources
     "vtkDemoSceneSource",
+    # SceneVis::FiltersPortals
+    "vtkGenerateRooms",
     # SceneVis::RenderingTranslucency
     "vtkBSPSortedPolyDataMapper", "vtkBSPTranslucentPass", "vtkOrderedTranslucentPass",
     # SceneVis::RenderingCulling
