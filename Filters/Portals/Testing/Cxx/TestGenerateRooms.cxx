@@ -17,6 +17,7 @@
 #include "vtkPortalCuller.h"
 
 #include "scenevis/Scenes.h"
+#include "scenevis/testing/Expect.h"
 #include "scenevis/testing/IdBuffer.h"
 #include "scenevis/testing/RenderWindow.h"
 #include "scenevis/testing/StrictVtkOutput.h"
@@ -47,17 +48,6 @@ namespace
 {
 namespace st = scenevis::testing;
 namespace scenes = scenevis::scenes;
-
-int failures = 0;
-#define EXPECT(cond)                                                                               \
-  do                                                                                               \
-  {                                                                                                \
-    if (!(cond))                                                                                   \
-    {                                                                                              \
-      std::cerr << __FILE__ << ":" << __LINE__ << ": expected " #cond << std::endl;                \
-      ++failures;                                                                                  \
-    }                                                                                              \
-  } while (false)
 
 /// Newell's normal of cell @p cell of @p pd, and whether all its points lie within @p tolerance
 /// of the plane through its first point.
@@ -125,7 +115,7 @@ int TestGenerateRooms(int, char*[])
   const scenes::BuildingScene b = scenes::building(floors, roomsX, roomsY, seed);
 
   vtkNew<vtkGenerateRooms> rooms;
-  EXPECT(rooms->GetStatus() == vtkGenerateRooms::STATUS_NOT_RUN);
+  SCENEVIS_EXPECT(rooms->GetStatus() == vtkGenerateRooms::STATUS_NOT_RUN);
   rooms->SetInputConnection(source->GetOutputPort());
   rooms->Update();
   vtkPolyData* model = rooms->GetOutput();
@@ -139,19 +129,20 @@ int TestGenerateRooms(int, char*[])
             << rooms->GetGenerationTime() << " s\n";
 
   // 1. The model whole, every cell with a room.
-  EXPECT(rooms->GetStatus() == vtkGenerateRooms::STATUS_OK);
-  EXPECT(std::string(rooms->GetStatusMessage()).empty());
-  EXPECT(rooms->GetNumberOfLeakCells() == 0);
-  EXPECT(rooms->GetLeaksOutput()->GetNumberOfPoints() == 0);
-  EXPECT(rooms->GetNumberOfDroppedPolygons() == 0);
-  EXPECT(rooms->GetNumberOfSeeThroughPolygons() > 0);
-  EXPECT(model->GetNumberOfCells() == input->GetNumberOfCells());
-  EXPECT(model->GetNumberOfPoints() == input->GetNumberOfPoints());
-  EXPECT(roomCount >= static_cast<int>(b.rooms.size()) / 2);
-  EXPECT(roomCount <= static_cast<int>(b.rooms.size()) * 2);
+  SCENEVIS_EXPECT(rooms->GetStatus() == vtkGenerateRooms::STATUS_OK);
+  SCENEVIS_EXPECT(std::string(rooms->GetStatusMessage()).empty());
+  SCENEVIS_EXPECT(rooms->GetNumberOfLeakCells() == 0);
+  SCENEVIS_EXPECT(rooms->GetLeaksOutput()->GetNumberOfPoints() == 0);
+  SCENEVIS_EXPECT(rooms->GetNumberOfDroppedPolygons() == 0);
+  SCENEVIS_EXPECT(rooms->GetNumberOfSeeThroughPolygons() > 0);
+  SCENEVIS_EXPECT(model->GetNumberOfCells() == input->GetNumberOfCells());
+  SCENEVIS_EXPECT(model->GetNumberOfPoints() == input->GetNumberOfPoints());
+  SCENEVIS_EXPECT(roomCount >= static_cast<int>(b.rooms.size()) / 2);
+  SCENEVIS_EXPECT(roomCount <= static_cast<int>(b.rooms.size()) * 2);
   auto* roomIds = vtkIntArray::SafeDownCast(model->GetCellData()->GetArray("RoomId"));
-  EXPECT(roomIds && roomIds->GetNumberOfTuples() == model->GetNumberOfCells());
-  EXPECT(roomIds != input->GetCellData()->GetArray("RoomId")); // replaced, not the source's
+  SCENEVIS_EXPECT(roomIds && roomIds->GetNumberOfTuples() == model->GetNumberOfCells());
+  SCENEVIS_EXPECT(
+    roomIds != input->GetCellData()->GetArray("RoomId")); // replaced, not the source's
   if (!roomIds)
   {
     return EXIT_FAILURE;
@@ -160,30 +151,30 @@ int TestGenerateRooms(int, char*[])
   for (vtkIdType c = 0; c < roomIds->GetNumberOfTuples(); ++c)
   {
     const int r = roomIds->GetValue(c);
-    EXPECT(r >= -1 && r < roomCount);
+    SCENEVIS_EXPECT(r >= -1 && r < roomCount);
     if (r >= -1 && r < roomCount)
     {
       ++cellsOfRoom[static_cast<std::size_t>(r < 0 ? roomCount : r)];
     }
   }
-  EXPECT(std::count(cellsOfRoom.begin(), cellsOfRoom.end() - 1, 0) == 0); // no empty room
+  SCENEVIS_EXPECT(std::count(cellsOfRoom.begin(), cellsOfRoom.end() - 1, 0) == 0); // no empty room
 
   // 2. Portals in the portal scene format.
   auto* roomA = vtkIntArray::SafeDownCast(portals->GetCellData()->GetArray("RoomA"));
   auto* roomB = vtkIntArray::SafeDownCast(portals->GetCellData()->GetArray("RoomB"));
-  EXPECT(roomA && roomB);
-  EXPECT(portals->GetNumberOfPolys() == rooms->GetNumberOfPortals());
+  SCENEVIS_EXPECT(roomA && roomB);
+  SCENEVIS_EXPECT(portals->GetNumberOfPolys() == rooms->GetNumberOfPortals());
   std::size_t windows = 0;
   for (const scenes::Portal& p : b.portals)
   {
     windows += p.kind == scenes::PortalKind::Window ? 1 : 0;
   }
-  EXPECT(static_cast<std::size_t>(rooms->GetNumberOfExteriorPortals()) >= windows);
+  SCENEVIS_EXPECT(static_cast<std::size_t>(rooms->GetNumberOfExteriorPortals()) >= windows);
   for (vtkIdType i = 0; roomA && roomB && i < portals->GetNumberOfPolys(); ++i)
   {
     const int a = roomA->GetValue(i), c = roomB->GetValue(i);
-    EXPECT(a >= 0 && a < roomCount && (c == -1 || (c > a && c < roomCount)));
-    EXPECT(IsPlanar(portals, i, 1e-6));
+    SCENEVIS_EXPECT(a >= 0 && a < roomCount && (c == -1 || (c > a && c < roomCount)));
+    SCENEVIS_EXPECT(IsPlanar(portals, i, 1e-6));
   }
 
   // 3. Used as a user would: one actor per generated room (and one for the outside's cells).
@@ -286,14 +277,16 @@ int TestGenerateRooms(int, char*[])
   std::cout << "inside views: " << static_cast<double>(drawnInside) / kInside << " rooms drawn, "
             << static_cast<double>(visibleInside) / kInside << " visible per view, of "
             << roomCount + 1 << "; " << missed << " missed\n";
-  EXPECT(missed == 0);
-  EXPECT(drawnInside * 2 < static_cast<std::size_t>(kInside) * static_cast<std::size_t>(roomCount));
+  SCENEVIS_EXPECT(missed == 0);
+  SCENEVIS_EXPECT(
+    drawnInside * 2 < static_cast<std::size_t>(kInside) * static_cast<std::size_t>(roomCount));
 
   // 4. Nothing changed: the pipeline does not run again.
   const vtkMTimeType before = model->GetMTime();
   rooms->Update();
-  EXPECT(model->GetMTime() == before);
-  EXPECT(rooms->GetOutput() == model && model->GetCellData()->GetArray("RoomId") == roomIds);
+  SCENEVIS_EXPECT(model->GetMTime() == before);
+  SCENEVIS_EXPECT(
+    rooms->GetOutput() == model && model->GetCellData()->GetArray("RoomId") == roomIds);
 
-  return vtkOutput.ExitCode(failures == 0 ? EXIT_SUCCESS : EXIT_FAILURE);
+  return vtkOutput.ExitCode(scenevis::testing::ExpectFailures() == 0 ? EXIT_SUCCESS : EXIT_FAILURE);
 }

@@ -17,6 +17,7 @@
 
 #include "vtkDemoSceneSource.h"
 
+#include "scenevis/testing/Expect.h"
 #include "scenevis/testing/StrictVtkOutput.h"
 
 #include <vtkCellArray.h>
@@ -37,17 +38,6 @@
 namespace
 {
 namespace st = scenevis::testing;
-
-int failures = 0;
-#define EXPECT(cond)                                                                               \
-  do                                                                                               \
-  {                                                                                                \
-    if (!(cond))                                                                                   \
-    {                                                                                              \
-      std::cerr << __FILE__ << ":" << __LINE__ << ": expected " #cond << std::endl;                \
-      ++failures;                                                                                  \
-    }                                                                                              \
-  } while (false)
 
 using Quad = std::array<std::array<double, 3>, 4>;
 
@@ -109,7 +99,7 @@ vtkIntArray* RoomsOf(vtkGenerateRooms* filter)
 {
   vtkPolyData* model = filter->GetOutput();
   auto* rooms = vtkIntArray::SafeDownCast(model->GetCellData()->GetArray("RoomId"));
-  EXPECT(rooms && rooms->GetNumberOfTuples() == model->GetNumberOfCells());
+  SCENEVIS_EXPECT(rooms && rooms->GetNumberOfTuples() == model->GetNumberOfCells());
   return rooms;
 }
 
@@ -134,10 +124,10 @@ int TestGenerateRoomsBadInput(int, char*[])
     vtkNew<vtkGenerateRooms> filter;
     filter->SetInputData(empty);
     filter->Update();
-    EXPECT(filter->GetStatus() == vtkGenerateRooms::STATUS_EMPTY_INPUT);
-    EXPECT(filter->GetNumberOfRooms() == 0 && filter->GetNumberOfPortals() == 0);
-    EXPECT(RoomsOf(filter) != nullptr);
-    EXPECT(filter->GetPortalsOutput()->GetNumberOfCells() == 0);
+    SCENEVIS_EXPECT(filter->GetStatus() == vtkGenerateRooms::STATUS_EMPTY_INPUT);
+    SCENEVIS_EXPECT(filter->GetNumberOfRooms() == 0 && filter->GetNumberOfPortals() == 0);
+    SCENEVIS_EXPECT(RoomsOf(filter) != nullptr);
+    SCENEVIS_EXPECT(filter->GetPortalsOutput()->GetNumberOfCells() == 0);
 
     // Only lines.
     vtkNew<vtkPolyData> lines;
@@ -152,9 +142,9 @@ int TestGenerateRoomsBadInput(int, char*[])
     filter->SetInputData(lines);
     filter->SetRoomArrayName(""); // means "RoomId"
     filter->Update();
-    EXPECT(filter->GetStatus() == vtkGenerateRooms::STATUS_EMPTY_INPUT);
-    EXPECT(AllOutside(RoomsOf(filter)) && filter->GetOutput()->GetNumberOfLines() == 1);
-    failures += strict.Check().empty() ? 0 : 1;
+    SCENEVIS_EXPECT(filter->GetStatus() == vtkGenerateRooms::STATUS_EMPTY_INPUT);
+    SCENEVIS_EXPECT(AllOutside(RoomsOf(filter)) && filter->GetOutput()->GetNumberOfLines() == 1);
+    scenevis::testing::ExpectFailures() += strict.Check().empty() ? 0 : 1;
   }
   {
     st::StrictVtkOutput strict;
@@ -167,12 +157,12 @@ int TestGenerateRoomsBadInput(int, char*[])
     vtkNew<vtkGenerateRooms> filter;
     filter->SetInputData(bad);
     filter->Update();
-    EXPECT(filter->GetStatus() == vtkGenerateRooms::STATUS_NO_VALID_POLYGONS);
-    EXPECT(std::string(filter->GetStatusMessage()).size() > 0);
-    EXPECT(AllOutside(RoomsOf(filter)));
-    EXPECT(filter->GetOutput()->GetNumberOfCells() == 4);
+    SCENEVIS_EXPECT(filter->GetStatus() == vtkGenerateRooms::STATUS_NO_VALID_POLYGONS);
+    SCENEVIS_EXPECT(std::string(filter->GetStatusMessage()).size() > 0);
+    SCENEVIS_EXPECT(AllOutside(RoomsOf(filter)));
+    SCENEVIS_EXPECT(filter->GetOutput()->GetNumberOfCells() == 4);
     const std::string report = strict.Check();
-    failures += report.empty() ? 0 : 1;
+    scenevis::testing::ExpectFailures() += report.empty() ? 0 : 1;
     std::cerr << report;
   }
   {
@@ -181,30 +171,30 @@ int TestGenerateRoomsBadInput(int, char*[])
     vtkNew<vtkGenerateRooms> filter;
     filter->SetInputData(Box());
     filter->Update();
-    EXPECT(filter->GetStatus() == vtkGenerateRooms::STATUS_OK);
-    EXPECT(filter->GetNumberOfRooms() == 1 && filter->GetNumberOfPortals() == 0);
-    EXPECT(filter->GetNumberOfLeakCells() == 0);
+    SCENEVIS_EXPECT(filter->GetStatus() == vtkGenerateRooms::STATUS_OK);
+    SCENEVIS_EXPECT(filter->GetNumberOfRooms() == 1 && filter->GetNumberOfPortals() == 0);
+    SCENEVIS_EXPECT(filter->GetNumberOfLeakCells() == 0);
     vtkIntArray* rooms = RoomsOf(filter);
     for (vtkIdType c = 0; rooms && c < rooms->GetNumberOfTuples(); ++c)
     {
-      EXPECT(rooms->GetValue(c) == 0);
+      SCENEVIS_EXPECT(rooms->GetValue(c) == 0);
     }
-    failures += strict.Check().empty() ? 0 : 1;
+    scenevis::testing::ExpectFailures() += strict.Check().empty() ? 0 : 1;
 
     strict.ExpectWarning("where the outside leaks in");
     filter->SetInputData(Box(3));
     filter->Update();
-    EXPECT(filter->GetStatus() == vtkGenerateRooms::STATUS_OK);
-    EXPECT(filter->GetNumberOfLeakCells() >= 1);
-    EXPECT(filter->GetLeaksOutput()->GetNumberOfVerts() >= 1);
-    EXPECT(filter->GetNumberOfRooms() == 0 && AllOutside(RoomsOf(filter)));
+    SCENEVIS_EXPECT(filter->GetStatus() == vtkGenerateRooms::STATUS_OK);
+    SCENEVIS_EXPECT(filter->GetNumberOfLeakCells() >= 1);
+    SCENEVIS_EXPECT(filter->GetLeaksOutput()->GetNumberOfVerts() >= 1);
+    SCENEVIS_EXPECT(filter->GetNumberOfRooms() == 0 && AllOutside(RoomsOf(filter)));
     filter->StopAtFirstLeakOn();
     filter->Update();
-    EXPECT(filter->GetNumberOfLeakCells() == 1);
-    EXPECT(filter->GetLeaksOutput()->GetNumberOfVerts() == 1);
-    EXPECT(filter->GetNumberOfRooms() == 0 && AllOutside(RoomsOf(filter)));
+    SCENEVIS_EXPECT(filter->GetNumberOfLeakCells() == 1);
+    SCENEVIS_EXPECT(filter->GetLeaksOutput()->GetNumberOfVerts() == 1);
+    SCENEVIS_EXPECT(filter->GetNumberOfRooms() == 0 && AllOutside(RoomsOf(filter)));
     const std::string report = strict.Check();
-    failures += report.empty() ? 0 : 1;
+    scenevis::testing::ExpectFailures() += report.empty() ? 0 : 1;
     std::cerr << report;
   }
   {
@@ -220,7 +210,8 @@ int TestGenerateRoomsBadInput(int, char*[])
     vtkNew<vtkGenerateRooms> clean;
     clean->SetInputConnection(source->GetOutputPort());
     clean->Update();
-    EXPECT(clean->GetStatus() == vtkGenerateRooms::STATUS_OK && clean->GetNumberOfRooms() > 1);
+    SCENEVIS_EXPECT(
+      clean->GetStatus() == vtkGenerateRooms::STATUS_OK && clean->GetNumberOfRooms() > 1);
 
     vtkNew<vtkPolyData> dirty;
     dirty->DeepCopy(source->GetOutput());
@@ -250,31 +241,32 @@ int TestGenerateRoomsBadInput(int, char*[])
     vtkNew<vtkGenerateRooms> filter;
     filter->SetInputData(dirty);
     filter->Update();
-    EXPECT(filter->GetStatus() == vtkGenerateRooms::STATUS_OK);
-    EXPECT(filter->GetNumberOfDroppedPolygons() == 4);
-    EXPECT(filter->GetNumberOfRooms() == clean->GetNumberOfRooms());
-    EXPECT(filter->GetNumberOfPortals() == clean->GetNumberOfPortals());
+    SCENEVIS_EXPECT(filter->GetStatus() == vtkGenerateRooms::STATUS_OK);
+    SCENEVIS_EXPECT(filter->GetNumberOfDroppedPolygons() == 4);
+    SCENEVIS_EXPECT(filter->GetNumberOfRooms() == clean->GetNumberOfRooms());
+    SCENEVIS_EXPECT(filter->GetNumberOfPortals() == clean->GetNumberOfPortals());
     vtkIntArray* rooms = RoomsOf(filter); // the int array, not the input's double one
-    EXPECT(filter->GetOutput()->GetFieldData()->GetArray("RoomId") == nullptr);
+    SCENEVIS_EXPECT(filter->GetOutput()->GetFieldData()->GetArray("RoomId") == nullptr);
     vtkIntArray* cleanRooms = RoomsOf(clean);
     for (vtkIdType c = 0; rooms && cleanRooms && c < dirty->GetNumberOfCells(); ++c)
     {
-      EXPECT(rooms->GetValue(c) == (c < goodCells ? cleanRooms->GetValue(c) : -1));
+      SCENEVIS_EXPECT(rooms->GetValue(c) == (c < goodCells ? cleanRooms->GetValue(c) : -1));
     }
     const std::string report = strict.Check();
-    failures += report.empty() ? 0 : 1;
+    scenevis::testing::ExpectFailures() += report.empty() ? 0 : 1;
     std::cerr << report;
 
     // Over budget: no rooms, no portals, said so.
     strict.ExpectWarning("no rooms generated (over budget)");
     clean->SetBudgetSeconds(1e-9);
     clean->Update();
-    EXPECT(clean->GetStatus() == vtkGenerateRooms::STATUS_OVER_BUDGET);
-    EXPECT(clean->GetNumberOfRooms() == 0 && clean->GetPortalsOutput()->GetNumberOfCells() == 0);
-    EXPECT(AllOutside(RoomsOf(clean)));
+    SCENEVIS_EXPECT(clean->GetStatus() == vtkGenerateRooms::STATUS_OVER_BUDGET);
+    SCENEVIS_EXPECT(
+      clean->GetNumberOfRooms() == 0 && clean->GetPortalsOutput()->GetNumberOfCells() == 0);
+    SCENEVIS_EXPECT(AllOutside(RoomsOf(clean)));
     const std::string budget = strict.Check();
-    failures += budget.empty() ? 0 : 1;
+    scenevis::testing::ExpectFailures() += budget.empty() ? 0 : 1;
     std::cerr << budget;
   }
-  return failures == 0 ? EXIT_SUCCESS : EXIT_FAILURE;
+  return scenevis::testing::ExpectFailures() == 0 ? EXIT_SUCCESS : EXIT_FAILURE;
 }
