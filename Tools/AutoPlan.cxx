@@ -1,9 +1,9 @@
 // Auto mode: the facts of a scene and the plan made from them.
 #include "AutoPlan.h"
 
-#include "GeneratedRooms.h"
 #include "Progress.h"
 #include "SplitParts.h"
+#include "vtkAutoRooms.h"
 
 #include <vtkCamera.h>
 #include <vtkCellArray.h>
@@ -15,8 +15,6 @@
 
 #include <algorithm>
 #include <chrono>
-#include <iomanip>
-#include <sstream>
 #include <unordered_map>
 #include <unordered_set>
 
@@ -139,53 +137,31 @@ std::vector<PartBox> InstanceBoxes(const InstancedScene& scene)
 }
 
 /**
- * --cull auto on a scene without rooms and portals: when it looks architectural
- * (LooksArchitectural), rooms and portals generated in memory, used when they are at least 2
- * rooms and 1 portal with no leak; the room array of @p pd is then replaced and @p facts count
- * them. Returns what was found and why, for the culling reason ("" when nothing was tried).
+ * --cull auto on a scene without rooms and portals: rooms and portals generated in memory when it
+ * looks architectural and used when they are at least 2 rooms and 1 portal with no leak
+ * (vtkAutoRooms, as the auto planner does); the room array of @p pd is then replaced and @p facts
+ * count them. Returns what was found and why, for the culling reason.
  */
 std::string GenerateRoomsForAuto(vtkPolyData* pd, const std::string& roomArray, SceneFacts& facts,
   vtkSmartPointer<vtkPolyData>& portals, double& ms)
 {
-  const auto start = std::chrono::steady_clock::now();
-  const ArchitecturalLook look = LooksArchitectural(pd);
-  if (!look.looksArchitectural)
+  const vtkAutoRooms generated = vtkAutoRooms::Generate(pd, roomArray.c_str());
+  ms = generated.Milliseconds;
+  if (!generated.Used)
   {
-    ms = Milliseconds(start);
-    return "; rooms and portals not generated: " + look.reason;
-  }
-  const GeneratedRooms generated = GenerateRooms(pd, roomArray, kAutoGenerationBudgetSeconds, true);
-  const portals::GeneratedPortals& result = generated.result;
-  ms = Milliseconds(start);
-  std::ostringstream why;
-  why << std::fixed << std::setprecision(0);
-  if (result.status != portals::GenerationStatus::Ok)
-  {
-    why << "; generating rooms and portals failed (" << result.message << ") in " << ms
-        << " ms, so not used";
-    return why.str();
-  }
-  const portals::GenerationStatistics& s = result.statistics;
-  if (result.roomCount < 2 || result.portals.empty() || s.leakCells > 0)
-  {
-    why << "; rooms and portals generated (" << look.reason << "): " << result.roomCount
-        << " rooms, " << result.portals.size() << " portals, " << s.leakCells << " leak cells in "
-        << ms << " ms, not used (needs >= 2 rooms, >= 1 portal, no leak)";
-    return why.str();
+    return "; " + generated.Reason;
   }
   pd->GetCellData()->RemoveArray(roomArray.c_str());
-  pd->GetCellData()->AddArray(generated.rooms);
-  portals = generated.portals;
+  pd->GetCellData()->AddArray(generated.Rooms);
+  portals = generated.Portals;
   const auto before = facts.rooms;
-  facts.rooms = result.roomCount;
-  facts.portals = static_cast<vtkIdType>(result.portals.size());
-  why << "auto: generated " << result.roomCount << " rooms, " << result.portals.size()
-      << " portals (" << s.exteriorPortals << " to the outside, 0 leak cells) in " << ms
-      << " ms because " << look.reason;
+  facts.rooms = generated.RoomCount;
+  facts.portals = static_cast<vtkIdType>(generated.PortalCount);
+  std::string why = "auto: " + generated.Reason;
   if (before > 0)
-    why << "; the scene's " << before << " rooms (" << roomArray
-        << ") came without portals and were replaced";
-  return why.str();
+    why += "; the scene's " + std::to_string(before) + " rooms (" + roomArray +
+      ") came without portals and were replaced";
+  return why;
 }
 
 bool IsPropCulling(const std::string& mode)

@@ -1,167 +1,16 @@
-// Rooms and portals found from a scene's geometry, as VTK data; the test --cull auto tries first.
+// Rooms and portals found from a scene's geometry, as VTK data, for `scenevis portals`.
 #include "GeneratedRooms.h"
 
-#include "Progress.h"
 #include "vtkGenerateRooms.h"
 
 #include <vtkCallbackCommand.h>
-#include <vtkCellArray.h>
 #include <vtkCellData.h>
 #include <vtkNew.h>
-#include <vtkPoints.h>
-#include <vtkType.h>
-
-#include <algorithm>
-#include <array>
-#include <chrono>
-#include <cmath>
-#include <iomanip>
-#include <sstream>
-#include <vector>
 
 namespace scenevis
 {
 namespace tool
 {
-namespace
-{
-/// Newell's normal of polygon @p pts in @p n (twice its area, along its normal); returns its
-/// length.
-double NewellNormal(vtkPoints* points, vtkIdType npts, const vtkIdType* pts, double n[3])
-{
-  n[0] = n[1] = n[2] = 0.0;
-  for (vtkIdType k = 0; k < npts; ++k)
-  {
-    double a[3], b[3];
-    points->GetPoint(pts[k], a);
-    points->GetPoint(pts[(k + 1) % npts], b);
-    n[0] += (a[1] - b[1]) * (a[2] + b[2]);
-    n[1] += (a[2] - b[2]) * (a[0] + b[0]);
-    n[2] += (a[0] - b[0]) * (a[1] + b[1]);
-  }
-  return std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-}
-
-/// Calls @p visit(npts, pts, n, area) for each polygon of @p model with a finite, non-zero
-/// Newell normal @p n (see NewellNormal).
-template <typename Visit>
-void ForEachPolygonNormal(vtkPolyData* model, Visit&& visit)
-{
-  vtkPoints* points = model->GetPoints();
-  vtkCellArray* polys = model->GetPolys();
-  vtkIdType npts = 0;
-  const vtkIdType* pts = nullptr;
-  for (polys->InitTraversal(); points && polys->GetNextCell(npts, pts);)
-  {
-    double n[3];
-    const double area = NewellNormal(points, npts, pts, n);
-    if (area > 0.0 && std::isfinite(area))
-      visit(npts, pts, n, area);
-  }
-}
-
-/**
- * Of the area of the polygons facing along an axis (within 1 degree), the share that faces a
- * polygon turned towards it further along that axis: a floor under a ceiling, a wall across a
- * room from another. On a 64 x 64 grid over the other two axes, each polygon's box marks the
- * farthest (nearest) facing-back polygon of every grid cell; a polygon's centre cell is then
- * looked up. Linear in the polygons (and their boxes' grid cells).
- */
-double EnclosedArea(vtkPolyData* model, double alongCos)
-{
-  constexpr int kGrid = 64;
-  double bounds[6];
-  model->GetBounds(bounds);
-  struct Facing
-  {
-    int axis;
-    bool positive;
-    double coordinate;
-    double area;
-    double box[6];
-  };
-  std::vector<Facing> facing;
-  vtkPoints* points = model->GetPoints();
-  ForEachPolygonNormal(model,
-    [&](vtkIdType npts, const vtkIdType* pts, const double n[3], double area)
-    {
-      Facing f{};
-      for (int k = 0; k < 3; ++k)
-      {
-        f.box[2 * k] = VTK_DOUBLE_MAX;
-        f.box[2 * k + 1] = -VTK_DOUBLE_MAX;
-      }
-      for (vtkIdType k = 0; k < npts; ++k)
-      {
-        double a[3];
-        points->GetPoint(pts[k], a);
-        for (int c = 0; c < 3; ++c)
-        {
-          f.box[2 * c] = std::min(f.box[2 * c], a[c]);
-          f.box[2 * c + 1] = std::max(f.box[2 * c + 1], a[c]);
-        }
-      }
-      for (int axis = 0; axis < 3; ++axis)
-      {
-        if (std::abs(n[axis]) / area >= alongCos)
-        {
-          f.axis = axis;
-          f.positive = n[axis] > 0.0;
-          f.coordinate = 0.5 * (f.box[2 * axis] + f.box[2 * axis + 1]);
-          f.area = area;
-          facing.push_back(f);
-        }
-      }
-    });
-  // Per axis: the largest coordinate of a polygon facing -axis and the smallest of one facing
-  // +axis over each grid cell.
-  std::vector<double> farthestBack(3 * kGrid * kGrid, -VTK_DOUBLE_MAX);
-  std::vector<double> nearestFront(3 * kGrid * kGrid, VTK_DOUBLE_MAX);
-  auto cellRange = [&](int axis, int which, double lo, double hi, int& first, int& last)
-  {
-    const int d = (axis + 1 + which) % 3;
-    const double size = bounds[2 * d + 1] - bounds[2 * d];
-    auto index = [&](double x)
-    {
-      const double t = size > 0.0 ? (x - bounds[2 * d]) / size : 0.0;
-      return std::clamp(static_cast<int>(t * kGrid), 0, kGrid - 1);
-    };
-    first = index(lo);
-    last = index(hi);
-  };
-  for (const Facing& f : facing)
-  {
-    int u0, u1, v0, v1;
-    const int du = (f.axis + 1) % 3, dv = (f.axis + 2) % 3;
-    cellRange(f.axis, 0, f.box[2 * du], f.box[2 * du + 1], u0, u1);
-    cellRange(f.axis, 1, f.box[2 * dv], f.box[2 * dv + 1], v0, v1);
-    for (int u = u0; u <= u1; ++u)
-      for (int v = v0; v <= v1; ++v)
-      {
-        const std::size_t cell = static_cast<std::size_t>((f.axis * kGrid + u) * kGrid + v);
-        if (f.positive)
-          nearestFront[cell] = std::min(nearestFront[cell], f.coordinate);
-        else
-          farthestBack[cell] = std::max(farthestBack[cell], f.coordinate);
-      }
-  }
-  double total = 0.0;
-  double enclosed = 0.0;
-  for (const Facing& f : facing)
-  {
-    int u, v, unused;
-    const int du = (f.axis + 1) % 3, dv = (f.axis + 2) % 3;
-    cellRange(f.axis, 0, 0.5 * (f.box[2 * du] + f.box[2 * du + 1]), 0.0, u, unused);
-    cellRange(f.axis, 1, 0.5 * (f.box[2 * dv] + f.box[2 * dv + 1]), 0.0, v, unused);
-    const std::size_t cell = static_cast<std::size_t>((f.axis * kGrid + u) * kGrid + v);
-    total += f.area;
-    if (f.positive ? farthestBack[cell] > f.coordinate : nearestFront[cell] < f.coordinate)
-      enclosed += f.area;
-  }
-  return total > 0.0 ? enclosed / total : 0.0;
-}
-} // namespace
-
 GeneratedRooms GenerateRooms(
   vtkPolyData* model, const std::string& roomArray, double budgetSeconds, bool stopAtFirstLeak)
 {
@@ -185,55 +34,6 @@ GeneratedRooms GenerateRooms(
     vtkIntArray::SafeDownCast(filter->GetOutput()->GetCellData()->GetArray(roomArray.c_str()));
   generated.portals = filter->GetPortalsOutput();
   return generated;
-}
-
-ArchitecturalLook LooksArchitectural(vtkPolyData* model)
-{
-  const auto start = std::chrono::steady_clock::now();
-  ArchitecturalLook look;
-  look.polygons = static_cast<std::size_t>(
-    model->GetPolys()->GetNumberOfCells() + model->GetStrips()->GetNumberOfCells());
-  std::ostringstream why;
-  why << std::fixed << std::setprecision(2);
-  if (look.polygons > kMaxGenerationPolygons)
-  {
-    look.ms = Milliseconds(start);
-    why << look.polygons << " polygons (> " << kMaxGenerationPolygons
-        << ", too many to generate rooms and portals for)";
-    look.reason = why.str();
-    return look;
-  }
-  // Within 1 degree of an axis plane: facing along the axis, or perpendicular to it.
-  const double alongCos = std::cos(std::acos(-1.0) / 180.0);
-  const double acrossSin = std::sin(std::acos(-1.0) / 180.0);
-  std::array<double, 3> aligned{ 0.0, 0.0, 0.0 };
-  double total = 0.0;
-  ForEachPolygonNormal(model,
-    [&](vtkIdType, const vtkIdType*, const double n[3], double area)
-    {
-      total += area;
-      for (int axis = 0; axis < 3; ++axis)
-      {
-        const double c = std::abs(n[axis]) / area;
-        if (c >= alongCos || c <= acrossSin)
-          aligned[axis] += area;
-      }
-    });
-  look.enclosedArea = EnclosedArea(model, alongCos);
-  const double best = std::max({ aligned[0], aligned[1], aligned[2] });
-  look.alignedArea = total > 0.0 ? best / total : 0.0;
-  look.looksArchitectural =
-    look.alignedArea >= kMinAlignedArea && look.enclosedArea >= kMinEnclosedArea;
-  look.ms = Milliseconds(start);
-  why << look.polygons << " polygons, " << 100.0 * look.alignedArea
-      << " % of their area in axis-aligned planes ("
-      << (look.alignedArea >= kMinAlignedArea ? ">=" : "<") << " " << 100.0 * kMinAlignedArea
-      << " %), " << 100.0 * look.enclosedArea
-      << " % of that area faces another polygon across open space ("
-      << (look.enclosedArea >= kMinEnclosedArea ? ">=" : "<") << " " << 100.0 * kMinEnclosedArea
-      << " %), tested in " << look.ms << " ms";
-  look.reason = why.str();
-  return look;
 }
 
 } // namespace tool
