@@ -69,7 +69,9 @@ void ForEachPolygonNormal(vtkPolyData* model, Visit&& visit)
  * farthest (nearest) facing-back polygon of every grid cell; a polygon's centre cell is then
  * looked up. Linear in the polygons (and their boxes' grid cells).
  */
-double EnclosedAreaOf(vtkPolyData* model, double alongCos)
+/// Also the least of the per-axis shares in @p leastAxis (axes facing at least a tenth of the
+/// area), and that axis in @p leastAxisIndex (-1 without facing area).
+double EnclosedAreaOf(vtkPolyData* model, double alongCos, double& leastAxis, int& leastAxisIndex)
 {
   constexpr int kGrid = 64;
   double bounds[6];
@@ -149,6 +151,8 @@ double EnclosedAreaOf(vtkPolyData* model, double alongCos)
   }
   double total = 0.0;
   double enclosed = 0.0;
+  std::array<double, 3> axisTotal{ 0.0, 0.0, 0.0 };
+  std::array<double, 3> axisEnclosed{ 0.0, 0.0, 0.0 };
   for (const Facing& f : facing)
   {
     int u, v, unused;
@@ -157,8 +161,26 @@ double EnclosedAreaOf(vtkPolyData* model, double alongCos)
     cellRange(f.axis, 1, 0.5 * (f.box[2 * dv] + f.box[2 * dv + 1]), 0.0, v, unused);
     const std::size_t cell = static_cast<std::size_t>((f.axis * kGrid + u) * kGrid + v);
     total += f.area;
+    axisTotal[static_cast<std::size_t>(f.axis)] += f.area;
     if (f.positive ? farthestBack[cell] > f.coordinate : nearestFront[cell] < f.coordinate)
+    {
       enclosed += f.area;
+      axisEnclosed[static_cast<std::size_t>(f.axis)] += f.area;
+    }
+  }
+  leastAxis = 0.0;
+  leastAxisIndex = -1;
+  for (std::size_t axis = 0; axis < 3; ++axis)
+  {
+    if (axisTotal[axis] >= 0.1 * total && axisTotal[axis] > 0.0)
+    {
+      const double share = axisEnclosed[axis] / axisTotal[axis];
+      if (leastAxisIndex < 0 || share < leastAxis)
+      {
+        leastAxis = share;
+        leastAxisIndex = static_cast<int>(axis);
+      }
+    }
   }
   return total > 0.0 ? enclosed / total : 0.0;
 }
@@ -196,11 +218,12 @@ vtkArchitecturalLook vtkArchitecturalLook::Of(vtkPolyData* model)
           aligned[axis] += area;
       }
     });
-  look.EnclosedArea = EnclosedAreaOf(model, alongCos);
+  int leastAxisIndex = -1;
+  look.EnclosedArea = EnclosedAreaOf(model, alongCos, look.LeastEnclosedAxis, leastAxisIndex);
   const double best = std::max({ aligned[0], aligned[1], aligned[2] });
   look.AlignedArea = total > 0.0 ? best / total : 0.0;
-  look.LooksArchitectural =
-    look.AlignedArea >= MinimumAlignedArea && look.EnclosedArea >= MinimumEnclosedArea;
+  look.LooksArchitectural = look.AlignedArea >= MinimumAlignedArea &&
+    look.EnclosedArea >= MinimumEnclosedArea && look.LeastEnclosedAxis >= MinimumLeastEnclosedAxis;
   look.Milliseconds = MillisecondsSince(start);
   why << look.Polygons << " polygons, " << 100.0 * look.AlignedArea
       << " % of their area in axis-aligned planes ("
@@ -208,7 +231,11 @@ vtkArchitecturalLook vtkArchitecturalLook::Of(vtkPolyData* model)
       << " %), " << 100.0 * look.EnclosedArea
       << " % of that area faces another polygon across open space ("
       << (look.EnclosedArea >= MinimumEnclosedArea ? ">=" : "<") << " "
-      << 100.0 * MinimumEnclosedArea << " %), tested in " << look.Milliseconds << " ms";
+      << 100.0 * MinimumEnclosedArea << " %), " << 100.0 * look.LeastEnclosedAxis
+      << " % along the least enclosed axis, "
+      << "xyz?"[leastAxisIndex < 0 ? 3 : leastAxisIndex] << " ("
+      << (look.LeastEnclosedAxis >= MinimumLeastEnclosedAxis ? ">=" : "<") << " "
+      << 100.0 * MinimumLeastEnclosedAxis << " %), tested in " << look.Milliseconds << " ms";
   look.Reason = why.str();
   return look;
 }

@@ -47,6 +47,18 @@ void vtkScenePlanInstaller::SetPortals(vtkPolyData* portals, const char* roomIdA
   }
 }
 
+void vtkScenePlanInstaller::SetCellRooms(const vtkScenePlanRooms::CellRooms& rooms)
+{
+  if (this->PortalCuller)
+  {
+    for (const auto& actorRooms : this->CellRooms)
+      this->PortalCuller->SetPropCellRooms(actorRooms.first, nullptr);
+    for (const auto& actorRooms : rooms)
+      this->PortalCuller->SetPropCellRooms(actorRooms.first, actorRooms.second);
+  }
+  this->CellRooms = rooms;
+}
+
 int vtkScenePlanInstaller::GetNumberOfSwappedMappers() const
 {
   int swapped = 0;
@@ -86,6 +98,8 @@ void vtkScenePlanInstaller::InstallCuller(vtkRenderer* ren, const std::string& c
       this->PortalCuller = vtkSmartPointer<vtkPortalCuller>::New();
       this->PortalCuller->SetPortals(this->Portals);
       this->PortalCuller->SetRoomIdArrayName(this->RoomIdArrayName.c_str());
+      for (const auto& actorRooms : this->CellRooms)
+        this->PortalCuller->SetPropCellRooms(actorRooms.first, actorRooms.second);
     }
     this->PlaceCuller(ren, this->PortalCuller);
   }

@@ -20,6 +20,7 @@
 
 #include "vtkNew.h"
 #include "vtkScenePlanInventory.h"
+#include "vtkScenePlanRooms.h"
 #include "vtkSmartPointer.h"
 #include "vtkType.h"
 #include "vtkWeakPointer.h"
@@ -61,6 +62,9 @@ public:
     vtkScenePlanInventory& inventory, vtkIdType chunkedMinimumTriangles);
   /// The portals and room array name the portal culler gets ("portals" culling).
   void SetPortals(vtkPolyData* portals, const char* roomIdArrayName);
+  /// The rooms of the cells of actors, given to the portal culler apart from their data
+  /// (vtkPortalCuller::SetPropCellRooms; rooms the planner generated). Replaces the previous ones.
+  void SetCellRooms(const vtkScenePlanRooms::CellRooms& rooms);
   /// Takes everything out of @p ren (may be null: a renderer being deleted is not touched) and
   /// gives the actors their own mappers back.
   void Uninstall(vtkRenderer* ren);
@@ -101,6 +105,7 @@ private:
   vtkCuller* Installed = nullptr; ///< Culler, PortalCuller or nullptr
   vtkSmartPointer<vtkPolyData> Portals;
   std::string RoomIdArrayName = "RoomId";
+  vtkScenePlanRooms::CellRooms CellRooms;
   std::vector<vtkSmartPointer<vtkCuller>> RemovedCullers;
   vtkSmartPointer<vtkOrderedTranslucentPass> OrderedPass; ///< with vtkBSPTranslucentPass
   vtkSmartPointer<vtkBSPTranslucentPass> SortedPass;

@@ -12,6 +12,7 @@
 #include "vtkRenderer.h"
 #include "vtkScenePlanInstaller.h"
 #include "vtkScenePlanInventory.h"
+#include "vtkScenePlanRooms.h"
 #include "vtkSmartPointer.h"
 #include "vtkWeakPointer.h"
 
@@ -86,6 +87,9 @@ public:
   vtkSmartPointer<vtkPolyData> Portals;
   std::string RoomIdArrayName = "RoomId";
   bool PortalsChanged = false;
+  /// Rooms and portals generated when the application gives none (SetGenerateRooms).
+  vtkScenePlanRooms Rooms;
+  bool RoomsSettingChanged = false;
   vtkMTimeType PortalsTime = 0;
 
   // --- change detection ---
@@ -114,6 +118,16 @@ public:
       this->Self->ChunkedMinimumTriangles);
   }
   void UndoAll(vtkRenderer* ren);
+  /// The portals the plan works with: the application's, else generated ones (or none).
+  void UsePortals()
+  {
+    vtkPolyData* portals = this->Portals ? this->Portals.Get() : this->Rooms.GetPortals();
+    const char* roomArray = this->Portals ? this->RoomIdArrayName.c_str() : "RoomId";
+    this->Inventory.SetPortals(portals);
+    this->Installer.SetPortals(portals, roomArray);
+    this->Installer.SetCellRooms(
+      this->Portals ? vtkScenePlanRooms::CellRooms() : this->Rooms.GetCellRooms());
+  }
   void Adopt(const vtkScenePlanChoice& cull, const vtkScenePlanChoice& translucency);
   /// The translucency method for the culling method @p cull.
   vtkScenePlanChoice ChooseTranslucency(const vtkScenePlanChoice& cull);
@@ -122,7 +136,9 @@ public:
 void vtkSceneVisPlanner::vtkInternals::UndoAll(vtkRenderer* ren)
 {
   this->Installer.Uninstall(ren);
+  this->Installer.SetCellRooms({});
   this->Inventory.Clear();
+  this->Rooms.Clear();
   this->Cull = { "none", "not planned yet" };
   this->Translucency = { "none", "not planned yet" };
   this->CullReasonText = this->ReasonText = "not planned yet";
@@ -140,6 +156,8 @@ void vtkSceneVisPlanner::vtkInternals::Adopt(
   this->Cull = cull;
   this->Translucency = translucency;
   this->CullReasonText = cull.Reason + " (" + this->Inventory.GetFacts().Summary() + ")";
+  if (!this->Portals && !this->Rooms.GetReason().empty())
+    this->CullReasonText += "; " + this->Rooms.GetReason();
   this->ReasonText = "culling " + cull.Method + ": " + this->CullReasonText + "; translucency " +
     translucency.Method + ": " + translucency.Reason;
   this->Planned = true;
@@ -266,17 +284,31 @@ void vtkSceneVisPlanner::Plan()
     in.PortalsChanged || (in.Portals && in.Portals->GetMTime() != in.PortalsTime) || !in.Planned;
   if (portalsChanged)
   {
-    in.Inventory.SetPortals(in.Portals);
-    in.Installer.SetPortals(in.Portals, in.RoomIdArrayName.c_str());
+    if (in.Portals)
+      in.Rooms.Clear(); // the application's portals replace generated ones
+    in.UsePortals();
     in.PortalsChanged = false;
     in.PortalsTime = in.Portals ? in.Portals->GetMTime() : 0;
   }
-  bool sceneChanged = structure || portalsChanged || in.Inventory.IsDirty();
+  const bool roomsSetting = in.RoomsSettingChanged;
+  in.RoomsSettingChanged = false;
+  bool sceneChanged = structure || portalsChanged || roomsSetting || in.Inventory.IsDirty();
   if (sceneChanged)
   {
     if (structure || !in.Inventory.Refresh(ren))
       in.Inventory.Inspect(ren);
     in.Inventory.ClearDirty();
+    // No portals of the application's: generated ones, tried once per set of actors.
+    if (!in.Portals && this->GenerateRooms)
+    {
+      if (in.Rooms.Update(in.Inventory, structure || roomsSetting || portalsChanged))
+        in.UsePortals();
+    }
+    else if (roomsSetting && in.Rooms.GetPortals())
+    {
+      in.Rooms.Clear();
+      in.UsePortals();
+    }
     this->InspectionCount = in.Inventory.GetNumberOfInspections();
     in.PropsTime = props->GetMTime();
     if (in.Inventory.GetFacts().parts == 0)
@@ -418,6 +450,20 @@ void vtkSceneVisPlanner::SetRoomIdArrayName(const char* name)
   this->Modified();
 }
 
+void vtkSceneVisPlanner::SetGenerateRooms(bool generate)
+{
+  if (generate == this->GenerateRooms)
+    return;
+  this->GenerateRooms = generate;
+  this->Internals->RoomsSettingChanged = true;
+  this->Modified();
+}
+
+int vtkSceneVisPlanner::GetNumberOfRoomGenerations() const
+{
+  return this->Internals->Rooms.GetNumberOfGenerations();
+}
+
 const char* vtkSceneVisPlanner::GetRoomIdArrayName() const
 {
   return this->Internals->RoomIdArrayName.c_str();
@@ -475,6 +521,9 @@ void vtkSceneVisPlanner::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "SwitchFrames: " << this->SwitchFrames << "\n";
   os << indent << "ViewMargin: " << this->ViewMargin << "\n";
   os << indent << "ChunkedMinimumTriangles: " << this->ChunkedMinimumTriangles << "\n";
+  os << indent << "GenerateRooms: " << this->GenerateRooms << " ("
+     << in.Rooms.GetNumberOfGenerations() << " generations"
+     << (in.Rooms.GetPortals() ? ", in use" : "") << ")\n";
   vtkRenderPass* pass = in.Installer.GetPass();
   vtkCuller* culler = in.Installer.GetCuller();
   os << indent << "Culler: " << (culler ? culler->GetClassName() : "(none)") << "\n";

@@ -189,6 +189,24 @@ public:
   /// Milliseconds of the last Plan() call.
   vtkGetMacro(LastPlanTime, double);
 
+  ///@{
+  /**
+   * Rooms and portals generated for a scene without portals (no SetPortals()), as `scenevis
+   * --cull auto` does: when the counted actors (at least 2, at most 10,000 polygons in all) look
+   * architectural, rooms and portals are generated once for them in world coordinates
+   * (vtkGenerateRooms, stopping at the first leak, at most 3 s of processor time) and used when
+   * they are at least 2 rooms and 1 portal with no leak: the plan is then "portals", each actor's
+   * cells get their rooms in the portal culler (the application's data is not touched), and the
+   * culling reason says what was generated or why not. The rooms hold for the actors as they
+   * were: when one moves or changes, they are dropped until the set of actors changes. Default
+   * on. GetNumberOfRoomGenerations() counts the generations run.
+   */
+  void SetGenerateRooms(bool generate);
+  vtkGetMacro(GenerateRooms, bool);
+  vtkBooleanMacro(GenerateRooms, bool);
+  int GetNumberOfRoomGenerations() const;
+  ///@}
+
 protected:
   vtkSceneVisPlanner();
   ~vtkSceneVisPlanner() override;
@@ -200,6 +218,7 @@ protected:
   double ViewMargin = 0.2;
   vtkIdType ChunkedMinimumTriangles = 65536;
   double LastPlanTime = 0.0;
+  bool GenerateRooms = true;
 
   /// The renderer's DeleteEvent: forget it without touching it (it is being destroyed).
   void RendererDeleted();

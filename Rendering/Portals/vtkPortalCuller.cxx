@@ -72,6 +72,7 @@ class vtkPortalCuller::vtkInternals
 public:
   vtkSmartPointer<vtkPolyData> Portals;
   std::unordered_map<vtkProp*, int> ExplicitRooms;
+  std::unordered_map<vtkProp*, vtkSmartPointer<vtkDataArray>> ExplicitCellRooms;
   bool Dirty = true;
   vtkMTimeType PropsTime = 0;
   vtkMTimeType PortalsTime = 0;
@@ -135,15 +136,36 @@ void vtkPortalCuller::SetPropRoom(vtkProp* prop, int room)
 }
 
 //------------------------------------------------------------------------------
+void vtkPortalCuller::SetPropCellRooms(vtkProp* prop, vtkDataArray* rooms)
+{
+  if (!prop)
+  {
+    return;
+  }
+  if (rooms)
+  {
+    this->Internals->ExplicitCellRooms[prop] = rooms;
+  }
+  else
+  {
+    this->Internals->ExplicitCellRooms.erase(prop);
+  }
+  this->Internals->Dirty = true;
+}
+
+//------------------------------------------------------------------------------
 void vtkPortalCuller::RemovePropRoom(vtkProp* prop)
 {
-  this->Internals->Dirty = this->Internals->ExplicitRooms.erase(prop) > 0 || this->Internals->Dirty;
+  const bool removed =
+    this->Internals->ExplicitRooms.erase(prop) + this->Internals->ExplicitCellRooms.erase(prop) > 0;
+  this->Internals->Dirty = removed || this->Internals->Dirty;
 }
 
 //------------------------------------------------------------------------------
 void vtkPortalCuller::RemoveAllPropRooms()
 {
   this->Internals->ExplicitRooms.clear();
+  this->Internals->ExplicitCellRooms.clear();
   this->Internals->Dirty = true;
 }
 
@@ -425,10 +447,27 @@ bool vtkPortalCuller::EnsureScene(vtkRenderer* ren)
     int fixedRoom = 0;
     bool haveFixed = false;
     vtkDataArray* cellRooms = nullptr;
+    const auto explicitCells = in.ExplicitCellRooms.find(prop);
     if (explicitRoom != in.ExplicitRooms.end())
     {
       fixedRoom = explicitRoom->second;
       haveFixed = true;
+    }
+    else if (explicitCells != in.ExplicitCellRooms.end())
+    {
+      vtkDataArray* cells = explicitCells->second;
+      if (pd && cells->GetNumberOfComponents() == 1 &&
+        cells->GetNumberOfTuples() == pd->GetNumberOfCells())
+      {
+        cellRooms = cells;
+      }
+      else
+      {
+        in.Report += "warning: a prop's cell rooms (SetPropCellRooms) have " +
+          std::to_string(cells->GetNumberOfTuples()) + " values for " +
+          std::to_string(pd ? pd->GetNumberOfCells() : 0) +
+          " cells: ignored, the prop is only frustum-culled\n";
+      }
     }
     else if (pd && *arrayName)
     {

@@ -11,7 +11,8 @@
  * Scene description (loadable from VTK XML PolyData, e.g. with vtkXMLPolyDataReader):
  * - Portals (SetPortals): one planar polygon per portal (convex or concave) with two integer
  *   cell-data arrays "RoomA" and "RoomB" naming the rooms it joins (-1 = outside).
- * - Room of each prop, first match wins: SetPropRoom(prop, room); a one-tuple field-data array
+ * - Room of each prop, first match wins: SetPropRoom(prop, room); SetPropCellRooms(prop, rooms)
+ *   (one room per cell, given apart from the prop's data); a one-tuple field-data array
  *   named RoomIdArrayName ("RoomId") on the actor's mapper input; a cell-data array of that name
  *   (an actor whose cells span several rooms is drawn when any of them may be seen). Props with no
  *   room are only frustum-culled. The polygons of actors with room ids locate the eye (an eye in
@@ -58,6 +59,7 @@
 #include <memory> // For std::unique_ptr
 #include <string> // For std::string
 
+class vtkDataArray;
 class vtkPolyData;
 class vtkProp;
 
@@ -110,7 +112,12 @@ public:
 
   ///@{
   /// Explicit room of a prop (-1: outside), taking precedence over data arrays.
+  /// SetPropCellRooms: the room of each cell of a prop's polydata instead (one value per cell, as
+  /// the RoomIdArrayName cell array would give them; e.g. vtkGenerateRooms' output for the
+  /// application's own actors), without touching the application's data; null forgets it. A
+  /// prop's SetPropRoom wins over its cell rooms. Remove* forget both.
   void SetPropRoom(vtkProp* prop, int room);
+  void SetPropCellRooms(vtkProp* prop, vtkDataArray* rooms);
   void RemovePropRoom(vtkProp* prop);
   void RemoveAllPropRooms();
   ///@}

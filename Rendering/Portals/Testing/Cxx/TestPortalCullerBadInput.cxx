@@ -304,6 +304,25 @@ int TestPortalCullerBadInput(int, char*[])
   drawn = Run(culler, ren, props);
   ok &= Check(!Has(drawn, free.Get()), "explicit prop room");
   culler->RemoveAllPropRooms();
+  // Explicit rooms per cell (SetPropCellRooms): all six faces of the free cube in room 3, then
+  // an array of the wrong length (reported, the cube only frustum-culled), then forgotten.
+  vtkNew<vtkIntArray> cellRooms;
+  cellRooms->SetNumberOfTuples(6);
+  cellRooms->FillValue(3);
+  culler->SetPropCellRooms(free.Get(), cellRooms);
+  drawn = Run(culler, ren, props);
+  ok &= Check(!Has(drawn, free.Get()), "explicit cell rooms: the cube in room 3, culled");
+  vtkNew<vtkIntArray> tooShort;
+  tooShort->SetNumberOfTuples(2);
+  tooShort->FillValue(3);
+  culler->SetPropCellRooms(free.Get(), tooShort);
+  drawn = Run(culler, ren, props);
+  ok &= Check(Has(drawn, free.Get()) &&
+      std::string(culler->GetGraphReport()).find("2 values for 6 cells") != std::string::npos,
+    "cell rooms of the wrong length: reported, the cube frustum-culled only");
+  culler->SetPropCellRooms(free.Get(), nullptr);
+  drawn = Run(culler, ren, props);
+  ok &= Check(Has(drawn, free.Get()), "cell rooms forgotten");
 
   // Empty list and a real render with the culler installed.
   int zero = 0, init = 0;
