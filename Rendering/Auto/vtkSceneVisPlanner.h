@@ -24,7 +24,8 @@
  * translucent points; a lookup table that is not opaque makes all of the actor translucent) and,
  * with vtkScenePlanRule::ManyProps+ actors, how much of the triangles the camera sees and the
  * estimated depth complexity (the in-view actors' screen rectangles over the area they span);
- * the rooms and portals of the portals given with SetPortals(). Other props (volumes, 2D actors,
+ * the rooms and portals of the portals given with SetPortals(), or of those it generated for
+ * actors that look like a building (SetGenerateRooms). Other props (volumes, 2D actors,
  * assemblies) are left alone and not counted. The actors are the application's: with ManyProps+
  * of them the planner always culls (facts.fixedActors, see vtkScenePlanRule).
  *
@@ -36,7 +37,8 @@
  *   the application added are left in place.
  * - culling "portals" (portals set, naming rooms): one vtkPortalCuller with those portals and
  *   RoomIdArrayName, in place of the coverage cullers likewise; the actors' rooms are read by it
- *   (field or cell data of that name, see vtkPortalCuller).
+ *   (field or cell data of that name, see vtkPortalCuller); with generated portals, the rooms
+ *   of the actors' cells are given to it (vtkPortalCuller::SetPropCellRooms).
  * - culling "chunked": the opaque actors holding at least ChunkedMinimumTriangles draw through a
  *   vtkChunkedPolyDataMapper (a shallow copy of their mapper: same input and colouring).
  * - culling "none": nothing; the renderer keeps its default culler.
