@@ -1,7 +1,9 @@
 // libFuzzer target for automatic rooms and portals (PortalGeneration.h): arbitrary bytes -> a grid
 // of up to 3 x 3 closed box rooms (zero-thickness walls, each room's faces facing into it) with
-// doors and windows of random sizes and places in the walls between them, now and then a window to
-// the outside, a 1e7 offset, degenerate and NaN/Inf polygons mixed in, or free triangles anywhere.
+// doors and windows of random sizes and places in the walls between them, now and then a door or a
+// window to the outside (flag 8; flags 64 and 128 pick the exterior wall: x = 0, the far x wall,
+// y = 0 or the far y wall), a 1e7 offset, degenerate and NaN/Inf polygons mixed in, or free
+// triangles anywhere.
 // Flag 32 drops one polygon of the rooms (a leak, sanity checks only). Flag 16 also runs it with
 // GenerationConfig::stopAtFirstLeak, which must give the same answer without a leak and one leak
 // cell with no rooms when there is one.
@@ -117,14 +119,13 @@ struct Scene
   }
   /// An opening in the wall coordinate[axis] == at, spanning [u0, u1] along the wall's other
   /// horizontal axis: a door from the floor or a window, its size and place from the bytes.
-  void opening(Reader& in, int a, int b, int axis, double at, double u0, double u1, double height,
-    bool windowOnly = false)
+  void opening(Reader& in, int a, int b, int axis, double at, double u0, double u1, double height)
   {
     const int u = axis == 0 ? 1 : 0;
     const double length = u1 - u0, margin = 0.25;
     const double width = 0.2 + in.unit() * (length - 2 * margin - 0.2);
     const double start = u0 + margin + in.unit() * (length - 2 * margin - width);
-    const bool door = in.byte() % 2 == 0 && !windowOnly;
+    const bool door = in.byte() % 2 == 0;
     const double bottom = door ? 0.0 : margin + in.unit() * (height - 2 * margin - 0.3);
     const double top = bottom + 0.3 + in.unit() * (height - margin - bottom - 0.3);
     Opening o;
@@ -214,7 +215,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   Reader in{ data, size };
   const std::uint8_t flags = in.byte();
   const bool offset = flags & 1, badPolygons = flags & 2, freeTriangles = flags & 4,
-             outsideWindow = flags & 8;
+             outsideOpening = flags & 8;
   Scene s;
   if (offset)
   {
@@ -257,12 +258,26 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       }
     }
   }
-  if (outsideWindow)
+  if (outsideOpening)
   {
-    // A window in the first room's wall at x = 0 (always an exterior wall). Not a door: an
-    // exterior door down to the floor is not found as an opening (its open region joins the
-    // open wall plane below the floor outside) and the room leaks; a known limit, not checked.
-    s.opening(in, 0, -1, 0, 0.0, ys[0], ys[1], height, true);
+    // A door or a window in an exterior wall of a corner room. A door reaches down to the floor,
+    // below which the wall's plane is open outside the building (the rooms float in the scene
+    // box): the threshold must part the door's open region from that plane (issue 14).
+    switch ((flags >> 6) & 3)
+    {
+      case 0:
+        s.opening(in, id(0, 0), -1, 0, xs[0], ys[0], ys[1], height);
+        break;
+      case 1:
+        s.opening(in, id(nx - 1, 0), -1, 0, xs[nx], ys[0], ys[1], height);
+        break;
+      case 2:
+        s.opening(in, id(0, 0), -1, 1, ys[0], xs[0], xs[1], height);
+        break;
+      default:
+        s.opening(in, id(0, ny - 1), -1, 1, ys[ny], xs[0], xs[1], height);
+        break;
+    }
   }
   for (int r = 0; r < nx * ny; ++r)
   {

@@ -7,6 +7,8 @@
 #include "scenevis/PortalGeometry.h"
 #include "scenevis/PortalGraph.h"
 
+#include <glm/common.hpp>
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -14,6 +16,7 @@
 #include <limits>
 #include <map>
 #include <set>
+#include <string>
 #include <vector>
 
 using namespace scenevis;
@@ -238,6 +241,85 @@ ArchitectureSoup rowOfRooms(int n)
   return s;
 }
 
+/// Checks of a scene whose only leaks would be its exterior openings: status Ok, no leak, @p rooms
+/// rooms, each authored room one generated room of its own (never the outside), @p exterior
+/// exterior portals, and every opening inside a portal joining its rooms.
+void expectClosedRoomsWithExteriorPortals(
+  const ArchitectureSoup& s, const GeneratedPortals& g, int rooms, std::size_t exterior)
+{
+  ASSERT_EQ(g.status, GenerationStatus::Ok) << g.message;
+  EXPECT_EQ(g.statistics.leakCells, 0u);
+  EXPECT_TRUE(g.leakPoints.empty());
+  EXPECT_EQ(g.roomCount, rooms);
+  EXPECT_EQ(g.statistics.exteriorPortals, exterior);
+  expectOpeningsCovered(s, g);
+}
+
+/// @p s turned about the z axis by @p quarterTurns quarter turns ((x, y) -> (-y, x) each): the
+/// same scene with its walls in other BSP nodes.
+ArchitectureSoup turned(ArchitectureSoup s, int quarterTurns)
+{
+  auto turn = [quarterTurns](glm::dvec3 p)
+  {
+    for (int k = 0; k < quarterTurns; ++k)
+    {
+      p = glm::dvec3(-p.y, p.x, p.z);
+    }
+    return p;
+  };
+  for (glm::dvec3& p : s.mesh.points)
+  {
+    p = turn(p);
+  }
+  for (Box& b : s.rooms)
+  {
+    Box t;
+    t.extend(turn(b.lo));
+    t.extend(turn(b.hi));
+    b = t;
+  }
+  for (Opening& o : s.openings)
+  {
+    const glm::dvec3 a = turn(o.lo), b = turn(o.hi);
+    o.lo = glm::min(a, b);
+    o.hi = glm::max(a, b);
+    o.axis = quarterTurns % 2 == 0 || o.axis == 2 ? o.axis : 1 - o.axis;
+    o.at = o.lo[o.axis];
+  }
+  return s;
+}
+
+/// A 10 x 4 x 3 room with a 1 x 2.1 door from the floor in its end wall x = 10, the wall
+/// @p thickness thick: a second face at x = 10 + thickness facing out, the door's jambs, lintel
+/// and threshold between the two faces and the wall's four end caps (all authored room -2: the
+/// oracle expects no particular room for them). The opening is the door in the room's own face.
+/// (Long and narrow on purpose: in a smaller room's wall plane, the open ring around the
+/// building, if grouped with the door, has enough of its outline against the wall to pass.)
+ArchitectureSoup roomWithAnExteriorDoor(double thickness)
+{
+  ArchitectureSoup s;
+  s.room({ 0, 0, 0 }, { 10, 4, 3 });
+  s.opening(0, -1, 0, 10.0, { 0, 1.5, 0 }, { 0, 2.5, 2.1 });
+  s.finish();
+  if (thickness > 0.0)
+  {
+    const double x0 = 10.0, x1 = 10.0 + thickness;
+    s.quad(-2, 0, x1, true, 0, 4, 2.1, 3); // outer face, above the door
+    s.quad(-2, 0, x1, true, 0, 1.5, 0, 2.1);
+    s.quad(-2, 0, x1, true, 2.5, 4, 0, 2.1);
+    s.quad(-2, 1, 1.5, true, 0, 2.1, x0, x1); // jambs, facing into the doorway
+    s.quad(-2, 1, 2.5, false, 0, 2.1, x0, x1);
+    s.quad(-2, 2, 2.1, false, x0, x1, 1.5, 2.5); // lintel
+    s.quad(-2, 2, 0.0, true, x0, x1, 1.5, 2.5);  // threshold
+    s.quad(-2, 1, 0.0, false, 0, 3, x0, x1);     // end caps, facing out
+    s.quad(-2, 1, 4.0, true, 0, 3, x0, x1);
+    s.quad(-2, 2, 3.0, true, x0, x1, 0, 4);
+    s.quad(-2, 2, 0.0, false, x0, x1, 0, 1.5);
+    s.quad(-2, 2, 0.0, false, x0, x1, 2.5, 4);
+  }
+  return s;
+}
+
 } // namespace
 
 TEST(PortalGeneration, TwoRoomsJoinedByADoorGiveTwoRoomsAndOnePortalCoveringTheDoor)
@@ -340,6 +422,94 @@ TEST(PortalGeneration, AWindowToTheOutsideIsAnExteriorPortal)
   EXPECT_EQ(g.statistics.exteriorPortals, 1u);
   EXPECT_EQ(g.statistics.leakCells, 0u);
   expectOpeningsCovered(s, g);
+}
+
+// A door from the floor in an exterior wall (issue 14): box rooms float in the scene box with
+// air below them, so the wall's plane is open below the floor outside the building too. Each
+// scene turned four ways: which wall's BSP node reaches below the floor depends on the order.
+TEST(PortalGeneration, ADoorFromTheFloorToTheOutsideIsAnExteriorPortal)
+{
+  for (int turns = 0; turns < 4; ++turns)
+  {
+    SCOPED_TRACE("turned " + std::to_string(turns) + " quarter turns");
+    const ArchitectureSoup s = turned(roomWithAnExteriorDoor(0.0), turns);
+    const GeneratedPortals g = generate(s.mesh);
+    expectClosedRoomsWithExteriorPortals(s, g, 1, 1);
+    // The door, not the wall: 1 x 2.1 in a 4 x 3 wall.
+    ASSERT_EQ(g.portals.size(), 1u);
+    EXPECT_LT(area(g.portals[0].polygon), 0.5 * 12.0);
+  }
+}
+
+TEST(PortalGeneration, DoorsFromTheFloorToTheOutsideOfTwoRoomsAreExteriorPortals)
+{
+  ArchitectureSoup two = rowOfRooms(2);
+  two.opening(1, -1, 0, 10.0, { 0, 1, 0 }, { 0, 2, 2.1 });  // in room 1's far wall
+  two.opening(0, -1, 1, 0.0, { 1, 0, 0 }, { 2.5, 0, 2.4 }); // in room 0's side wall
+  two.finish();
+  for (int turns = 0; turns < 4; ++turns)
+  {
+    SCOPED_TRACE("turned " + std::to_string(turns) + " quarter turns");
+    const ArchitectureSoup s = turned(two, turns);
+    const GeneratedPortals g = generate(s.mesh);
+    expectClosedRoomsWithExteriorPortals(s, g, 2, 2);
+    EXPECT_EQ(g.portals.size(), 3u);
+  }
+}
+
+TEST(PortalGeneration, ADoorToTheOutsideOfABuildingOnTheGroundIsAnExteriorPortal)
+{
+  // The ground: one polygon larger than the building, in the floor's plane, facing up.
+  ArchitectureSoup ground = roomWithAnExteriorDoor(0.0);
+  ground.quad(-2, 2, 0.0, true, -10, 15, -10, 14);
+  for (int turns = 0; turns < 4; ++turns)
+  {
+    SCOPED_TRACE("turned " + std::to_string(turns) + " quarter turns");
+    const ArchitectureSoup s = turned(ground, turns);
+    const GeneratedPortals g = generate(s.mesh);
+    expectClosedRoomsWithExteriorPortals(s, g, 1, 1);
+    EXPECT_EQ(g.portals.size(), 1u);
+  }
+}
+
+TEST(PortalGeneration, ADoorToTheOutsideThroughAThickWallIsAnExteriorPortal)
+{
+  const double thickness = 0.3;
+  for (int turns = 0; turns < 4; ++turns)
+  {
+    SCOPED_TRACE("turned " + std::to_string(turns) + " quarter turns");
+    const ArchitectureSoup s = turned(roomWithAnExteriorDoor(thickness), turns);
+    const GeneratedPortals g = generate(s.mesh);
+    ASSERT_EQ(g.status, GenerationStatus::Ok) << g.message;
+    EXPECT_EQ(g.statistics.leakCells, 0u);
+    EXPECT_EQ(g.roomCount, 1);
+    roomMap(s, g);
+    // The doorway through the wall is a passage: joined to the room or to the outside, so the
+    // portal stands on one face of the wall or the other and must cover the whole door there.
+    ASSERT_EQ(g.portals.size(), 1u);
+    const PortalDesc& portal = g.portals[0];
+    EXPECT_EQ(portal.roomA, 0);
+    EXPECT_EQ(portal.roomB, kOutsideRoom);
+    const Opening& door = s.openings[0];
+    const int u = (door.axis + 1) % 3, v = (door.axis + 2) % 3;
+    // The wall's outer face lies `thickness` beyond the room's face, away from the room.
+    const double out = door.at > s.rooms[0].center()[door.axis] ? thickness : -thickness;
+    bool coveredOnAFace = false;
+    for (const double at : { door.at, door.at + out })
+    {
+      bool all = true;
+      for (int c = 0; c < 4; ++c)
+      {
+        glm::dvec3 corner = door.lo;
+        corner[door.axis] = at;
+        corner[u] = (c & 1) ? door.hi[u] : door.lo[u];
+        corner[v] = (c & 2) ? door.hi[v] : door.lo[v];
+        all = all && portalCovers(portal, corner, 1e-6);
+      }
+      coveredOnAFace = coveredOnAFace || all;
+    }
+    EXPECT_TRUE(coveredOnAFace) << "the portal does not cover the door on either face of the wall";
+  }
 }
 
 TEST(PortalGeneration, AMissingWallIsReportedAsALeak)

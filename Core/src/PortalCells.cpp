@@ -694,6 +694,7 @@ bool segmentHitsFragment(const bsp::Tree& tree, const glm::dvec3& a, const glm::
   };
   const double tol = tree.tolerance;
   std::vector<Segment> stack{ Segment{ tree.root, a, b } };
+  Poly poly;
   while (!stack.empty())
   {
     const Segment s = stack.back();
@@ -725,7 +726,14 @@ bool segmentHitsFragment(const bsp::Tree& tree, const glm::dvec3& a, const glm::
     const glm::dvec3 m = s.a + t * (s.b - s.a);
     for (std::uint32_t k = 0; k < n.fragmentCount; ++k)
     {
-      if (insideConvexPolygon(fragmentPolygon(tree, tree.fragments[n.firstFragment + k]), m, -tol))
+      // fragmentPolygon() into one buffer: no allocation per fragment tested.
+      const bsp::Fragment& f = tree.fragments[n.firstFragment + k];
+      poly.resize(f.count);
+      for (std::uint32_t v = 0; v < f.count; ++v)
+      {
+        poly[v] = tree.points[tree.fragmentVertices[f.first + v]] - tree.origin;
+      }
+      if (insideConvexPolygon(poly, m, -tol))
       {
         return true;
       }

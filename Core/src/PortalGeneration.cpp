@@ -238,35 +238,68 @@ private:
         }
         const glm::dvec3 outward = glm::cross(edge, normal) / len;
         const glm::dvec3 lift = step * normal;
+        // Whether a polygon meets the plane along this edge in front (0) or behind (1): tested
+        // once, across the edge's middle, when a sample first asks (-1: not yet).
+        int meetsAlong[2] = { -1, -1 };
+        const double nearEdge = std::min(10.0 * tol, 0.1 * step);
         for (const double t : { 1.0 / 6.0, 0.5, 5.0 / 6.0 })
         {
           const glm::dvec3 q = a + t * edge;
           const glm::dvec3 p = q + step * outward, back = q - step * outward;
           // An edge along a wall that crosses the plane (on both sides of it) is not part of an
           // outline in the plane: whatever lies beyond is another space.
-          if (detail::segmentHitsFragment(tree, back + lift, p + lift) &&
-            detail::segmentHitsFragment(tree, back - lift, p - lift))
+          const bool polygonInFront = detail::segmentHitsFragment(tree, back + lift, p + lift);
+          if (polygonInFront && detail::segmentHitsFragment(tree, back - lift, p - lift))
           {
             other[i] += len / 3.0;
             continue;
           }
-          bool found = false;
           Box at;
           at.extend(p);
+          std::size_t beyond = pieces.size();
           for (const std::uint32_t pj : pieceGrid.near(at))
           {
             if (pj != pi && contains(pieceBounds[pj], p, tol) &&
               detail::insideConvexPolygon(cx.open[pieces[pj]].polygon, p, -tol))
             {
-              regions.unite(i, pieces[pj]);
-              found = true;
+              beyond = pj;
               break;
             }
           }
-          if (found)
+          if (beyond < pieces.size())
           {
+            // Open beyond the edge too: the same region, unless a polygon meets the plane along
+            // the edge on one side (the floor at the threshold of a door in an exterior wall,
+            // with the open plane below the floor outside beyond it): then the spaces on that
+            // side differ across the edge, as across a wall that crosses the plane. Along the
+            // edge itself, not within `step` of it (a door's jamb a few millimetres beside a
+            // cell's edge in the doorway does not part it). Cheap tests first: no polygon enters
+            // a cell, so the two pieces have different cells on that side; the segment across
+            // the edge lies inside the one tested above (in front: it hit, so behind not).
+            const detail::CellFace& face = cx.faces[cx.open[i].face];
+            const detail::CellFace& next = cx.faces[cx.open[pieces[beyond]].face];
+            const bool flipped = glm::dot(glm::dvec3(tree.nodes[next.node].plane), normal) < 0.0;
+            const std::uint32_t side = polygonInFront ? face.front : face.back;
+            const std::uint32_t nextSide = polygonInFront == flipped ? next.back : next.front;
+            int& meets = meetsAlong[polygonInFront ? 0 : 1];
+            if (side != nextSide && meets < 0)
+            {
+              const glm::dvec3 middle = a + 0.5 * edge, across = nearEdge * outward;
+              const glm::dvec3 off = polygonInFront ? lift : -lift;
+              meets =
+                detail::segmentHitsFragment(tree, middle - across + off, middle + across + off);
+            }
+            if (side != nextSide && meets > 0)
+            {
+              other[i] += len / 3.0;
+            }
+            else
+            {
+              regions.unite(i, pieces[beyond]);
+            }
             continue;
           }
+          bool found = false;
           for (const std::uint32_t f : fragmentGrid.near(at))
           {
             if (contains(fragmentBounds[f], p, tol) &&
