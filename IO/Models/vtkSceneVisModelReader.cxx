@@ -1,5 +1,7 @@
 #include "vtkSceneVisModelReader.h"
 
+#include "vtkIsolatedRead.h"
+
 #include "vtkActor.h"
 #include "vtkActorCollection.h"
 #include "vtkAlgorithm.h"
@@ -565,15 +567,21 @@ int vtkSceneVisModelReader::RequestData(
   }
   else
   {
-    try
+    auto read = [&path](std::string* error)
     {
-      model = ReadModel(path, &why);
-    }
-    catch (const std::exception& e)
-    {
-      // VTK's glTF loader lets jsoncpp's exceptions through on some malformed files.
-      why = "cannot read '" + path + "': " + e.what();
-    }
+      try
+      {
+        return ReadModel(path, error);
+      }
+      catch (const std::exception& e)
+      {
+        // VTK's glTF loader lets jsoncpp's exceptions through on some malformed files.
+        *error = "cannot read '" + path + "': " + e.what();
+        return vtkSmartPointer<vtkPolyData>();
+      }
+    };
+    const bool isolate = this->ReadInChildProcess && Extension(path) != "vtp";
+    model = isolate ? vtkIsolatedRead::Run(path, read, &why) : read(&why);
     if (model)
     {
       why = DescribeBadPointId(model);
@@ -616,6 +624,7 @@ void vtkSceneVisModelReader::PrintSelf(ostream& os, vtkIndent indent)
   this->Superclass::PrintSelf(os, indent);
   os << indent << "FileName: " << (this->FileName ? this->FileName : "(none)") << "\n";
   os << indent << "RemoveNonFiniteCells: " << this->RemoveNonFiniteCells << "\n";
+  os << indent << "ReadInChildProcess: " << this->ReadInChildProcess << "\n";
   os << indent << "NumberOfRemovedCells: " << this->NumberOfRemovedCells << "\n";
   os << indent << "ErrorMessage: " << this->ErrorMessage << "\n";
 }

@@ -30,9 +30,11 @@
  * cannot observe, such as the glTF importer's document loader, may still log. Exceptions that
  * VTK's glTF loader lets through are caught too.
  *
- * Not guarded against: VTK 9.1's PLY and glTF readers crash the process on some malformed files
- * (Testing/BadInput/TestMalformedModels.cxx lists them). A program that reads files it cannot
- * trust should read them in a child process, as the `scenevis` tool does.
+ * VTK 9.1's PLY and glTF readers crash the process on some malformed files
+ * (Testing/BadInput/TestMalformedModels.cxx lists them). With ReadInChildProcess on, VTK's reader
+ * runs in a child process (vtkIsolatedRead.h): such a crash is one error ("VTK's reader crashed on
+ * it (signal ...)") and an empty output, as the `scenevis` tool reads files. Off by default: it
+ * costs writing and reading the model once more.
  *
  * Usage:
  * @code
@@ -76,6 +78,15 @@ public:
   vtkBooleanMacro(RemoveNonFiniteCells, bool);
   ///@}
 
+  ///@{
+  /// Run VTK's reader in a child process (POSIX fork), so that a reader crash on a malformed file
+  /// is an error, not the end of the program (default off). .vtp files are read in this process
+  /// either way: VTK's XML reader checks what it reads.
+  vtkSetMacro(ReadInChildProcess, bool);
+  vtkGetMacro(ReadInChildProcess, bool);
+  vtkBooleanMacro(ReadInChildProcess, bool);
+  ///@}
+
   /// How many cells the last read removed for NaN/Inf points.
   vtkGetMacro(NumberOfRemovedCells, vtkIdType);
 
@@ -112,6 +123,7 @@ protected:
 
   char* FileName = nullptr;
   bool RemoveNonFiniteCells = true;
+  bool ReadInChildProcess = false;
   vtkIdType NumberOfRemovedCells = 0;
   std::string ErrorMessage;
 

@@ -17,13 +17,15 @@
 //
 // Every file is also read by vtkSceneVisModelReader (SceneVis::IOModels, what users link) alone in
 // a child process: Renders must give cells and no error; Rejected ONE error (matching the table's
-// pattern) and an empty output. The reader does not guard against VTK's reader crashes (its header
-// says so; the tool reads in a child process): on ReaderCrash files it may crash too, and only a
-// hang fails.
+// pattern) and an empty output. By default the reader does not guard against VTK's reader crashes:
+// on ReaderCrash files it may crash too, and only a hang fails. With ReadInChildProcess on it must
+// not: ReaderCrash files give ONE error saying VTK's reader crashed, and an empty output; the
+// other files as without it.
 //
 // Usage: scenevis_bad_input_models <path of scenevis> <scratch directory>
 //        scenevis_bad_input_models --bare-read FILE   (VTK's reader alone; used internally)
 //        scenevis_bad_input_models --module-read FILE (vtkSceneVisModelReader; used internally)
+//        scenevis_bad_input_models --module-read-isolated FILE (the same, ReadInChildProcess on)
 // Exit 77 (skip) when the real data was not fetched (scripts/fetch-data.sh).
 #include "ChildProcess.h"
 
@@ -176,9 +178,10 @@ public:
 /// Reads @p file with vtkSceneVisModelReader: the body of the `--module-read FILE` mode. Prints
 /// the reader's error message; exit 0: cells and no error, 1: one error and an empty output,
 /// 2: anything else (then the counts are printed too).
-int ModuleRead(const std::string& file)
+int ModuleRead(const std::string& file, bool isolated)
 {
   vtkNew<vtkSceneVisModelReader> reader;
+  reader->SetReadInChildProcess(isolated);
   vtkNew<CountErrors> errors;
   reader->AddObserver(vtkCommand::ErrorEvent, errors);
   reader->SetFileName(file.c_str());
@@ -202,13 +205,15 @@ int ModuleRead(const std::string& file)
 /// vtkSceneVisModelReader on @p file in a child process, against the table's outcome: what
 /// happened (appended to @p seen), and the problem, if any, in @p problem (unless already set).
 void CheckModuleReader(const Case& c, const std::string& file, const std::string& scratch,
-  std::string& seen, std::string& problem)
+  bool isolated, std::string& seen, std::string& problem)
 {
-  const Run run = RunChild({ "/proc/self/exe", "--module-read", file }, scratch);
+  const Run run = RunChild(
+    { "/proc/self/exe", isolated ? "--module-read-isolated" : "--module-read", file }, scratch);
   const std::vector<std::string> out = Lines(run.out);
   const std::string message = out.empty() ? std::string() : out.front();
   std::string wrong;
-  seen += "; vtkSceneVisModelReader: ";
+  seen +=
+    isolated ? "; vtkSceneVisModelReader, ReadInChildProcess: " : "; vtkSceneVisModelReader: ";
   if (run.timedOut)
   {
     seen += "hang";
@@ -217,7 +222,11 @@ void CheckModuleReader(const Case& c, const std::string& file, const std::string
   else if (run.signal != 0)
   {
     seen += "killed by signal " + std::to_string(run.signal);
-    if (c.expected != Outcome::ReaderCrash)
+    if (isolated)
+    {
+      wrong = "vtkSceneVisModelReader crashed with ReadInChildProcess on";
+    }
+    else if (c.expected != Outcome::ReaderCrash)
     {
       wrong = "vtkSceneVisModelReader crashed on a file VTK's reader survives";
     }
@@ -240,6 +249,11 @@ void CheckModuleReader(const Case& c, const std::string& file, const std::string
     else if (c.expected == Outcome::Rejected && !std::regex_search(message, std::regex(c.message)))
     {
       wrong = std::string("vtkSceneVisModelReader's error does not match '") + c.message + "'";
+    }
+    else if (c.expected == Outcome::ReaderCrash && isolated &&
+      !std::regex_search(message, std::regex("VTK's reader crashed on it")))
+    {
+      wrong = "vtkSceneVisModelReader's error does not say VTK's reader crashed";
     }
   }
   else
@@ -303,7 +317,11 @@ int main(int argc, char* argv[])
   }
   if (argc == 3 && std::string(argv[1]) == "--module-read")
   {
-    return ModuleRead(argv[2]);
+    return ModuleRead(argv[2], false);
+  }
+  if (argc == 3 && std::string(argv[1]) == "--module-read-isolated")
+  {
+    return ModuleRead(argv[2], true);
   }
   if (argc != 3)
   {
@@ -438,7 +456,8 @@ int main(int argc, char* argv[])
         problem = std::string("error line does not match '") + c.message + "'";
       }
     }
-    CheckModuleReader(c, file, scratch, seen, problem);
+    CheckModuleReader(c, file, scratch, false, seen, problem);
+    CheckModuleReader(c, file, scratch, true, seen, problem);
     std::cout << (problem.empty() ? "ok   " : "FAIL ") << label << " [" << c.why << "]: expected "
               << OutcomeName(c.expected) << ", got " << seen;
     std::cout << " (" << static_cast<int>(run.seconds * 1000) << " ms)\n";
