@@ -4,10 +4,14 @@
 #ifndef PlannerTesting_h
 #define PlannerTesting_h
 
+#include "scenevis/Scenes.h"
+#include "scenevis/testing/Scenes.h"
+
 #include <vtkActor.h>
 #include <vtkCellArray.h>
 #include <vtkCellData.h>
 #include <vtkCuller.h>
+#include <vtkFieldData.h>
 #include <vtkIntArray.h>
 #include <vtkNew.h>
 #include <vtkPoints.h>
@@ -92,6 +96,35 @@ struct BoxGrid
     return -1;
   }
 };
+
+/// The building @p b as an application with one actor per room has it: actors[r + 1] draws room r
+/// (actors[0] the outside), each with "RoomNode" cell data (the ID buffer's room) and, with
+/// @p roomField, its room as "RoomId" field data (what vtkPortalCuller reads).
+inline std::vector<vtkSmartPointer<vtkActor>> BuildingActors(
+  vtkRenderer* renderer, const scenevis::scenes::BuildingScene& b, bool roomField)
+{
+  const int rooms = static_cast<int>(b.rooms.size());
+  std::vector<vtkSmartPointer<vtkActor>> actors;
+  for (int r = -1; r < rooms; ++r)
+  {
+    auto pd = scenevis::testing::MakeRoomPolyData(b, r, rooms);
+    if (roomField)
+    {
+      vtkNew<vtkIntArray> id;
+      id->SetName("RoomId");
+      id->InsertNextValue(r);
+      pd->GetFieldData()->AddArray(id);
+    }
+    vtkNew<vtkPolyDataMapper> mapper;
+    mapper->SetInputData(pd);
+    mapper->ScalarVisibilityOff();
+    auto actor = vtkSmartPointer<vtkActor>::New();
+    actor->SetMapper(mapper);
+    renderer->AddActor(actor);
+    actors.push_back(actor);
+  }
+  return actors;
+}
 
 /// Records the props the cullers before it kept; culls nothing.
 class RecordingCuller : public vtkCuller

@@ -119,17 +119,9 @@ int TestSceneVisPlannerGeneratedRooms(int, char*[])
   vtkSmartPointer<vtkRenderWindow> window = st::MakeRenderWindow(200, 150);
   vtkNew<vtkRenderer> renderer;
   window->AddRenderer(renderer);
-  std::vector<vtkSmartPointer<vtkActor>> actors; // actors[r + 1]: room r (-1: outside)
-  for (int r = -1; r < rooms; ++r)
-  {
-    vtkNew<vtkPolyDataMapper> mapper;
-    mapper->SetInputData(st::MakeRoomPolyData(b, r, outsideNode)); // no RoomId: "RoomNode" only
-    mapper->ScalarVisibilityOff();
-    auto actor = vtkSmartPointer<vtkActor>::New();
-    actor->SetMapper(mapper);
-    renderer->AddActor(actor);
-    actors.push_back(actor);
-  }
+  // actors[r + 1]: room r (-1: outside); no RoomId anywhere ("RoomNode" for the ID buffer only).
+  std::vector<vtkSmartPointer<vtkActor>> actors =
+    plannertesting::BuildingActors(renderer, b, false);
   const auto all = st::MakeRoomPolyData(b, -2, outsideNode);
   renderer->GetActiveCamera()->SetViewAngle(60.0);
 

@@ -59,22 +59,8 @@ int TestSceneVisPlannerPortals(int, char*[])
   vtkSmartPointer<vtkRenderWindow> window = st::MakeRenderWindow(200, 150);
   vtkNew<vtkRenderer> renderer;
   window->AddRenderer(renderer);
-  std::vector<vtkSmartPointer<vtkActor>> actors; // actors[r + 1]: room r (-1: outside)
-  for (int r = -1; r < rooms; ++r)
-  {
-    auto pd = st::MakeRoomPolyData(b, r, outsideNode);
-    vtkNew<vtkIntArray> id;
-    id->SetName("RoomId");
-    id->InsertNextValue(r);
-    pd->GetFieldData()->AddArray(id);
-    vtkNew<vtkPolyDataMapper> mapper;
-    mapper->SetInputData(pd);
-    mapper->ScalarVisibilityOff();
-    auto actor = vtkSmartPointer<vtkActor>::New();
-    actor->SetMapper(mapper);
-    renderer->AddActor(actor);
-    actors.push_back(actor);
-  }
+  // actors[r + 1]: room r (-1: outside), its room as "RoomId" field data.
+  std::vector<vtkSmartPointer<vtkActor>> actors = plannertesting::BuildingActors(renderer, b, true);
   const auto all = st::MakeRoomPolyData(b, -2, outsideNode);
   vtkCamera* camera = renderer->GetActiveCamera();
   camera->SetViewAngle(60.0);
