@@ -10,7 +10,11 @@ half of each doorway, and the portal is the doorway's middle. Each room is one a
 array "RoomId"; each room also holds furniture (boxes) given its room with SetPropRoom. The
 portals are one polydata: one quad per door, with integer cell-data arrays "RoomA" and "RoomB".
 
-Usage: building_walkthrough.py [OUTPUT_DIR] [--frames N]
+With --generated the portals are not written by hand: scenevis.vtkGenerateRooms finds the rooms
+and portals from the rooms' polygons, and the culler gets each room actor's cell rooms with
+SetPropCellRooms (the actors' own data untouched). The walk and its checks are the same.
+
+Usage: building_walkthrough.py [OUTPUT_DIR] [--frames N] [--generated]
 """
 import math
 import os
@@ -119,8 +123,40 @@ def portals_polydata():
     return portals
 
 
-def build_scene(renderer, culler):
+def generated_rooms():
+    """Rooms and portals found from the rooms' geometry alone (scenevis.vtkGenerateRooms), as for
+    a model that comes without portals: the portals, and per hand-made room i the generated room
+    of each of its cells and of its floor."""
+    append = vtk.vtkAppendPolyData()
+    for i in range(ROOMS):
+        append.AddInputData(room_polydata(i))
+    rooms = scenevis.vtkGenerateRooms()
+    rooms.SetInputConnection(append.GetOutputPort())
+    rooms.Update()
+    print(f"generated {rooms.GetNumberOfRooms()} rooms, {rooms.GetNumberOfPortals()} portals, "
+          f"{rooms.GetNumberOfLeakCells()} leak cells in {rooms.GetGenerationTime():.2f} s")
+    room_ids = rooms.GetOutput().GetCellData().GetArray("RoomId")
+    cell_rooms, floor_room, first = [], [], 0
+    for i in range(ROOMS):
+        cells = room_polydata(i).GetNumberOfCells()
+        array = vtk.vtkIntArray()
+        for c in range(cells):
+            array.InsertNextValue(room_ids.GetValue(first + c))
+        cell_rooms.append(array)
+        floor_room.append(room_ids.GetValue(first))  # the floor is each room's first cell
+        first += cells
+    return rooms.GetPortalsOutput(), cell_rooms, floor_room
+
+
+def build_scene(renderer, culler, generated=False):
+    """The rooms and their furniture, with the hand-written portals, or (generated) with rooms
+    and portals found from the geometry: the room actors' cells get their generated rooms with
+    SetPropCellRooms, the furniture the room of its room's floor."""
     palette = [(0.85, 0.8, 0.7), (0.7, 0.8, 0.85), (0.8, 0.75, 0.85), (0.75, 0.85, 0.7)]
+    if generated:
+        portals, cell_rooms, room_of = generated_rooms()
+    else:
+        portals, cell_rooms, room_of = portals_polydata(), None, list(range(ROOMS))
     for i in range(ROOMS):
         mapper = vtk.vtkPolyDataMapper()
         mapper.SetInputData(room_polydata(i))
@@ -128,6 +164,8 @@ def build_scene(renderer, culler):
         actor.SetMapper(mapper)
         actor.GetProperty().SetColor(*palette[i % 4])
         renderer.AddActor(actor)
+        if cell_rooms:
+            culler.SetPropCellRooms(actor, cell_rooms[i])
         for k in range(4):  # furniture: boxes along the long walls
             box = vtk.vtkCubeSource()
             box.SetCenter(SIZE * i + 0.8 + k * 0.8, 0.5 if k % 2 == 0 else SIZE - 0.5, 0.41)
@@ -140,8 +178,8 @@ def build_scene(renderer, culler):
             actor.SetMapper(mapper)
             actor.GetProperty().SetColor(0.55, 0.35, 0.2)
             renderer.AddActor(actor)
-            culler.SetPropRoom(actor, i)
-    culler.SetPortals(portals_polydata())
+            culler.SetPropRoom(actor, room_of[i])
+    culler.SetPortals(portals)
 
 
 def walk_path():
@@ -191,6 +229,8 @@ def main(argv):
     args = [a for a in argv[1:] if not a.startswith("--")]
     out = args[0] if args else "building-walkthrough"
     frames = int(argv[argv.index("--frames") + 1]) if "--frames" in argv else 24
+    if "--frames" in argv:
+        args.remove(argv[argv.index("--frames") + 1])
     os.makedirs(out, exist_ok=True)
     if not os.environ.get("DISPLAY"):
         print("skipped: no X display (run under xvfb-run)")
@@ -205,7 +245,7 @@ def main(argv):
     window.AddRenderer(renderer)
     culler = scenevis.vtkPortalCuller()
     culler.SetMode(scenevis.vtkPortalCuller.MODE_EXACT_FRUSTUM)
-    build_scene(renderer, culler)
+    build_scene(renderer, culler, generated="--generated" in argv)
     renderer.AddCuller(culler)  # after VTK's vtkFrustumCoverageCuller
     camera = renderer.GetActiveCamera()
     camera.SetViewAngle(70)
