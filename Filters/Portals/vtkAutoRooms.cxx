@@ -240,7 +240,8 @@ vtkArchitecturalLook vtkArchitecturalLook::Of(vtkPolyData* model)
   return look;
 }
 
-vtkAutoRooms vtkAutoRooms::Generate(vtkPolyData* model, const char* roomArrayName)
+vtkAutoRooms vtkAutoRooms::Generate(
+  vtkPolyData* model, const char* roomArrayName, double budgetSeconds)
 {
   const auto start = std::chrono::steady_clock::now();
   vtkAutoRooms autoRooms;
@@ -255,7 +256,7 @@ vtkAutoRooms vtkAutoRooms::Generate(vtkPolyData* model, const char* roomArrayNam
   vtkNew<vtkGenerateRooms> generate;
   generate->SetInputData(model);
   generate->SetRoomArrayName(roomArrayName);
-  generate->SetBudgetSeconds(BudgetSeconds);
+  generate->SetBudgetSeconds(budgetSeconds);
   generate->StopAtFirstLeakOn();
   // The reason says what was found; a leak or a budget is an answer here, not a warning.
   vtkNew<vtkCallbackCommand> quiet;

@@ -93,8 +93,10 @@ struct SCENEVISFILTERSPORTALS_EXPORT vtkAutoRooms
   /// stopped on a loaded machine (at load 5-9 its wall time reached 3.1 s).
   static constexpr double BudgetSeconds = 3.0;
 
-  /// The test, then generation when it passes (see the file comment).
-  static vtkAutoRooms Generate(vtkPolyData* model, const char* roomArrayName = "RoomId");
+  /// The test, then generation when it passes (see the file comment), stopping after
+  /// @p budgetSeconds of processor time (0: no limit).
+  static vtkAutoRooms Generate(
+    vtkPolyData* model, const char* roomArrayName = "RoomId", double budgetSeconds = BudgetSeconds);
 };
 
 #endif

@@ -59,7 +59,8 @@ std::vector<double> vtkScenePlanRooms::Signature(vtkScenePlanInventory& inventor
   return signature;
 }
 
-bool vtkScenePlanRooms::Update(vtkScenePlanInventory& inventory, bool newActors)
+bool vtkScenePlanRooms::Update(
+  vtkScenePlanInventory& inventory, bool newActors, double budgetSeconds)
 {
   const bool inUse = this->Portals != nullptr;
   if (!newActors)
@@ -122,7 +123,7 @@ bool vtkScenePlanRooms::Update(vtkScenePlanInventory& inventory, bool newActors)
   model->SetPoints(points);
   model->SetPolys(polys);
   model->SetStrips(strips);
-  const vtkAutoRooms generated = vtkAutoRooms::Generate(model, "RoomId");
+  const vtkAutoRooms generated = vtkAutoRooms::Generate(model, "RoomId", budgetSeconds);
   this->Generations += generated.Tried ? 1 : 0;
   this->Reason = generated.Reason;
   if (!generated.Used)

@@ -42,10 +42,11 @@ public:
 
   /**
    * Bring the generated rooms up to date with @p inventory's counted actors; @p newActors: the
-   * set of actors changed since the last call. Returns true when what is in use (GetPortals,
+   * set of actors changed since the last call; @p budgetSeconds: processor seconds a generation
+   * may take (vtkAutoRooms::Generate). Returns true when what is in use (GetPortals,
    * GetCellRooms) changed.
    */
-  bool Update(vtkScenePlanInventory& inventory, bool newActors);
+  bool Update(vtkScenePlanInventory& inventory, bool newActors, double budgetSeconds);
 
   /// Forget everything (a new renderer, or generation turned off).
   void Clear();

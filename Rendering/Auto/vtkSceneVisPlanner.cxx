@@ -1,6 +1,7 @@
 #include "vtkSceneVisPlanner.h"
 
 #include "vtkActor.h"
+#include "vtkAutoRooms.h"
 #include "vtkBSPSortedPolyDataMapper.h"
 #include "vtkCamera.h"
 #include "vtkCommand.h"
@@ -192,7 +193,8 @@ vtkScenePlanChoice vtkSceneVisPlanner::vtkInternals::ChooseTranslucency(
 
 //------------------------------------------------------------------------------
 vtkSceneVisPlanner::vtkSceneVisPlanner()
-  : Internals(new vtkInternals(this))
+  : RoomGenerationBudget(vtkAutoRooms::BudgetSeconds)
+  , Internals(new vtkInternals(this))
 {
 }
 
@@ -301,7 +303,8 @@ void vtkSceneVisPlanner::Plan()
     // No portals of the application's: generated ones, tried once per set of actors.
     if (!in.Portals && this->GenerateRooms)
     {
-      if (in.Rooms.Update(in.Inventory, structure || roomsSetting || portalsChanged))
+      if (in.Rooms.Update(
+            in.Inventory, structure || roomsSetting || portalsChanged, this->RoomGenerationBudget))
         in.UsePortals();
     }
     else if (roomsSetting && in.Rooms.GetPortals())
@@ -521,6 +524,7 @@ void vtkSceneVisPlanner::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "SwitchFrames: " << this->SwitchFrames << "\n";
   os << indent << "ViewMargin: " << this->ViewMargin << "\n";
   os << indent << "ChunkedMinimumTriangles: " << this->ChunkedMinimumTriangles << "\n";
+  os << indent << "RoomGenerationBudget: " << this->RoomGenerationBudget << " s\n";
   os << indent << "GenerateRooms: " << this->GenerateRooms << " ("
      << in.Rooms.GetNumberOfGenerations() << " generations"
      << (in.Rooms.GetPortals() ? ", in use" : "") << ")\n";

@@ -209,6 +209,13 @@ public:
   int GetNumberOfRoomGenerations() const;
   ///@}
 
+  ///@{
+  /// Processor seconds a generation of rooms may take (0: no limit); past it, no rooms (the plan
+  /// says so). Default 3 (vtkAutoRooms::BudgetSeconds, as `--cull auto`).
+  vtkSetClampMacro(RoomGenerationBudget, double, 0.0, VTK_DOUBLE_MAX);
+  vtkGetMacro(RoomGenerationBudget, double);
+  ///@}
+
 protected:
   vtkSceneVisPlanner();
   ~vtkSceneVisPlanner() override;
@@ -221,6 +228,7 @@ protected:
   vtkIdType ChunkedMinimumTriangles = 65536;
   double LastPlanTime = 0.0;
   bool GenerateRooms = true;
+  double RoomGenerationBudget; ///< vtkAutoRooms::BudgetSeconds
 
   /// The renderer's DeleteEvent: forget it without touching it (it is being destroyed).
   void RendererDeleted();
