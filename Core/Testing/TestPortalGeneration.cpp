@@ -8,6 +8,7 @@
 #include "scenevis/PortalGraph.h"
 
 #include <glm/common.hpp>
+#include <glm/vec2.hpp>
 
 #include <gtest/gtest.h>
 
@@ -509,6 +510,87 @@ TEST(PortalGeneration, ADoorToTheOutsideThroughAThickWallIsAnExteriorPortal)
       coveredOnAFace = coveredOnAFace || all;
     }
     EXPECT_TRUE(coveredOnAFace) << "the portal does not cover the door on either face of the wall";
+  }
+}
+
+// Converted levels (Freedoom MAP01) have floors that stop a fraction of a unit short of a wall
+// on a slant: a node builder's split vertex, rounded, pulls the floor's corner off the wall's line.
+// The sliver of open floor plane left between floor and wall is a hole into the void under the
+// floor; the plane of another wall cuts it into pieces whose shared edge is shorter than the
+// sampling step. A sample taken past that short edge lands across the slanted wall, in the open
+// plane of the lower room beyond; grouping the sliver with it made the sliver no opening, so the
+// room above leaked into the void (the outside). The sliver must be a portal to the outside.
+TEST(PortalGeneration, ASliverBetweenAFloorAndASlantedStepIsAnExteriorPortalNotALeak)
+{
+  // Rooms A (floor 0) and B (floor -0.5) under one ceiling (3), parted by a step along the slanted
+  // line from (0, 4.2) to (4, 3.8). A's floor is two polygons whose shared corner lies `gap` short
+  // of the line (at x = 2, where the line is at y = 4); B is split at x = 2 by a wall with a door
+  // (its plane cuts the sliver) and has a table whose top lies in A's floor plane (so that plane
+  // is open over B beside the step too).
+  const double gap = 2e-4, top = 3.0, low = -0.5;
+  PolygonMesh mesh;
+  // Adds @p points as one polygon whose normal points towards @p towards.
+  auto add = [&mesh](std::vector<glm::dvec3> points, const glm::dvec3& towards)
+  {
+    if (glm::dot(geometry::newellOf(points), towards - points[0]) < 0.0)
+    {
+      std::reverse(points.begin(), points.end());
+    }
+    std::vector<std::uint32_t> ids;
+    for (const glm::dvec3& p : points)
+    {
+      ids.push_back(mesh.addPoint(p));
+    }
+    mesh.addPolygon(ids.data(), ids.size());
+  };
+  // A vertical wall from (a.x, a.y) to (b.x, b.y) between heights z0 and z1, facing @p towards.
+  auto wall = [&add](glm::dvec2 a, glm::dvec2 b, double z0, double z1, const glm::dvec3& towards) {
+    add({ { a, z0 }, { b, z0 }, { b, z1 }, { a, z1 } }, towards);
+  };
+  const glm::dvec3 inA(2, 2, 1), inB(1, 6, 1), inB2(3, 6, 1);
+  add({ { 0, 0, 0 }, { 2, 0, 0 }, { 2, 4 - gap, 0 }, { 0, 4.2, 0 } }, inA); // A's floor
+  add({ { 2, 0, 0 }, { 4, 0, 0 }, { 4, 3.8, 0 }, { 2, 4 - gap, 0 } }, inA);
+  add({ { 0, 4.2, low }, { 4, 3.8, low }, { 4, 8, low }, { 0, 8, low } }, inB); // B's floor
+  add({ { 0, 0, top }, { 4, 0, top }, { 4, 8, top }, { 0, 8, top } }, inB);     // the ceiling
+  wall({ 0, 4.2 }, { 4, 3.8 }, low, 0.0, inB);                                  // the step
+  wall({ 0, 0 }, { 0, 4.2 }, 0.0, top, inA);
+  wall({ 0, 0 }, { 4, 0 }, 0.0, top, inA);
+  wall({ 4, 0 }, { 4, 3.8 }, 0.0, top, inA);
+  wall({ 0, 4.2 }, { 0, 8 }, low, top, inB);
+  wall({ 4, 3.8 }, { 4, 8 }, low, top, inB2);
+  wall({ 0, 8 }, { 2, 8 }, low, top, inB);
+  wall({ 2, 8 }, { 4, 8 }, low, top, inB2);
+  for (const glm::dvec3& side : { inB, inB2 }) // the wall x = 2 in B, a door from y 5 to 6
+  {
+    wall({ 2, 4 }, { 2, 5 }, low, top, side);
+    wall({ 2, 6 }, { 2, 8 }, low, top, side);
+    wall({ 2, 5 }, { 2, 6 }, 2.1, top, side);
+  }
+  add({ { 0.5, 6.5, 0 }, { 3.5, 6.5, 0 }, { 3.5, 7.5, 0 }, { 0.5, 7.5, 0 } }, { 2, 7, 1 });
+  add({ { 0.5, 6.5, 0 }, { 3.5, 6.5, 0 }, { 3.5, 7.5, 0 }, { 0.5, 7.5, 0 } }, { 2, 7, -1 });
+  for (int turns = 0; turns < 4; ++turns)
+  {
+    SCOPED_TRACE("turned " + std::to_string(turns) + " quarter turns");
+    PolygonMesh turned = mesh;
+    for (glm::dvec3& p : turned.points)
+    {
+      for (int k = 0; k < turns; ++k)
+      {
+        p = glm::dvec3(-p.y, p.x, p.z);
+      }
+    }
+    const GeneratedPortals g = generate(turned);
+    ASSERT_EQ(g.status, GenerationStatus::Ok) << g.message;
+    EXPECT_EQ(g.statistics.leakCells, 0u);
+    for (const glm::dvec3& p : g.leakPoints)
+    {
+      ADD_FAILURE() << "leak near " << p.x << ", " << p.y << ", " << p.z;
+    }
+    EXPECT_GE(g.statistics.exteriorPortals, 1u); // the sliver, a hole into the void below A
+    for (std::size_t i = 0; i < turned.polygonCount(); ++i)
+    {
+      EXPECT_NE(g.roomOfPolygon[i], kOutsideRoom) << "polygon " << i;
+    }
   }
 }
 

@@ -256,14 +256,36 @@ private:
           }
           Box at;
           at.extend(p);
-          std::size_t beyond = pieces.size();
-          for (const std::uint32_t pj : pieceGrid.near(at))
+          // The open piece beyond: the one holding the sample, if it reaches back to the edge.
+          // A sample `step` out from an edge shorter than that (across the end of a sliver
+          // between a floor and a slanted wall that the floor stops short of) can land across
+          // that wall, in a piece that does not border this one: then the piece just beyond the
+          // edge is the neighbour, if there is one.
+          const glm::dvec3 nearP = q + nearEdge * outward;
+          auto pieceAt = [&](const glm::dvec3& x, bool reachingBack)
           {
-            if (pj != pi && contains(pieceBounds[pj], p, tol) &&
-              detail::insideConvexPolygon(cx.open[pieces[pj]].polygon, p, -tol))
+            Box around;
+            around.extend(x);
+            for (const std::uint32_t pj : pieceGrid.near(around))
             {
-              beyond = pj;
-              break;
+              const auto& candidate = cx.open[pieces[pj]].polygon;
+              if (pj != pi && contains(pieceBounds[pj], x, tol) &&
+                detail::insideConvexPolygon(candidate, x, -tol) &&
+                (!reachingBack || detail::insideConvexPolygon(candidate, nearP, -tol)))
+              {
+                return static_cast<std::size_t>(pj);
+              }
+            }
+            return pieces.size();
+          };
+          std::size_t beyond = pieceAt(p, false);
+          if (beyond < pieces.size() &&
+            !detail::insideConvexPolygon(cx.open[pieces[beyond]].polygon, nearP, -tol))
+          {
+            beyond = pieceAt(p, true);
+            if (beyond == pieces.size())
+            {
+              beyond = pieceAt(nearP, false);
             }
           }
           if (beyond < pieces.size())

@@ -30,7 +30,10 @@
  *    (a doorway, a window, a hole in a slab) when at least `openingEnclosure` of its outline lies
  *    against polygons in the same plane: a door in a wall has its jambs and lintel in the wall's
  *    plane, while the plane of a table top or of a corridor's corner crosses the room with most of
- *    its outline against other planes. Samples just outside each edge decide it. A region ends
+ *    its outline against other planes. Samples just outside each edge decide it; an open piece a
+ *    sample lands in is the edge's neighbour only if it reaches back to the edge (past an edge
+ *    shorter than the sampling step, at the end of a sliver between a floor and a slanted wall
+ *    the floor stops short of, a sample can land across that wall). A region ends
  *    where a polygon crosses its plane or meets it from one side along the edge: the floor at
  *    the threshold of a door in an exterior wall parts the door from the wall's plane below the
  *    floor outside, which is open too (the building floats in the scene box).
