@@ -272,7 +272,7 @@ int vtkGenerateRooms::RequestData(
                     << (this->StopAtFirstLeak ? " (stopped at the first: no rooms)" : "")
                     << ", the first at (" << at.x << ", " << at.y << ", " << at.z
                     << "); the rooms behind them are merged into the outside (see the leaks"
-                    << " output)");
+                    << " output); with leaks the portals are not guaranteed to lose no pixel");
   }
   if (result.statistics.droppedPolygons > 0)
   {

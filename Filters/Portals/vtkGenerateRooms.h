@@ -22,11 +22,13 @@
  * - port 2 (GetLeaksOutput): one vertex per leak found, at a point of the gap's cell: where the
  *   outside reaches in through something that is not an opening (a missing wall, a crack).
  *
- * Conservative by construction: no portal is smaller than the opening it stands for, and a room
- * behind a leak is merged into the outside (which a portal culler draws whenever the outside may
- * be seen). Generation never fails silently: GetStatus() and GetStatusMessage() say why there
- * are no rooms (empty input, only degenerate or NaN polygons, over the time budget), and a
- * warning names leaks and dropped polygons.
+ * Conservative by construction on models that do not leak: no portal is smaller than the
+ * opening it stands for. A room behind a leak is merged into the outside, but with leaks the
+ * result is not guaranteed: on two leaking game levels (hydronex2, ps9ctf) the portals lose
+ * pixels in 5-10 views of 33-42 (BENCHMARKS.md). Use rooms only when GetNumberOfLeakCells() is 0,
+ * as `scenevis --cull auto` and vtkSceneVisPlanner do. Generation never fails silently: GetStatus()
+ * and GetStatusMessage() say why there are no rooms (empty input, only degenerate or NaN polygons,
+ * over the time budget), and a warning names leaks and dropped polygons.
  *
  * Cost: not linear (the demo building's 2,250 polygons about 0.5 s, a 67,000-polygon level about
  * 25 s, one core); BudgetSeconds bounds it.
