@@ -2,8 +2,6 @@
 
 #include "vtkGenerateRooms.h"
 
-#include "scenevis/PortalGeneration.h"
-
 #include <vtkCallbackCommand.h>
 #include <vtkCellArray.h>
 #include <vtkCellData.h>

@@ -50,13 +50,17 @@ void vtkScenePlanInstaller::SetPortals(vtkPolyData* portals, const char* roomIdA
 void vtkScenePlanInstaller::SetCellRooms(const vtkScenePlanRooms::CellRooms& rooms)
 {
   if (this->PortalCuller)
-  {
     for (const auto& actorRooms : this->CellRooms)
       this->PortalCuller->SetPropCellRooms(actorRooms.first, nullptr);
-    for (const auto& actorRooms : rooms)
-      this->PortalCuller->SetPropCellRooms(actorRooms.first, actorRooms.second);
-  }
   this->CellRooms = rooms;
+  this->GiveCellRooms();
+}
+
+void vtkScenePlanInstaller::GiveCellRooms()
+{
+  if (this->PortalCuller)
+    for (const auto& actorRooms : this->CellRooms)
+      this->PortalCuller->SetPropCellRooms(actorRooms.first, actorRooms.second);
 }
 
 int vtkScenePlanInstaller::GetNumberOfSwappedMappers() const
@@ -98,8 +102,7 @@ void vtkScenePlanInstaller::InstallCuller(vtkRenderer* ren, const std::string& c
       this->PortalCuller = vtkSmartPointer<vtkPortalCuller>::New();
       this->PortalCuller->SetPortals(this->Portals);
       this->PortalCuller->SetRoomIdArrayName(this->RoomIdArrayName.c_str());
-      for (const auto& actorRooms : this->CellRooms)
-        this->PortalCuller->SetPropCellRooms(actorRooms.first, actorRooms.second);
+      this->GiveCellRooms();
     }
     this->PlaceCuller(ren, this->PortalCuller);
   }

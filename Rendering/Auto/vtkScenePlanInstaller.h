@@ -94,6 +94,8 @@ private:
   };
 
   void InstallCuller(vtkRenderer* ren, const std::string& cull);
+  /// Hands CellRooms to the portal culler, when there is one.
+  void GiveCellRooms();
   /// Puts @p wanted (or none) in place of VTK's coverage culler and of the other culler of ours.
   void PlaceCuller(vtkRenderer* ren, vtkCuller* wanted);
   void InstallPass(vtkRenderer* ren, vtkRenderPass* pass);

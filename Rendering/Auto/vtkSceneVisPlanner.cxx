@@ -307,10 +307,13 @@ void vtkSceneVisPlanner::Plan()
             in.Inventory, structure || roomsSetting || portalsChanged, this->RoomGenerationBudget))
         in.UsePortals();
     }
-    else if (roomsSetting && in.Rooms.GetPortals())
+    else if (roomsSetting)
     {
+      // Generation turned off: its rooms and its reason go.
+      const bool inUse = in.Rooms.GetPortals() != nullptr;
       in.Rooms.Clear();
-      in.UsePortals();
+      if (inUse)
+        in.UsePortals();
     }
     this->InspectionCount = in.Inventory.GetNumberOfInspections();
     in.PropsTime = props->GetMTime();

@@ -49,8 +49,8 @@ namespace
 namespace st = scenevis::testing;
 namespace scenes = scenevis::scenes;
 
-/// Newell's normal of cell @p cell of @p pd, and whether all its points lie within @p tolerance
-/// of the plane through its first point.
+/// Whether all points of polygon @p cell of @p pd lie within @p tolerance of the plane through its
+/// first point with its Newell normal (false for a degenerate polygon).
 bool IsPlanar(vtkPolyData* pd, vtkIdType cell, double tolerance)
 {
   vtkIdType npts = 0;
