@@ -1,0 +1,271 @@
+// TestSceneVisPlugin PLUGIN_FILE: the SceneVis ParaView plugin loaded into ParaView's server
+// manager the way pvbatch and pvpython load a plugin (a built-in session, LoadPlugin), its proxies
+// created and run as a ParaView pipeline, and the results judged:
+// 1. "SceneVis Demo Scene" -> "SceneVis BSP Sort" with the camera as proxy properties: the output
+//    order is exact by the brute-force order oracle (scenevis/OrderOracle.h) from an eye in front,
+//    after the camera property moves the eye behind (the tree is kept: one build), and for a
+//    parallel projection. The same fragments in reverse fail the oracle, so the check can fail.
+// 2. "SceneVis Painter Sort" on the same input: exact by the oracle.
+// 3. "SceneVis Generate Rooms" on the demo building: its three output ports, and the same rooms,
+//    portals and leaks as a vtkGenerateRooms made directly (the XML defaults are the class's).
+#include "vtkBSPSortFilter.h"
+#include "vtkGenerateRooms.h"
+
+#include "vtkAlgorithm.h"
+#include "vtkCellArray.h"
+#include "vtkCellData.h"
+#include "vtkDataArray.h"
+#include "vtkIdList.h"
+#include "vtkInitializationHelper.h"
+#include "vtkNew.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+#include "vtkProcessModule.h"
+#include "vtkSMParaViewPipelineController.h"
+#include "vtkSMPluginManager.h"
+#include "vtkSMPropertyHelper.h"
+#include "vtkSMProxyManager.h"
+#include "vtkSMSession.h"
+#include "vtkSMSessionProxyManager.h"
+#include "vtkSMSourceProxy.h"
+#include "vtkSmartPointer.h"
+
+#include "scenevis/OrderOracle.h"
+
+#include <cstdlib>
+#include <iostream>
+#include <string>
+#include <vector>
+
+namespace
+{
+int failures = 0;
+
+void Check(bool ok, const std::string& what)
+{
+  std::cout << (ok ? "ok:   " : "FAIL: ") << what << "\n";
+  failures += ok ? 0 : 1;
+}
+
+/// The polygons of @p pd in cell order, as the oracle's loops of points.
+std::vector<scenevis::oracle::Polygon> PolygonsOf(vtkPolyData* pd)
+{
+  std::vector<scenevis::oracle::Polygon> polygons;
+  vtkNew<vtkIdList> ids;
+  vtkCellArray* polys = pd->GetPolys();
+  for (polys->InitTraversal(); polys->GetNextCell(ids);)
+  {
+    scenevis::oracle::Polygon polygon;
+    for (vtkIdType i = 0; i < ids->GetNumberOfIds(); ++i)
+    {
+      double p[3];
+      pd->GetPoint(ids->GetId(i), p);
+      polygon.emplace_back(p[0], p[1], p[2]);
+    }
+    polygons.push_back(std::move(polygon));
+  }
+  return polygons;
+}
+
+/// The oracle's verdict on @p pd's polygons drawn in cell order (or in reverse) for @p view.
+scenevis::oracle::OracleReport JudgeCellOrder(
+  vtkPolyData* pd, const scenevis::View& view, bool reversed = false)
+{
+  const auto polygons = PolygonsOf(pd);
+  std::vector<std::uint32_t> order(polygons.size());
+  for (std::uint32_t i = 0; i < order.size(); ++i)
+  {
+    order[i] = reversed ? static_cast<std::uint32_t>(order.size()) - 1 - i : i;
+  }
+  return scenevis::oracle::checkOrder(polygons, order, view);
+}
+
+bool Exact(vtkPolyData* pd, const scenevis::View& view)
+{
+  const auto report = JudgeCellOrder(pd, view);
+  return report.ok() && report.constrainedPairs > 0;
+}
+
+vtkPolyData* Output(vtkSMSourceProxy* proxy, int port = 0)
+{
+  auto* algorithm = vtkAlgorithm::SafeDownCast(proxy->GetClientSideObject());
+  return algorithm ? vtkPolyData::SafeDownCast(algorithm->GetOutputDataObject(port)) : nullptr;
+}
+
+/// A proxy of the plugin as paraview.simple makes one: pre-initialized, its input set, then
+/// post-initialized (the defaults that depend on the input come from it).
+vtkSmartPointer<vtkSMSourceProxy> NewPipelineProxy(vtkSMSessionProxyManager* pxm,
+  vtkSMParaViewPipelineController* controller, const char* group, const char* name,
+  vtkSMProxy* input = nullptr)
+{
+  vtkSmartPointer<vtkSMSourceProxy> proxy;
+  proxy.TakeReference(vtkSMSourceProxy::SafeDownCast(pxm->NewProxy(group, name)));
+  if (proxy)
+  {
+    controller->PreInitializeProxy(proxy);
+    if (input)
+    {
+      vtkSMPropertyHelper(proxy, "Input").Set(input);
+    }
+    controller->PostInitializeProxy(proxy);
+  }
+  return proxy;
+}
+
+void SetCamera(vtkSMSourceProxy* sort, const double eye[3], bool parallel)
+{
+  vtkSMPropertyHelper(sort, "CameraPosition").Set(eye, 3);
+  const double focal[3] = { 0.0, 0.0, 0.0 };
+  vtkSMPropertyHelper(sort, "CameraFocalPoint").Set(focal, 3);
+  vtkSMPropertyHelper(sort, "CameraParallelProjection").Set(parallel ? 1 : 0);
+  sort->UpdateVTKObjects();
+  sort->UpdatePipeline();
+}
+
+void TestSorting(vtkSMSessionProxyManager* pxm, vtkSMParaViewPipelineController* controller)
+{
+  auto scene = NewPipelineProxy(pxm, controller, "sources", "SceneVisDemoScene");
+  Check(scene != nullptr, "the plugin's source SceneVisDemoScene exists");
+  if (!scene)
+  {
+    return;
+  }
+  vtkSMPropertyHelper(scene, "Scene").Set(2); // interpenetrating triangles: splits needed
+  scene->UpdateVTKObjects();
+  scene->UpdatePipeline();
+  vtkPolyData* input = Output(scene);
+  Check(input && input->GetNumberOfPolys() > 0, "the demo scene has polygons");
+  if (!input || input->GetNumberOfPolys() == 0)
+  {
+    return;
+  }
+  double bounds[6];
+  input->GetBounds(bounds);
+  const double size = bounds[1] - bounds[0] + bounds[3] - bounds[2] + bounds[5] - bounds[4];
+  // Centred on the origin, where the sort camera's focal point is.
+  const double front[3] = { 0.3 * size, 0.2 * size, 2.0 * size };
+  const double back[3] = { -0.25 * size, 0.1 * size, -2.0 * size };
+
+  auto sort = NewPipelineProxy(pxm, controller, "filters", "SceneVisBSPSort", scene);
+  Check(sort != nullptr, "the plugin's filter SceneVisBSPSort exists");
+  if (!sort)
+  {
+    return;
+  }
+  SetCamera(sort, front, false);
+  vtkPolyData* sorted = Output(sort);
+  Check(sorted && sorted->GetNumberOfPolys() >= input->GetNumberOfPolys(),
+    "BSP Sort: every input polygon is in the output (as fragments)");
+  if (!sorted)
+  {
+    return;
+  }
+  const auto eyeFront = scenevis::View::perspective({ front[0], front[1], front[2] });
+  Check(Exact(sorted, eyeFront), "BSP Sort: exact order from the front eye");
+  Check(!JudgeCellOrder(sorted, eyeFront, true).ok(),
+    "the oracle rejects the same fragments drawn front to back");
+  Check(sorted->GetCellData()->GetArray("SortRank") != nullptr &&
+      sorted->GetCellData()->GetArray("OriginalCellId") != nullptr,
+    "BSP Sort: SortRank and OriginalCellId cell arrays");
+  sort->UpdatePropertyInformation();
+  Check(vtkSMPropertyHelper(sort, "NumberOfFragments").GetAsIdType() == sorted->GetNumberOfPolys(),
+    "BSP Sort: the NumberOfFragments information property");
+
+  SetCamera(sort, back, false);
+  sorted = Output(sort);
+  Check(Exact(sorted, scenevis::View::perspective({ back[0], back[1], back[2] })),
+    "BSP Sort: exact order after the camera property moved the eye behind");
+  auto* filter = vtkBSPSortFilter::SafeDownCast(sort->GetClientSideObject());
+  Check(filter && filter->GetNumberOfBuilds() == 1,
+    "BSP Sort: the camera moved, the tree was kept (one build)");
+
+  SetCamera(sort, front, true);
+  sorted = Output(sort);
+  Check(Exact(sorted, scenevis::View::parallel({ -front[0], -front[1], -front[2] })),
+    "BSP Sort: exact order for a parallel projection");
+
+  auto painter = NewPipelineProxy(pxm, controller, "filters", "SceneVisPainterSort", scene);
+  Check(painter != nullptr, "the plugin's filter SceneVisPainterSort exists");
+  if (painter)
+  {
+    SetCamera(painter, front, false);
+    Check(Exact(Output(painter), eyeFront), "Painter Sort: exact order from the front eye");
+  }
+}
+
+void TestGenerateRooms(vtkSMSessionProxyManager* pxm, vtkSMParaViewPipelineController* controller)
+{
+  auto building = NewPipelineProxy(pxm, controller, "sources", "SceneVisDemoScene");
+  vtkSMPropertyHelper(building, "Scene").Set(4);
+  vtkSMPropertyHelper(building, "Floors").Set(2);
+  vtkSMPropertyHelper(building, "RoomsX").Set(3);
+  vtkSMPropertyHelper(building, "RoomsY").Set(3);
+  building->UpdateVTKObjects();
+  building->UpdatePipeline();
+
+  auto rooms = NewPipelineProxy(pxm, controller, "filters", "SceneVisGenerateRooms", building);
+  Check(rooms != nullptr, "the plugin's filter SceneVisGenerateRooms exists");
+  if (!rooms)
+  {
+    return;
+  }
+  rooms->UpdateVTKObjects();
+  rooms->UpdatePipeline();
+  Check(rooms->GetNumberOfOutputPorts() == 3, "Generate Rooms: three output ports");
+  auto* generator = vtkGenerateRooms::SafeDownCast(rooms->GetClientSideObject());
+  vtkPolyData* model = Output(rooms, 0);
+  vtkPolyData* portals = Output(rooms, 1);
+  Check(generator && model && portals, "Generate Rooms: a vtkGenerateRooms with its outputs");
+  if (!generator || !model || !portals)
+  {
+    return;
+  }
+  Check(generator->GetNumberOfRooms() >= 2 && generator->GetNumberOfPortals() >= 1 &&
+      generator->GetNumberOfLeakCells() == 0,
+    "Generate Rooms: rooms and portals, no leak, on the demo building (" +
+      std::to_string(generator->GetNumberOfRooms()) + " rooms, " +
+      std::to_string(generator->GetNumberOfPortals()) + " portals)");
+  Check(model->GetCellData()->GetArray("RoomId") != nullptr &&
+      portals->GetNumberOfCells() == generator->GetNumberOfPortals(),
+    "Generate Rooms: RoomId on the model, one portal cell per portal");
+
+  vtkNew<vtkGenerateRooms> direct;
+  direct->SetInputData(Output(building));
+  direct->Update();
+  Check(direct->GetNumberOfRooms() == generator->GetNumberOfRooms() &&
+      direct->GetNumberOfPortals() == generator->GetNumberOfPortals() &&
+      direct->GetNumberOfLeakCells() == generator->GetNumberOfLeakCells(),
+    "Generate Rooms: the proxy's defaults give what the class's defaults give");
+}
+} // namespace
+
+int main(int argc, char* argv[])
+{
+  if (argc < 2)
+  {
+    std::cerr << "usage: TestSceneVisPlugin PLUGIN_FILE\n";
+    return EXIT_FAILURE;
+  }
+  const std::string plugin = argv[1];
+  vtkInitializationHelper::Initialize(argv[0], vtkProcessModule::PROCESS_BATCH);
+  {
+    vtkNew<vtkSMParaViewPipelineController> controller;
+    vtkSMSession* session = vtkSMSession::New();
+    vtkProcessModule::GetProcessModule()->RegisterSession(session);
+    Check(controller->InitializeSession(session), "a built-in ParaView session");
+    vtkSMSessionProxyManager* pxm = session->GetSessionProxyManager();
+    const bool loaded = vtkSMProxyManager::GetProxyManager()->GetPluginManager()->LoadRemotePlugin(
+      plugin.c_str(), session);
+    Check(loaded, "LoadPlugin " + plugin);
+    if (loaded)
+    {
+      TestSorting(pxm, controller);
+      TestGenerateRooms(pxm, controller);
+    }
+    vtkProcessModule::GetProcessModule()->UnRegisterSession(session);
+    session->Delete();
+  }
+  vtkInitializationHelper::Finalize();
+  std::cout << (failures ? "FAILED: " : "passed: ") << failures << " failed checks\n";
+  return failures ? EXIT_FAILURE : EXIT_SUCCESS;
+}

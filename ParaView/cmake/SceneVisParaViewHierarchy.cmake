@@ -1,0 +1,56 @@
+# Debian's paraview-dev installs its VTK's headers but not the VTK modules' wrapping hierarchy
+# files (lib/.../vtk/hierarchy/ParaView/vtk*-hierarchy.txt), which wrapping a plugin's modules for
+# ParaView's client-server layer reads (what each class derives from). For each module given and
+# the modules it depends on whose file is missing, this generates the file from the installed
+# headers with ParaView's own vtkWrapHierarchy, once, at configure time, dependencies first, and
+# points the module's target at it. Nothing is generated when the files are installed.
+function(_scenevis_vtk_hierarchy module out_dir)
+  get_property(done GLOBAL PROPERTY "_scenevis_hierarchy_${module}")
+  if(done OR NOT TARGET "${module}")
+    return()
+  endif()
+  set_property(GLOBAL PROPERTY "_scenevis_hierarchy_${module}" TRUE)
+  get_target_property(hierarchy "${module}" INTERFACE_vtk_module_hierarchy)
+  if(NOT hierarchy OR EXISTS "${hierarchy}")
+    return()
+  endif()
+  get_target_property(depends "${module}" INTERFACE_vtk_module_depends)
+  get_target_property(private_depends "${module}" INTERFACE_vtk_module_private_depends)
+  set(depend_files)
+  foreach(dependency IN LISTS depends private_depends)
+    if(dependency AND TARGET "${dependency}")
+      _scenevis_vtk_hierarchy("${dependency}" "${out_dir}")
+      get_target_property(file "${dependency}" INTERFACE_vtk_module_hierarchy)
+      if(file AND EXISTS "${file}")
+        list(APPEND depend_files "${file}")
+      endif()
+    endif()
+  endforeach()
+  get_target_property(library "${module}" INTERFACE_vtk_module_library_name)
+  get_target_property(headers "${module}" INTERFACE_vtk_module_headers)
+  set(data "")
+  foreach(header IN LISTS headers)
+    string(APPEND data "${header};${library}\n")
+  endforeach()
+  file(WRITE "${out_dir}/${library}.data" "${data}")
+  list(REMOVE_DUPLICATES depend_files)
+  set(output "${out_dir}/${library}-hierarchy.txt")
+  execute_process(
+    COMMAND "${SCENEVIS_WRAP_HIERARCHY}" "-I${SCENEVIS_PARAVIEW_INCLUDE_DIR}" -o "${output}"
+      "${out_dir}/${library}.data" ${depend_files}
+    RESULT_VARIABLE result ERROR_VARIABLE errors OUTPUT_QUIET)
+  if(NOT result EQUAL 0 OR NOT EXISTS "${output}")
+    message(FATAL_ERROR "SceneVis: generating ${output} failed: ${errors}")
+  endif()
+  set_property(TARGET "${module}" PROPERTY INTERFACE_vtk_module_hierarchy "${output}")
+endfunction()
+
+function(scenevis_paraview_vtk_hierarchies)
+  find_program(SCENEVIS_WRAP_HIERARCHY NAMES vtkWrapHierarchy-pv5.11 REQUIRED)
+  find_path(SCENEVIS_PARAVIEW_INCLUDE_DIR vtkAlgorithm.h PATH_SUFFIXES paraview-5.11 REQUIRED)
+  set(out_dir "${CMAKE_BINARY_DIR}/vtk-hierarchy")
+  file(MAKE_DIRECTORY "${out_dir}")
+  foreach(module IN LISTS ARGN)
+    _scenevis_vtk_hierarchy("${module}" "${out_dir}")
+  endforeach()
+endfunction()
