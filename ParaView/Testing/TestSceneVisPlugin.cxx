@@ -1,6 +1,6 @@
-// TestSceneVisPlugin PLUGIN_FILE: the SceneVis ParaView plugin loaded into ParaView's server
-// manager the way pvbatch and pvpython load a plugin (a built-in session, LoadPlugin), its proxies
-// created and run as a ParaView pipeline, and the results judged:
+// TestSceneVisPlugin PLUGIN_FILE [STATE_FILE]: the SceneVis ParaView plugin loaded into ParaView's
+// server manager the way pvbatch and pvpython load a plugin (a built-in session, LoadPlugin), its
+// proxies created and run as a ParaView pipeline, and the results judged:
 // 1. "SceneVis Demo Scene" -> "SceneVis BSP Sort" with the camera as proxy properties: the output
 //    order is exact by the brute-force order oracle (scenevis/OrderOracle.h) from an eye in front,
 //    after the camera property moves the eye behind (the tree is kept: one build), and for a
@@ -8,6 +8,8 @@
 // 2. "SceneVis Painter Sort" on the same input: exact by the oracle.
 // 3. "SceneVis Generate Rooms" on the demo building: its three output ports, and the same rooms,
 //    portals and leaks as a vtkGenerateRooms made directly (the XML defaults are the class's).
+// With STATE_FILE, the pipelines are also registered and saved as a ParaView state (.pvsm) that
+// the paraview GUI opens with the plugin: `paraview --plugins=PLUGIN_FILE --state=STATE_FILE`.
 #include "vtkBSPSortFilter.h"
 #include "vtkGenerateRooms.h"
 
@@ -40,6 +42,7 @@
 namespace
 {
 int failures = 0;
+vtkSMParaViewPipelineController* registrar = nullptr; // set when a state file is asked for
 
 void Check(bool ok, const std::string& what)
 {
@@ -108,6 +111,10 @@ vtkSmartPointer<vtkSMSourceProxy> NewPipelineProxy(vtkSMSessionProxyManager* pxm
       vtkSMPropertyHelper(proxy, "Input").Set(input);
     }
     controller->PostInitializeProxy(proxy);
+    if (registrar)
+    {
+      registrar->RegisterPipelineProxy(proxy);
+    }
   }
   return proxy;
 }
@@ -243,7 +250,7 @@ int main(int argc, char* argv[])
 {
   if (argc < 2)
   {
-    std::cerr << "usage: TestSceneVisPlugin PLUGIN_FILE\n";
+    std::cerr << "usage: TestSceneVisPlugin PLUGIN_FILE [STATE_FILE]\n";
     return EXIT_FAILURE;
   }
   const std::string plugin = argv[1];
@@ -259,8 +266,13 @@ int main(int argc, char* argv[])
     Check(loaded, "LoadPlugin " + plugin);
     if (loaded)
     {
+      registrar = argc > 2 ? controller.GetPointer() : nullptr;
       TestSorting(pxm, controller);
       TestGenerateRooms(pxm, controller);
+      if (registrar)
+      {
+        Check(pxm->SaveXMLState(argv[2]), std::string("state saved to ") + argv[2]);
+      }
     }
     vtkProcessModule::GetProcessModule()->UnRegisterSession(session);
     session->Delete();
