@@ -24,7 +24,8 @@ xvfb-run -a -s "-screen 0 1280x1024x24" \
 # ParaView's server manager by its test (scripts/build-paraview-plugin.sh).
 paraview_build=${SCENEVIS_PARAVIEW_BUILD_DIR:-$root/build-paraview}
 bash "$root/scripts/build-paraview-plugin.sh"
-(cd "$paraview_build" && ctest --output-on-failure --timeout 600)
+(cd "$paraview_build" && xvfb-run -a -s "-screen 0 1280x1024x24" \
+  ctest --output-on-failure --timeout 600)
 # Second build with ASan + UBSan + LeakSanitizer of the non-rendering tests, and a short fuzz run
 # (scripts/sanitize.sh; SCENEVIS_SANITIZE=0 skips it, SCENEVIS_FUZZ_SECONDS=0 skips the fuzzing).
 if [ "${SCENEVIS_SANITIZE:-1}" != "0" ]; then
