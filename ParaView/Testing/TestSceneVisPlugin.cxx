@@ -7,15 +7,19 @@
 //    parallel projection. The same fragments in reverse fail the oracle, so the check can fail.
 // 2. "SceneVis Painter Sort" on the same input: exact by the oracle.
 // 3. "SceneVis Ordered Translucency" (a render view), on the interpenetrating triangles and on the
-//    overlapping spheres: the BSP-sorted fragments drawn at opacity 0.4 in it match ParaView's
-//    render view with 100 depth peels within 0.5/255 (mean over the pixels), and the unsorted
-//    input drawn in it does not; ParaView's default view (4 peels) is measured beside them.
+//    overlapping spheres at opacity 0.4, against ParaView's render view with 100 depth peels of
+//    the BSP-split polygons: the view sorting the unsorted input itself, and the BSP Sort
+//    filter's output drawn in cell order, match within 0.5/255 (mean over the pixels); the
+//    unsorted input drawn in cell order does not; the errors against 100 peels of the unsplit
+//    input and ParaView's default view (4 peels) are measured beside them.
 // 4. "SceneVis Generate Rooms" on the demo building: its three output ports, and the same rooms,
 //    portals and leaks as a vtkGenerateRooms made directly (the XML defaults are the class's).
 // With STATE_FILE, the pipelines are also registered and saved as a ParaView state (.pvsm) that
 // the paraview GUI opens with the plugin: `paraview --plugins=PLUGIN_FILE --state=STATE_FILE`.
 #include "vtkBSPSortFilter.h"
+#include "vtkBSPTranslucentPass.h"
 #include "vtkGenerateRooms.h"
+#include "vtkSceneVisRenderView.h"
 
 #include "vtkAlgorithm.h"
 #include "vtkCellArray.h"
@@ -216,9 +220,11 @@ void TestSorting(vtkSMSessionProxyManager* pxm, vtkSMParaViewPipelineController*
 constexpr int kImageSize = 240;
 
 /// A render view proxy of @p name looking at the origin from @p eye, without the orientation
-/// axes; @p peels > 0: depth peeling with that many peels.
+/// axes; @p peels > 0: depth peeling with that many peels; @p sort: SortTranslucentGeometry of
+/// the SceneVis view.
 vtkSmartPointer<vtkSMViewProxy> NewView(vtkSMSessionProxyManager* pxm,
-  vtkSMParaViewPipelineController* controller, const char* name, const double eye[3], int peels)
+  vtkSMParaViewPipelineController* controller, const char* name, const double eye[3], int peels,
+  bool sort = false)
 {
   vtkSmartPointer<vtkSMViewProxy> view;
   view.TakeReference(vtkSMViewProxy::SafeDownCast(pxm->NewProxy("views", name)));
@@ -239,6 +245,10 @@ vtkSmartPointer<vtkSMViewProxy> NewView(vtkSMSessionProxyManager* pxm,
   if (peels > 0)
   {
     vtkSMPropertyHelper(view, "MaximumNumberOfPeels").Set(peels);
+  }
+  if (view->GetProperty("SortTranslucentGeometry"))
+  {
+    vtkSMPropertyHelper(view, "SortTranslucentGeometry").Set(sort ? 1 : 0);
   }
   view->UpdateVTKObjects();
   return view;
@@ -313,34 +323,49 @@ void TestOrderedView(vtkSMSessionProxyManager* pxm, vtkSMParaViewPipelineControl
   auto sort = NewPipelineProxy(pxm, controller, "filters", "SceneVisBSPSort", scene);
   SetCamera(sort, eye, false);
 
-  auto ordered = NewView(pxm, controller, "SceneVisRenderView", eye, 0);
-  Check(ordered != nullptr, "the plugin's view SceneVisRenderView exists (" + sceneName + ")");
+  auto sortingView = NewView(pxm, controller, "SceneVisRenderView", eye, 0, true);
+  Check(sortingView != nullptr, "the plugin's view SceneVisRenderView exists (" + sceneName + ")");
+  auto drawingOrderView = NewView(pxm, controller, "SceneVisRenderView", eye, 0, false);
+  auto unsortedView = NewView(pxm, controller, "SceneVisRenderView", eye, 0, false);
   auto reference = NewView(pxm, controller, "RenderView", eye, 100);
   auto paraviewDefault = NewView(pxm, controller, "RenderView", eye, 4);
-  auto unsortedView = NewView(pxm, controller, "SceneVisRenderView", eye, 0);
-  if (!ordered || !reference || !paraviewDefault || !unsortedView)
+  if (!sortingView || !drawingOrderView || !unsortedView || !reference || !paraviewDefault)
   {
     return;
   }
-  auto exact = Render(reference, sort);
-  auto sorted = Render(ordered, sort);
-  auto peeled4 = Render(paraviewDefault, sort);
+  auto referenceOfFragments = NewView(pxm, controller, "RenderView", eye, 100);
+  auto exact = Render(reference, scene);
+  auto exactFragments = Render(referenceOfFragments, sort); // the same split polygons
+  auto viewSorted = Render(sortingView, scene);
+  auto filterSorted = Render(drawingOrderView, sort);
+  auto peeled4 = Render(paraviewDefault, scene);
   auto unsorted = Render(unsortedView, scene);
-  const ImageError sortedError = Compare(sorted, exact);
+  const ImageError viewError = Compare(viewSorted, exact);
+  const ImageError viewFragmentError = Compare(viewSorted, exactFragments);
+  const ImageError sortedError = Compare(filterSorted, exactFragments);
   const ImageError defaultError = Compare(peeled4, exact);
   const ImageError unsortedError = Compare(unsorted, exact);
   std::cout << "      " << sceneName << " against ParaView's RenderView with 100 depth peels, "
-            << kImageSize << "x" << kImageSize << ", opacity 0.4: BSP Sort in SceneVisRenderView "
+            << kImageSize << "x" << kImageSize << ", opacity 0.4: SceneVisRenderView sorting "
+            << Describe(viewError) << " (against the peeled BSP fragments "
+            << Describe(viewFragmentError) << "); BSP Sort filter in drawing order "
             << Describe(sortedError) << "; ParaView's default (4 peels) " << Describe(defaultError)
-            << "; unsorted in SceneVisRenderView " << Describe(unsortedError) << "\n";
+            << "; unsorted in drawing order " << Describe(unsortedError) << "\n";
+  auto* sortingObject = vtkSceneVisRenderView::SafeDownCast(sortingView->GetClientSideObject());
+  Check(sortingObject && sortingObject->GetSortingPass()->GetNumberOfSortedActors() == 1,
+    "Ordered view, " + sceneName + ": the view sorted the surface itself");
+  Check(viewFragmentError.mean >= 0.0 && viewFragmentError.mean <= 0.5,
+    "Ordered view, " + sceneName +
+      ": the view's own order matches 100 depth peels of the "
+      "same (split) polygons within 0.5/255 mean");
   Check(sortedError.mean >= 0.0 && sortedError.mean <= 0.5,
     "Ordered view, " + sceneName +
-      ": the BSP-sorted fragments match 100 depth peels within "
-      "0.5/255 mean");
+      ": the BSP Sort filter's output in cell order matches 100 "
+      "depth peels within 0.5/255 mean");
   Check(unsortedError.mean > 0.5 && unsortedError.offPercent > 1.0,
     "Ordered view, " + sceneName +
-      ": the unsorted input does not (the view blends in drawing "
-      "order)");
+      ": the unsorted input in cell order does not (the view "
+      "blends in drawing order)");
 }
 
 void TestGenerateRooms(vtkSMSessionProxyManager* pxm, vtkSMParaViewPipelineController* controller)

@@ -11,12 +11,17 @@
 #include "vtkCamera.h"
 #include "vtkCellArray.h"
 #include "vtkCellData.h"
+#include "vtkCompositeDataDisplayAttributes.h"
+#include "vtkCompositeDataSet.h"
+#include "vtkCompositePolyDataMapper2.h"
 #include "vtkFloatArray.h"
 #include "vtkIdTypeArray.h"
 #include "vtkIntArray.h"
 #include "vtkMatrix4x4.h"
+#include "vtkMultiBlockDataSet.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
+#include "vtkPartitionedDataSet.h"
 #include "vtkPlaneCollection.h"
 #include "vtkPointData.h"
 #include "vtkPoints.h"
@@ -67,6 +72,122 @@ vtkPolyDataMapper* SortableMapper(vtkActor* actor)
     return nullptr;
   }
   return mapper;
+}
+
+/**
+ * The visible leaves of a composite dataset below @p node (visible: @p visible, unless its own
+ * block visibility in @p attributes says otherwise; children inherit), into @p leaves. False
+ * when a leaf is not a polydata (not ours to draw).
+ */
+bool CollectVisibleLeaves(vtkDataObject* node, bool visible,
+  const vtkCompositeDataDisplayAttributes* attributes, std::vector<vtkPolyData*>& leaves)
+{
+  if (!node)
+  {
+    return true;
+  }
+  if (attributes && attributes->HasBlockVisibility(node))
+  {
+    visible = attributes->GetBlockVisibility(node);
+  }
+  if (auto* blocks = vtkMultiBlockDataSet::SafeDownCast(node))
+  {
+    for (unsigned int i = 0; i < blocks->GetNumberOfBlocks(); ++i)
+    {
+      if (!CollectVisibleLeaves(blocks->GetBlock(i), visible, attributes, leaves))
+      {
+        return false;
+      }
+    }
+    return true;
+  }
+  if (auto* partitions = vtkPartitionedDataSet::SafeDownCast(node))
+  {
+    for (unsigned int i = 0; i < partitions->GetNumberOfPartitions(); ++i)
+    {
+      if (!CollectVisibleLeaves(
+            partitions->GetPartitionAsDataObject(i), visible, attributes, leaves))
+      {
+        return false;
+      }
+    }
+    return true;
+  }
+  auto* polydata = vtkPolyData::SafeDownCast(node);
+  if (!polydata)
+  {
+    return false;
+  }
+  if (visible && polydata->GetNumberOfCells() > 0)
+  {
+    leaves.push_back(polydata);
+  }
+  return true;
+}
+
+/**
+ * The polydata a sortable mapper draws: its input, or the one visible non-empty polydata block
+ * of a composite input drawn without per-block colours, opacities or materials (ParaView's
+ * representations draw a polydata as a one-block multiblock through
+ * vtkCompositePolyDataMapper2, with block visibilities). Else nullptr: the actor is drawn
+ * unsorted.
+ */
+vtkPolyData* SortableInput(vtkPolyDataMapper* mapper)
+{
+  vtkDataObject* input = mapper->GetInputDataObject(0, 0);
+  if (auto* polydata = vtkPolyData::SafeDownCast(input))
+  {
+    return polydata;
+  }
+  if (!vtkCompositeDataSet::SafeDownCast(input))
+  {
+    return nullptr;
+  }
+  const vtkCompositeDataDisplayAttributes* attributes = nullptr;
+  if (auto* compositeMapper = vtkCompositePolyDataMapper2::SafeDownCast(mapper))
+  {
+    attributes = compositeMapper->GetCompositeDataDisplayAttributes();
+    if (attributes &&
+      (attributes->HasBlockColors() || attributes->HasBlockOpacities() ||
+        attributes->HasBlockMaterials()))
+    {
+      return nullptr;
+    }
+  }
+  std::vector<vtkPolyData*> leaves;
+  if (!CollectVisibleLeaves(input, true, attributes, leaves) || leaves.size() != 1)
+  {
+    return nullptr;
+  }
+  return leaves.front();
+}
+
+/**
+ * Draws @p helper for @p actor. vtkOpenGLActor draws the mapper it is given; other actor classes
+ * may draw a mapper of their own choosing (ParaView's vtkPVLODActor ignores the one given), so
+ * they are drawn through @p device, a plain OpenGL actor with their property, back-face
+ * property, texture, shader property and matrix (the "device" actor vtkLODActor uses itself).
+ */
+void DrawWith(vtkActor* actor, vtkBSPSortedPolyDataMapper* helper, vtkRenderer* renderer,
+  vtkSmartPointer<vtkActor>& device)
+{
+  if (actor->IsA("vtkOpenGLActor"))
+  {
+    actor->Render(renderer, helper);
+    return;
+  }
+  if (!device)
+  {
+    device = vtkSmartPointer<vtkActor>::New(); // the OpenGL back-end's actor
+  }
+  device->SetProperty(actor->GetProperty());
+  device->SetBackfaceProperty(actor->GetBackfaceProperty());
+  device->SetTexture(actor->GetTexture());
+  device->SetShaderProperty(actor->GetShaderProperty());
+  device->SetUserMatrix(actor->GetMatrix());
+  device->SetIsRenderingTranslucentPolygonalGeometry(true);
+  device->Render(renderer, helper);
+  device->SetIsRenderingTranslucentPolygonalGeometry(false);
 }
 
 /// What of a mapper's state its helper copies (compared instead of the MTime, which VTK bumps
@@ -194,6 +315,9 @@ struct Run
 
 struct vtkBSPTranslucentPass::Internals
 {
+  /// Draws helpers for actors that ignore the mapper given to Render (see DrawWith).
+  vtkSmartPointer<vtkActor> Device;
+
   struct Entry
   {
     vtkWeakPointer<vtkActor> Actor;
@@ -689,7 +813,7 @@ void vtkBSPTranslucentPass::Render(const vtkRenderState* s)
       {
         mapper->GetInputAlgorithm()->Update();
       }
-      input = mapper->GetInput();
+      input = SortableInput(mapper);
     }
     if (input && input->GetNumberOfPoints() > 0 &&
       input->GetNumberOfPolys() + input->GetNumberOfStrips() > 0)
@@ -750,6 +874,12 @@ void vtkBSPTranslucentPass::Render(const vtkRenderState* s)
       entry.Input = inputs[k];
       entry.InputMTime = inputs[k]->GetMTime();
       rebuild = true;
+    }
+    if (entry.Helper->GetInputDataObject(0, 0) != inputs[k])
+    {
+      // A composite input (see SortableInput): the helper, a copy of the mapper, would read the
+      // composite; it draws the polydata block.
+      entry.Helper->SetInputData(inputs[k]);
     }
     const double* m = &sorted[k]->GetMatrix()->Element[0][0];
     if (!std::equal(m, m + 16, entry.Matrix.begin()))
@@ -858,7 +988,7 @@ void vtkBSPTranslucentPass::Render(const vtkRenderState* s)
     {
       texture->Render(renderer);
     }
-    actor->Render(renderer, helper);
+    DrawWith(actor, helper, renderer, internal.Device);
     property->PostRender(actor, renderer);
     if (vtkTexture* texture = actor->GetTexture())
     {

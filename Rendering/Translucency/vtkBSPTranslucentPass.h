@@ -8,7 +8,9 @@
  * the blending is wrong. This pass
  *
  * 1. collects the translucent actors of the renderer that can be sorted (vtkActor, polydata
- *    mapper, surface representation without edges, visible, currently translucent);
+ *    mapper, surface representation without edges, visible, currently translucent); a composite
+ *    input with one visible non-empty polydata block and no per-block colours, opacities or
+ *    materials counts as that polydata (how ParaView's representations draw a surface);
  * 2. orders their polygons (each fragment remembers its actor) in two levels (the default,
  *    scenevis/PartTree.h): actors that a plane separates from the others are ordered as wholes,
  *    each by a BSP of its own input in the input's coordinates (built once per input and shared
