@@ -65,9 +65,9 @@
  * portal; (2) the back of a room's wall, whose front faces the room and whose back faces the
  * void behind it, is seen from such a place through the void, without a portal; an eye there
  * beyond the rooms' bounds starts from the outside node and enters rooms only through their
- * portals. Merging the rooms of (1) into the outside does not help (2), and the void is behind
- * nearly every wall of a game level. On hydronex2 and ps9ctf the kept rooms lose pixels in 5-10
- * views of 33-42 (BENCHMARKS.md).
+ * portals. Merging the rooms of (1) into the outside does not help (2), and merging by (2) would
+ * merge every room: a converted level's surfaces are single polygons with the void behind them.
+ * On hydronex2 and ps9ctf the kept rooms lose pixels in 5-10 views of 33-42 (BENCHMARKS.md).
  *
  * Polygons: each gets the room its fragments face into over the largest area (see-through ones:
  * the room just in front of their centroid); a part facing the outside with a room behind it
