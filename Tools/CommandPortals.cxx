@@ -2,7 +2,9 @@
 // and written in the portal scene format: OUT.vtp, the model with an integer room cell array
 // (--room-array, default RoomId; -1 outside), and OUT-portals.vtp, one polygon per portal with
 // RoomA and RoomB, which `render`, `cull` and vtkPortalCuller read. Translucent cells (alpha below
-// 255 in the scene's RGBA colours: glass) are see-through: they do not close an opening.
+// 255 in the scene's RGBA colours: glass) are see-through: they do not close an opening. A model
+// that leaks gets no rooms (every cell -1, no portals) unless --keep-leaking-rooms: a warning says
+// which.
 #include "Commands.h"
 #include "GeneratedRooms.h"
 #include "Report.h"
@@ -54,7 +56,8 @@ int RunPortals(const Options& options)
 {
   const LoadedScene scene = LoadScene(options);
   vtkPolyData* model = scene.polydata;
-  const GeneratedRooms generated = GenerateRooms(model, options.roomArray);
+  const GeneratedRooms generated =
+    GenerateRooms(model, options.roomArray, 0.0, false, options.keepLeakingRooms);
   const portals::GeneratedPortals& result = generated.result;
   if (result.status != portals::GenerationStatus::Ok)
   {
@@ -70,13 +73,29 @@ int RunPortals(const Options& options)
   WriteVtp(out, modelPath);
 
   const portals::GenerationStatistics& s = result.statistics;
+  if (s.leakCells > 0 && !result.leakPoints.empty())
+  {
+    const glm::dvec3& at = result.leakPoints.front();
+    std::cerr << "warning: " << s.leakCells << " leak cells, the first at (" << at.x << ", " << at.y
+              << ", " << at.z << "): "
+              << (options.keepLeakingRooms
+                     ? "rooms kept (--keep-leaking-rooms): NOT conservative, the portals may hide "
+                       "visible cells"
+                     : "no rooms written (every cell -1, no portals): portals through a leak may "
+                       "hide visible cells; " +
+                       std::to_string(s.roomsWithheld) + " rooms and " +
+                       std::to_string(s.portalsWithheld) +
+                       " portals withheld (--keep-leaking-rooms writes them)")
+              << "\n";
+  }
   std::cout << "{\"scene\": " << JsonString(scene.description)
             << ", \"polygons\": " << s.inputPolygons
             << ", \"see_through_polygons\": " << generated.seeThroughPolygons
             << ", \"dropped_polygons\": " << s.droppedPolygons << ", \"cells\": " << s.cells
             << ", \"rooms\": " << result.roomCount << ", \"portals\": " << result.portals.size()
             << ", \"exterior_portals\": " << s.exteriorPortals
-            << ", \"leak_cells\": " << s.leakCells
+            << ", \"leak_cells\": " << s.leakCells << ", \"rooms_withheld\": " << s.roomsWithheld
+            << ", \"portals_withheld\": " << s.portalsWithheld
             << ", \"polygons_without_room\": " << s.polygonsWithoutRoom
             << ", \"seconds\": " << s.totalSeconds << ", \"bsp_seconds\": " << s.bspSeconds
             << ", \"cell_seconds\": " << s.cellSeconds

@@ -11,14 +11,15 @@ namespace scenevis
 {
 namespace tool
 {
-GeneratedRooms GenerateRooms(
-  vtkPolyData* model, const std::string& roomArray, double budgetSeconds, bool stopAtFirstLeak)
+GeneratedRooms GenerateRooms(vtkPolyData* model, const std::string& roomArray, double budgetSeconds,
+  bool stopAtFirstLeak, bool keepRoomsWithLeaks)
 {
   vtkNew<vtkGenerateRooms> filter;
   filter->SetInputData(model);
   filter->SetRoomArrayName(roomArray.c_str());
   filter->SetBudgetSeconds(budgetSeconds);
   filter->SetStopAtFirstLeak(stopAtFirstLeak);
+  filter->SetKeepRoomsWithLeaks(keepRoomsWithLeaks);
   // The tool reports the status, leaks and dropped polygons itself (report and one line each).
   vtkNew<vtkCallbackCommand> quiet;
   filter->AddObserver(vtkCommand::WarningEvent, quiet);

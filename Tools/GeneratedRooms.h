@@ -33,9 +33,10 @@ struct GeneratedRooms
 /// see-through: they do not close an opening. Never throws for bad geometry (see result.status).
 /// @p budgetSeconds: processor-time limit of the generation (0: none; past it, result.status is
 /// OverBudget and there are no rooms). @p stopAtFirstLeak: GenerationConfig::stopAtFirstLeak
-/// (a leaking scene then gives no rooms and one leak cell, sooner).
+/// (a leaking scene then gives no rooms and one leak cell, sooner). @p keepRoomsWithLeaks:
+/// GenerationConfig::keepRoomsWithLeaks (the rooms of a leaking scene, not conservative).
 GeneratedRooms GenerateRooms(vtkPolyData* model, const std::string& roomArray,
-  double budgetSeconds = 0.0, bool stopAtFirstLeak = false);
+  double budgetSeconds = 0.0, bool stopAtFirstLeak = false, bool keepRoomsWithLeaks = false);
 
 } // namespace tool
 } // namespace scenevis

@@ -141,6 +141,11 @@ cull:
                         surface opaque) and report the cells and props the mode culled
                         although visible (false negatives) and drew although hidden
 
+portals:
+  --keep-leaking-rooms  write the rooms and portals of a model that leaks (by default it gets
+                        none: every cell -1, no portal, since no room labelling of a leaking
+                        model is conservative); NOT conservative: they may hide visible cells
+
 sort:
   --out FILE.vtp        output polydata (required)
   --front-to-back       front-to-back instead of back-to-front
@@ -357,6 +362,8 @@ Options ParseOptions(int argc, char* argv[])
       options.exportScene = value();
     else if (flag == "--exact")
       options.exact = true;
+    else if (flag == "--keep-leaking-rooms")
+      options.keepLeakingRooms = true;
     else if (flag == "--pvs-budget")
     {
       const std::string text = value();
@@ -444,6 +451,10 @@ Options ParseOptions(int argc, char* argv[])
   {
     throw UsageError(
       std::string(options.exact ? "--exact" : "--export-scene") + " belongs to the cull command");
+  }
+  if (options.keepLeakingRooms && options.command != "portals")
+  {
+    throw UsageError("--keep-leaking-rooms belongs to the portals command");
   }
   if (options.command == "sort" && options.out.empty())
   {

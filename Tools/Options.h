@@ -55,6 +55,8 @@ struct Options
   std::string portals;     ///< --portals FILE.vtp
   std::string exportScene; ///< cull --export-scene PREFIX
   bool exact = false;      ///< cull --exact: compare with the ID-buffer visible set
+  /// portals --keep-leaking-rooms: rooms of a model that leaks (not conservative).
+  bool keepLeakingRooms = false;
   /// --pvs-budget SECONDS: wall-clock budget of the PVS precompute of --cull pvs (0: none).
   double pvsBudget = 0.0;
   /// --chunk-size N: triangles per chunk of --cull chunked / chunked-occlusion (0: the mapper's

@@ -15,7 +15,8 @@
 // model's own room array and its authored portals, it reports how authored rooms map onto generated
 // ones (by polygon area) and whether each authored portal between two different generated rooms
 // lies inside a generated portal joining them (moved at most D along the generated portal's
-// normal).
+// normal). It studies the rooms found, so a model that leaks keeps them (keepRoomsWithLeaks: not
+// conservative, which `scenevis portals` says and withholds them for).
 #include "PortalSceneFile.h"
 #include "PortalSceneWriter.h"
 #include "scenevis/PortalGeneration.h"
@@ -210,6 +211,7 @@ int main(int argc, char** argv)
   std::string scene, out, roomArray = "RoomId", authoredPortals, building, camerasOut;
   double depth = 0.0;
   GenerationConfig config;
+  config.keepRoomsWithLeaks = true;
   for (int i = 1; i + 1 < argc; i += 2)
   {
     const std::string key = argv[i], value = argv[i + 1];

@@ -609,10 +609,21 @@ TEST(PortalGeneration, AMissingWallIsReportedAsALeak)
     EXPECT_TRUE(p.x > 5.0 && p.x < 10.0 && p.y > 0.0 && p.y < 4.0 && p.z > 0.0 && p.z < 3.0)
       << "leak point outside the open room: " << p.x << ", " << p.y << ", " << p.z;
   }
-  // The room with the door to the leaking one keeps its portal: what is behind it is outside.
-  EXPECT_EQ(g.roomCount, 1);
-  ASSERT_EQ(g.portals.size(), 1u);
-  EXPECT_EQ(g.portals[0].roomB, kOutsideRoom);
+  // No rooms for a model that leaks (TestPortalGenerationLeaks.cpp says why).
+  EXPECT_EQ(g.roomCount, 0);
+  EXPECT_TRUE(g.portals.empty());
+  EXPECT_EQ(g.statistics.roomsWithheld, 1u);
+  // Kept anyway, the room with the door to the leaking one keeps its portal: what is behind it
+  // is outside.
+  GenerationInput in;
+  in.mesh = &s.mesh;
+  GenerationConfig keep;
+  keep.keepRoomsWithLeaks = true;
+  const GeneratedPortals kept = generatePortals(in, keep);
+  EXPECT_EQ(kept.statistics.leakCells, g.statistics.leakCells);
+  EXPECT_EQ(kept.roomCount, 1);
+  ASSERT_EQ(kept.portals.size(), 1u);
+  EXPECT_EQ(kept.portals[0].roomB, kOutsideRoom);
 }
 
 TEST(PortalGeneration, StoppingAtTheFirstLeakReportsOneLeakInTheOpenRoomAndNoRooms)
@@ -638,10 +649,15 @@ TEST(PortalGeneration, StoppingAtTheFirstLeakReportsOneLeakInTheOpenRoomAndNoRoo
   {
     EXPECT_EQ(r, kOutsideRoom);
   }
-  // Without it, every leak cell is counted and the closed rooms are found (`scenevis portals`).
+  // Without it, every leak cell is counted and the closed rooms are found (`scenevis portals`),
+  // and withheld unless kept.
   const GeneratedPortals all = generatePortals(in);
   EXPECT_GE(all.statistics.leakCells, 1u);
-  EXPECT_EQ(all.roomCount, 2);
+  EXPECT_EQ(all.roomCount, 0);
+  EXPECT_EQ(all.statistics.roomsWithheld, 2u);
+  GenerationConfig keep;
+  keep.keepRoomsWithLeaks = true;
+  EXPECT_EQ(generatePortals(in, keep).roomCount, 2);
 }
 
 TEST(PortalGeneration, AWallWoundTheWrongWayStillBelongsToItsRoom)

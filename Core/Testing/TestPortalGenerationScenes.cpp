@@ -11,6 +11,8 @@
 #include "scenevis/PortalTraversal.h"
 #include "scenevis/Scenes.h"
 
+#include "SightLines.h"
+
 #include <glm/gtc/matrix_transform.hpp>
 
 #include <gtest/gtest.h>
@@ -24,6 +26,7 @@
 
 using namespace scenevis;
 using namespace scenevis::portals;
+using scenevis::testing_support::blocked;
 
 namespace
 {
@@ -162,45 +165,6 @@ GeneratedPortals generateFor(
     in.seeThrough[i] = scene.parts[scene.part[i]].name == "glass";
   }
   return generatePortals(in, config);
-}
-
-/// Whether the segment from @p a to @p b meets a polygon of @p mesh that is not see-through
-/// (touching an edge or a vertex counts: the oracle below then skips the segment).
-bool blocked(const PolygonMesh& mesh, const std::vector<std::uint8_t>& seeThrough,
-  const glm::dvec3& a, const glm::dvec3& b)
-{
-  std::vector<glm::dvec3> polygon;
-  for (std::size_t i = 0; i < mesh.polygonCount(); ++i)
-  {
-    if (seeThrough[i])
-    {
-      continue;
-    }
-    polygon.clear();
-    for (std::uint32_t k = 0; k < mesh.polygonSize(i); ++k)
-    {
-      polygon.push_back(mesh.points[mesh.polygon(i)[k]]);
-    }
-    const glm::dvec3 n = geometry::newellOf(polygon);
-    if (glm::length(n) == 0.0)
-    {
-      continue;
-    }
-    const glm::dvec3 unit = glm::normalize(n);
-    const double da = glm::dot(unit, a - polygon[0]);
-    const double db = glm::dot(unit, b - polygon[0]);
-    if ((da > 1e-9 && db > 1e-9) || (da < -1e-9 && db < -1e-9))
-    {
-      continue;
-    }
-    const double t = std::abs(da - db) > 0.0 ? da / (da - db) : 0.0;
-    const glm::dvec3 q = a + glm::clamp(t, 0.0, 1.0) * (b - a);
-    if (geometry::insideConvex(planarConvexHull(polygon, unit), unit, q, 1e-6))
-    {
-      return true;
-    }
-  }
-  return false;
 }
 
 void print(const char* name, const GeneratedPortals& g, const Comparison& c)

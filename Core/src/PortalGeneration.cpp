@@ -959,6 +959,20 @@ GeneratedPortals generatePortals(const GenerationInput& input, const GenerationC
     out.portals.push_back(std::move(portal));
   }
   stats.portals = out.portals.size();
+  if (stats.leakCells > 0 && !config.keepRoomsWithLeaks)
+  {
+    // No labelling is conservative with leaks (see the header): none is given.
+    stats.roomsWithheld = stats.rooms;
+    stats.portalsWithheld = stats.portals;
+    stats.rooms = stats.portals = stats.exteriorPortals = 0;
+    out.roomOfPolygon.assign(polygons, kOutsideRoom);
+    out.portals.clear();
+    out.roomCount = 0;
+    out.message = "the model leaks (" + std::to_string(stats.leakCells) +
+      " leak cells): no rooms, since portals through a leak may hide what is seen (" +
+      std::to_string(stats.roomsWithheld) + " rooms, " + std::to_string(stats.portalsWithheld) +
+      " portals withheld; keepRoomsWithLeaks gives them)";
+  }
   stats.totalSeconds = secondsSince(start);
   return out;
 }

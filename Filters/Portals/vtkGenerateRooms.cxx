@@ -100,6 +100,7 @@ vtkGenerateRooms::vtkGenerateRooms()
   this->Margin = defaults.margin;
   this->BudgetSeconds = defaults.budgetSeconds;
   this->StopAtFirstLeak = defaults.stopAtFirstLeak;
+  this->KeepRoomsWithLeaks = defaults.keepRoomsWithLeaks;
   this->SetRoomArrayName("RoomId");
   this->SetNumberOfOutputPorts(3);
 }
@@ -222,6 +223,7 @@ int vtkGenerateRooms::RequestData(
   config.margin = this->Margin;
   config.budgetSeconds = this->BudgetSeconds;
   config.stopAtFirstLeak = this->StopAtFirstLeak;
+  config.keepRoomsWithLeaks = this->KeepRoomsWithLeaks;
   this->UpdateProgress(0.0);
   this->Internal->Result = portals::generatePortals(generationInput, config);
   this->Internal->Run = true;
@@ -267,12 +269,15 @@ int vtkGenerateRooms::RequestData(
   if (result.statistics.leakCells > 0 && !result.leakPoints.empty())
   {
     const glm::dvec3& at = result.leakPoints.front();
+    const char* rooms = this->StopAtFirstLeak ? "stopped at the first: no rooms"
+      : this->KeepRoomsWithLeaks
+      ? "rooms kept (KeepRoomsWithLeaks): NOT conservative, portals through a leak may hide"
+        " visible cells"
+      : "no rooms: every cell in room -1 (KeepRoomsWithLeaks keeps the rooms, not conservatively)";
     vtkWarningMacro(<< result.statistics.leakCells
                     << " cell(s) where the outside leaks in through a gap that is not an opening"
-                    << (this->StopAtFirstLeak ? " (stopped at the first: no rooms)" : "")
                     << ", the first at (" << at.x << ", " << at.y << ", " << at.z
-                    << "); the rooms behind them are merged into the outside (see the leaks"
-                    << " output); with leaks the portals are not guaranteed to lose no pixel");
+                    << "; see the leaks output): " << rooms);
   }
   if (result.statistics.droppedPolygons > 0)
   {
@@ -292,6 +297,7 @@ void vtkGenerateRooms::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Margin: " << this->Margin << "\n";
   os << indent << "BudgetSeconds: " << this->BudgetSeconds << "\n";
   os << indent << "StopAtFirstLeak: " << this->StopAtFirstLeak << "\n";
+  os << indent << "KeepRoomsWithLeaks: " << this->KeepRoomsWithLeaks << "\n";
   os << indent << "TranslucentCellsAreSeeThrough: " << this->TranslucentCellsAreSeeThrough << "\n";
   os << indent << "Status: " << StatusName(this->GetStatus()) << "\n";
   os << indent << "NumberOfRooms: " << this->GetNumberOfRooms() << "\n";

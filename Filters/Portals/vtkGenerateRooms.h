@@ -23,12 +23,13 @@
  *   outside reaches in through something that is not an opening (a missing wall, a crack).
  *
  * Conservative by construction on models that do not leak: no portal is smaller than the
- * opening it stands for. A room behind a leak is merged into the outside, but with leaks the
- * result is not guaranteed: on two leaking game levels (hydronex2, ps9ctf) the portals lose
- * pixels in 5-10 views of 33-42 (BENCHMARKS.md). Use rooms only when GetNumberOfLeakCells() is 0,
- * as `scenevis --cull auto` and vtkSceneVisPlanner do. Generation never fails silently: GetStatus()
+ * opening it stands for. A model that leaks gets no rooms (every cell -1, no portals, the leaks
+ * named in a warning and in the leaks output): through a leak no room labelling is conservative
+ * (on two leaking game levels, hydronex2 and ps9ctf, the rooms lost pixels in 5-10 views of
+ * 33-42; scenevis/PortalGeneration.h says why). KeepRoomsWithLeaks keeps them anyway, with a
+ * warning. Generation never fails silently: GetStatus()
  * and GetStatusMessage() say why there are no rooms (empty input, only degenerate or NaN polygons,
- * over the time budget), and a warning names leaks and dropped polygons.
+ * over the time budget, leaks), and a warning names leaks and dropped polygons.
  *
  * Cost: not linear (the demo building's 2,250 polygons about 0.5 s, a 67,000-polygon level about
  * 25 s, one core); BudgetSeconds bounds it.
@@ -104,10 +105,19 @@ public:
   ///@{
   /// Stop at the first leak found: a leaking model then costs much less and gives no rooms, one
   /// leak point. For callers that use rooms only when nothing leaks. Default off: every leak is
-  /// found and the rooms of the parts that do not leak are kept.
+  /// found (and counted; no rooms unless KeepRoomsWithLeaks).
   vtkSetMacro(StopAtFirstLeak, bool);
   vtkGetMacro(StopAtFirstLeak, bool);
   vtkBooleanMacro(StopAtFirstLeak, bool);
+  ///@}
+
+  ///@{
+  /// With leaks, still give the rooms found (the rooms behind a leak merged into the outside).
+  /// Not conservative: the portals may hide visible cells. Default off: a model that leaks gets
+  /// no rooms (status OK, every cell -1, no portals) and a warning.
+  vtkSetMacro(KeepRoomsWithLeaks, bool);
+  vtkGetMacro(KeepRoomsWithLeaks, bool);
+  vtkBooleanMacro(KeepRoomsWithLeaks, bool);
   ///@}
 
   ///@{
@@ -132,7 +142,8 @@ public:
   };
 
   ///@{
-  /// The last generation: its status and, when not STATUS_OK, why (one line).
+  /// The last generation: its status and, when not STATUS_OK or when a model that leaks got no
+  /// rooms, why (one line).
   int GetStatus() const;
   const char* GetStatusMessage() const;
   ///@}
@@ -168,6 +179,7 @@ protected:
   double Margin;
   double BudgetSeconds;
   bool StopAtFirstLeak;
+  bool KeepRoomsWithLeaks;
   bool TranslucentCellsAreSeeThrough = true;
 
 private:

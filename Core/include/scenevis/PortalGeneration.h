@@ -57,10 +57,17 @@
  * Leaks: cells joined to the outside through faces that are not openings (a missing wall, a gap
  * at a wall's edge), faced by polygons (more polygon area on their faces faces into them than
  * away) and enclosed by geometry in at least 5 of the 6 axis directions are reported
- * in `leakPoints`: the room behind such a gap is merged into the outside, which a portal culler
- * treats conservatively (outside geometry is drawn whenever the outside is seen). That is the
- * intent, not a guarantee: on two leaking game levels (hydronex2, ps9ctf) the generated portals
- * lose pixels in 5-10 views of 33-42 (not diagnosed); callers use rooms only without leaks.
+ * in `leakPoints`. A model that leaks gets no rooms (every polygon kOutsideRoom, no portals: a
+ * portal culler then culls by the frustum alone) unless `keepRoomsWithLeaks` asks for them,
+ * because no room labelling is conservative then: through the leak, places where eyes stand
+ * join the outside, and (1) a polygon facing into a room and into such a place (a floor running
+ * from a room into the leaking space) gets one of the two, so the other sees it without a
+ * portal; (2) the back of a room's wall, whose front faces the room and whose back faces the
+ * void behind it, is seen from such a place through the void, without a portal; an eye there
+ * beyond the rooms' bounds starts from the outside node and enters rooms only through their
+ * portals. Merging the rooms of (1) into the outside does not help (2), and merging by (2) would
+ * merge every room: a converted level's surfaces are single polygons with the void behind them.
+ * On hydronex2 and ps9ctf the kept rooms lose pixels in 5-10 views of 33-42 (BENCHMARKS.md).
  *
  * Polygons: each gets the room its fragments face into over the largest area (see-through ones:
  * the room just in front of their centroid); a part facing the outside with a room behind it
@@ -122,6 +129,11 @@ struct GenerationConfig
   /// without leaks (`--cull auto`); off, every leak cell is counted (`scenevis portals`). The
   /// rooms and portals of a scene that does not leak are the same either way.
   bool stopAtFirstLeak = false;
+  /// With leaks, still give the rooms found (the rooms behind a leak merged into the outside):
+  /// not conservative (see the file comment), statistics.roomsWithheld 0. Off: a model that
+  /// leaks gets no rooms and no portals (status Ok, a message saying why, the rooms and portals
+  /// it would have had in statistics.roomsWithheld and portalsWithheld).
+  bool keepRoomsWithLeaks = false;
   /// The BSP over the blocking polygons. allowFreePlanes is ignored (always off): every node's
   /// plane must hold all the polygons in it that its region contains. The plane tolerance is
   /// coarser than the sorter's (1e-6 of the diagonal, not 1e-10): converted levels store points
@@ -174,6 +186,9 @@ struct GenerationStatistics
   std::size_t portals = 0;
   std::size_t exteriorPortals = 0; ///< Portals to the outside.
   std::size_t leakCells = 0;
+  /// Rooms and portals found but not given because the model leaks (keepRoomsWithLeaks off).
+  std::size_t roomsWithheld = 0;
+  std::size_t portalsWithheld = 0;
   std::size_t polygonsWithoutRoom = 0; ///< Valid polygons whose front is solid (inside-out).
   double bspSeconds = 0.0;
   double cellSeconds = 0.0;    ///< Cells, faces and the splits at openings.
@@ -184,7 +199,7 @@ struct GenerationStatistics
 struct GeneratedPortals
 {
   GenerationStatus status = GenerationStatus::Ok;
-  std::string message; ///< Why the status is not Ok.
+  std::string message; ///< Why the status is not Ok, or why an Ok result has no rooms (leaks).
   /// Per input polygon: room id 0 .. roomCount-1, or kOutsideRoom.
   std::vector<std::int32_t> roomOfPolygon;
   std::int32_t roomCount = 0;

@@ -9,6 +9,9 @@
 // - the same box with a wall missing: the leak named in a warning with a point in the leaks
 //   output, the room merged into the outside; with StopAtFirstLeak exactly one leak point, no
 //   rooms;
+// - a closed box beside a leaking one: no rooms at all, said in the status message and a
+//   warning; with KeepRoomsWithLeaks the closed box's room, and a warning that it is not
+//   conservative;
 // - a time budget too small: STATUS_OVER_BUDGET, a warning, no portals, every cell -1;
 // - an input RoomId array of another type is replaced by the int one, and a RoomId field array
 //   (one room for everything, which vtkPortalCuller would read first) removed; an empty
@@ -43,7 +46,8 @@ using Quad = std::array<std::array<double, 3>, 4>;
 
 /// A 4 x 4 x 3 box room, every face turned inwards; @p missing faces left out (0..5: floor,
 /// ceiling, x = 0, x = 4, y = 0, y = 4).
-vtkSmartPointer<vtkPolyData> Box(int missing = -1)
+/// The faces of a 4 x 4 x 3 box moved by @p dx along x, facing in, face @p missing left out.
+void AddBox(vtkPoints* points, vtkCellArray* polys, int missing, double dx)
 {
   const double X = 4, Y = 4, Z = 3;
   const std::vector<Quad> faces = {
@@ -54,8 +58,6 @@ vtkSmartPointer<vtkPolyData> Box(int missing = -1)
     Quad{ { { 0, 0, 0 }, { 0, 0, Z }, { X, 0, Z }, { X, 0, 0 } } }, // y = 0, +y
     Quad{ { { 0, Y, 0 }, { X, Y, 0 }, { X, Y, Z }, { 0, Y, Z } } }, // y = Y, -y
   };
-  vtkNew<vtkPoints> points;
-  vtkNew<vtkCellArray> polys;
   for (std::size_t f = 0; f < faces.size(); ++f)
   {
     if (static_cast<int>(f) == missing)
@@ -65,8 +67,20 @@ vtkSmartPointer<vtkPolyData> Box(int missing = -1)
     polys->InsertNextCell(4);
     for (const auto& p : faces[f])
     {
-      polys->InsertCellPoint(points->InsertNextPoint(p.data()));
+      polys->InsertCellPoint(points->InsertNextPoint(p[0] + dx, p[1], p[2]));
     }
+  }
+}
+
+/// A box (see AddBox); with @p leakingBeside, a second one 10 along x with its floor missing.
+vtkSmartPointer<vtkPolyData> Box(int missing = -1, bool leakingBeside = false)
+{
+  vtkNew<vtkPoints> points;
+  vtkNew<vtkCellArray> polys;
+  AddBox(points, polys, missing, 0.0);
+  if (leakingBeside)
+  {
+    AddBox(points, polys, 0, 10.0);
   }
   auto pd = vtkSmartPointer<vtkPolyData>::New();
   pd->SetPoints(points);
@@ -196,6 +210,36 @@ int TestGenerateRoomsBadInput(int, char*[])
     const std::string report = strict.Check();
     scenevis::testing::ExpectFailures() += report.empty() ? 0 : 1;
     std::cerr << report;
+  }
+  {
+    // A closed box beside one that leaks: no rooms (not even the closed box's: with a leak no
+    // room labelling is conservative), the status message and the warning saying so; kept on
+    // request, with a warning that they are not conservative.
+    vtkNew<vtkGenerateRooms> filter;
+    filter->SetInputData(Box(-1, true));
+    {
+      st::StrictVtkOutput strict;
+      strict.ExpectWarning("no rooms: every cell in room -1");
+      filter->Update();
+      SCENEVIS_EXPECT(filter->GetStatus() == vtkGenerateRooms::STATUS_OK);
+      SCENEVIS_EXPECT(filter->GetNumberOfLeakCells() >= 1);
+      SCENEVIS_EXPECT(filter->GetNumberOfRooms() == 0 && filter->GetNumberOfPortals() == 0);
+      SCENEVIS_EXPECT(AllOutside(RoomsOf(filter)));
+      SCENEVIS_EXPECT(std::string(filter->GetStatusMessage()).find("leaks") != std::string::npos);
+      const std::string report = strict.Check();
+      scenevis::testing::ExpectFailures() += report.empty() ? 0 : 1;
+      std::cerr << report;
+    }
+    {
+      st::StrictVtkOutput strict;
+      strict.ExpectWarning("NOT conservative");
+      filter->KeepRoomsWithLeaksOn();
+      filter->Update();
+      SCENEVIS_EXPECT(filter->GetNumberOfRooms() == 1 && !AllOutside(RoomsOf(filter)));
+      const std::string report = strict.Check();
+      scenevis::testing::ExpectFailures() += report.empty() ? 0 : 1;
+      std::cerr << report;
+    }
   }
   {
     // NaN polygons among the demo building's: the same rooms, the bad cells -1.
