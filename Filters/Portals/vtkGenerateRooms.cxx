@@ -269,7 +269,7 @@ int vtkGenerateRooms::RequestData(
   if (result.statistics.leakCells > 0 && !result.leakPoints.empty())
   {
     const glm::dvec3& at = result.leakPoints.front();
-    const char* rooms = this->StopAtFirstLeak ? "stopped at the first: no rooms"
+    const char* outcome = this->StopAtFirstLeak ? "stopped at the first: no rooms"
       : this->KeepRoomsWithLeaks
       ? "rooms kept (KeepRoomsWithLeaks): NOT conservative, portals through a leak may hide"
         " visible cells"
@@ -277,7 +277,7 @@ int vtkGenerateRooms::RequestData(
     vtkWarningMacro(<< result.statistics.leakCells
                     << " cell(s) where the outside leaks in through a gap that is not an opening"
                     << ", the first at (" << at.x << ", " << at.y << ", " << at.z
-                    << "; see the leaks output): " << rooms);
+                    << "; see the leaks output): " << outcome);
   }
   if (result.statistics.droppedPolygons > 0)
   {
