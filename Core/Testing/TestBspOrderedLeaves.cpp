@@ -39,10 +39,12 @@ using scenevis::testsupport::uvSphere;
 namespace
 {
 
-BuildConfig withLeaves(std::uint32_t size)
+BuildConfig withLeaves(
+  std::uint32_t size, BuildConfig::Partition partition = BuildConfig::Partition::Scored)
 {
   BuildConfig config;
   config.orderedLeafSize = size;
+  config.partition = partition;
   return config;
 }
 
@@ -135,12 +137,12 @@ struct Totals
   std::size_t fallenBack = 0;
 };
 
-Totals expectCorrectOrders(
-  const std::vector<Polygon>& polygons, const std::vector<View>& views, std::uint32_t leafSize)
+Totals expectCorrectOrders(const std::vector<Polygon>& polygons, const std::vector<View>& views,
+  std::uint32_t leafSize, BuildConfig::Partition partition = BuildConfig::Partition::Scored)
 {
   Totals totals;
   const PolygonMesh mesh = meshOf(polygons);
-  const Tree tree = scenevis::bsp::build(mesh, withLeaves(leafSize));
+  const Tree tree = scenevis::bsp::build(mesh, withLeaves(leafSize, partition));
   EXPECT_FALSE(tree.empty());
   EXPECT_EQ(tree.statistics.orderedLeaves, tree.leaves.size());
   const std::vector<Polygon> fragments = scenevis::oracle::fragmentPolygons(tree);
@@ -214,6 +216,34 @@ TEST(BspOrderedLeaves, SeparatedPolygonsStayWholeAndAreSortedForEveryEye)
   EXPECT_EQ(totals.drawn, views.size() * stack.size()); // nothing split
 }
 
+TEST(BspOrderedLeaves, TheOracleRejectsAReversedLeafOrder)
+{
+  // The check above has teeth: the same leaf's order reversed is caught.
+  std::vector<Polygon> stack;
+  for (int k = 0; k < 6; ++k)
+  {
+    stack.push_back(rectZ(0.2 * k, 0.1 * k, 1.0 + 0.1 * k, 0.0, 1.0));
+  }
+  const Tree tree = scenevis::bsp::build(meshOf(stack), withLeaves(8));
+  ASSERT_EQ(tree.leaves.size(), 1u);
+  const View view = View::perspective({ 0.5, 0.5, 10.0 });
+  std::vector<std::uint32_t> order;
+  scenevis::bsp::order(tree, view, Direction::BackToFront, order);
+  ASSERT_EQ(order.size(), stack.size());
+  const std::vector<Polygon> fragments = scenevis::oracle::fragmentPolygons(tree);
+  std::vector<Polygon> drawn;
+  for (std::uint32_t id : order)
+  {
+    drawn.push_back(fragments[id]);
+  }
+  std::vector<std::uint32_t> reversed(drawn.size());
+  for (std::uint32_t i = 0; i < reversed.size(); ++i)
+  {
+    reversed[i] = static_cast<std::uint32_t>(reversed.size() - 1 - i);
+  }
+  EXPECT_FALSE(scenevis::oracle::checkOrder(drawn, reversed, view).ok());
+}
+
 TEST(BspOrderedLeaves, CyclicOverlapFallsBackToTheSplitSubtree)
 {
   // Seen from above, the three sticks overlap cyclically: no order of the whole sticks is right,
@@ -249,7 +279,8 @@ TEST(BspOrderedLeaves, CyclicOverlapFallsBackToTheSplitSubtree)
 TEST(BspOrderedLeaves, RandomSoupsFromManyEyes)
 {
   // Small polygons (few intersect, so most short lists become leaves) and the usual size (many
-  // intersect, so lists split until their pairs separate), at every leaf size.
+  // intersect, so lists split until their pairs separate), at every leaf size; every third seed
+  // with the textbook partition (lists shrink one polygon at a time, so leaves form early).
   Totals all;
   for (std::uint32_t leafSize : { 8u, 16u, 32u, 64u })
   {
@@ -263,7 +294,8 @@ TEST(BspOrderedLeaves, RandomSoupsFromManyEyes)
       {
         views.push_back(v);
       }
-      const Totals totals = expectCorrectOrders(soup, views, leafSize);
+      const Totals totals = expectCorrectOrders(soup, views, leafSize,
+        seed % 3 == 0 ? BuildConfig::Partition::FirstInList : BuildConfig::Partition::Scored);
       all.sorted += totals.sorted;
       all.fallenBack += totals.fallenBack;
       if (HasFailure())

@@ -148,7 +148,10 @@ bool orderLeaf(const Tree& tree, const OrderedLeaf& leaf, const glm::dvec4& eye,
     return (((side[p >> 6] >> (p & 63)) & 1u) != 0) != ((plane & kFlipPlane) != 0);
   };
   // before[j]: the polygons that must be drawn before j (back to front).
-  std::uint64_t before[kMaxLeafPolygons] = {};
+  // Only the leaf's rows are cleared (most leaves are far smaller than kMaxLeafPolygons).
+  const std::uint32_t n = leaf.fragmentCount;
+  std::uint64_t before[kMaxLeafPolygons];
+  std::fill(before, before + n, std::uint64_t{ 0 });
   const LeafPair* pairs = tree.leafPairs.data() + leaf.firstPair;
   for (std::uint32_t k = 0; k < leaf.pairCount; ++k)
   {
@@ -174,9 +177,9 @@ bool orderLeaf(const Tree& tree, const OrderedLeaf& leaf, const glm::dvec4& eye,
   }
   // Layers of Kahn's algorithm: every polygon with nothing left before it; a layer's polygons
   // constrain none of each other (an edge would keep its target out of the layer).
-  const std::uint32_t n = leaf.fragmentCount;
   std::uint64_t remaining = n >= 64 ? ~std::uint64_t{ 0 } : (std::uint64_t{ 1 } << n) - 1;
-  std::uint64_t realised[kMaxLeafPolygons] = {}; // precedences confirmed by mayOverlap
+  std::uint64_t realised[kMaxLeafPolygons]; // precedences confirmed by mayOverlap
+  bool stalled = false;
   while (remaining != 0)
   {
     std::uint64_t ready = 0;
@@ -194,6 +197,11 @@ bool orderLeaf(const Tree& tree, const OrderedLeaf& leaf, const glm::dvec4& eye,
       // a cycle may use precedences that no ray from this eye realises. Walk back along
       // predecessors (every polygon left has one) to a cycle; drop its unrealised precedences
       // and retry, or report it when all are realised (checked ones are remembered).
+      if (!stalled)
+      {
+        std::fill(realised, realised + n, std::uint64_t{ 0 });
+        stalled = true;
+      }
       const Fragment* fragments = tree.fragments.data() + leaf.firstFragment;
       std::uint32_t path[kMaxLeafPolygons + 1];
       std::uint64_t onPath = 0;
