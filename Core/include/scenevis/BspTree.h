@@ -19,8 +19,8 @@
  * Ordered leaves (optional, BuildConfig::orderedLeafSize): a short list can be kept unsplit in an
  * OrderedLeaf instead of a subtree. A child reference (Node::front / back, Tree::root) with
  * kLeafBit set names `leaves[ref & ~kLeafBit]`, not a node. The leaf stores, for every pair of its
- * polygons whose depth order can depend on the view, one or two separating planes; a traversal
- * evaluates them for the eye and sorts the leaf's polygons topologically. Polygons of 3 or more can
+ * polygons that are not coplanar, one or two separating planes; a traversal evaluates them for the
+ * eye and sorts the leaf's polygons topologically (BspTraversal.h). Polygons of 3 or more can
  * overlap cyclically for some eyes: the leaf then falls back, for that eye only, to `fallback`, the
  * ordinary split subtree of the same polygons (stored too). So a tree with leaves stores more
  * fragments than it draws: an order lists each leaf's unsplit fragments or its fallback's, never
@@ -120,9 +120,8 @@ constexpr std::uint32_t kMaxLeafPolygons = 64;
  * Unsplit convex polygons ordered per view (see the file comment). Fragments [firstFragment,
  * firstFragment + fragmentCount) are its polygons (leaf index k = fragment firstFragment + k);
  * planes [firstPlane, firstPlane + planeCount) of Tree::leafPlanes: the polygons' own planes
- * first (plane k is fragment k's), then planes found between pairs that neither own plane
- * separates; pairs [firstPair, firstPair + pairCount) of Tree::leafPairs. Coplanar pairs and pairs
- * whose order never depends on the view are not stored.
+ * first (plane k is fragment k's), then the other separating planes of the pairs (see LeafPair);
+ * pairs [firstPair, firstPair + pairCount) of Tree::leafPairs. Coplanar pairs are not stored.
  */
 struct OrderedLeaf
 {
@@ -132,7 +131,8 @@ struct OrderedLeaf
   std::uint32_t planeCount = 0;
   std::uint32_t firstPair = 0;
   std::uint32_t pairCount = 0;
-  /// Root node of the split subtree of the same polygons, for eyes that see a cycle.
+  /// Root node of the split subtree of the same polygons, for eyes that see a cycle; kNone when
+  /// no cycle is possible (the stored pairs form a forest).
   std::uint32_t fallback = kNone;
 };
 
