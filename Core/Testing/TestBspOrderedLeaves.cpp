@@ -6,6 +6,7 @@
 #include "scenevis/BspBuilder.h"
 #include "scenevis/BspTraversal.h"
 #include "scenevis/OrderOracle.h"
+#include "scenevis/Scenes.h"
 
 #include "PolygonSoups.h"
 
@@ -393,6 +394,69 @@ TEST(BspOrderedLeaves, FewerFragmentsDrawnThanTheSplitTree)
   }
   EXPECT_LT(drawn, views.size() * plain.fragments.size());
   EXPECT_LE(leaves.statistics.fragmentsWithoutFallbacks * views.size(), drawn);
+}
+
+TEST(BspOrderedLeaves, ThreadsGiveTheIdenticalTree)
+{
+  // Both sides of the top nodes are large, so a worker builds one of them, leaves included; its
+  // leaves, planes, pairs and fallback nodes are renumbered on merge to the serial ids.
+  const PolygonMesh grid =
+    scenevis::scenes::sphereGrid(4, 0.8, 1.0, scenevis::scenes::trianglesPerSphereFor(60000)).mesh;
+  BuildConfig serial = withLeaves(16);
+  serial.threads = 1;
+  BuildConfig parallel = withLeaves(16);
+  parallel.threads = 2;
+  const Tree a = scenevis::bsp::build(grid, serial);
+  const Tree b = scenevis::bsp::build(grid, parallel);
+  ASSERT_GT(a.leaves.size(), 0u);
+  ASSERT_EQ(a.root, b.root);
+  ASSERT_EQ(a.nodes.size(), b.nodes.size());
+  for (std::size_t i = 0; i < a.nodes.size(); ++i)
+  {
+    ASSERT_EQ(a.nodes[i].plane, b.nodes[i].plane) << "node " << i;
+    ASSERT_EQ(a.nodes[i].front, b.nodes[i].front) << "node " << i;
+    ASSERT_EQ(a.nodes[i].back, b.nodes[i].back) << "node " << i;
+    ASSERT_EQ(a.nodes[i].firstFragment, b.nodes[i].firstFragment) << "node " << i;
+    ASSERT_EQ(a.nodes[i].fragmentCount, b.nodes[i].fragmentCount) << "node " << i;
+  }
+  ASSERT_EQ(a.leaves.size(), b.leaves.size());
+  for (std::size_t i = 0; i < a.leaves.size(); ++i)
+  {
+    const auto& x = a.leaves[i];
+    const auto& y = b.leaves[i];
+    ASSERT_EQ(std::vector<std::uint32_t>({ x.firstFragment, x.fragmentCount, x.firstPlane,
+                x.planeCount, x.firstPair, x.pairCount, x.fallback }),
+      std::vector<std::uint32_t>({ y.firstFragment, y.fragmentCount, y.firstPlane, y.planeCount,
+        y.firstPair, y.pairCount, y.fallback }))
+      << "leaf " << i;
+  }
+  EXPECT_EQ(a.leafPlanes, b.leafPlanes);
+  ASSERT_EQ(a.leafPairs.size(), b.leafPairs.size());
+  for (std::size_t i = 0; i < a.leafPairs.size(); ++i)
+  {
+    ASSERT_EQ(a.leafPairs[i].first, b.leafPairs[i].first);
+    ASSERT_EQ(a.leafPairs[i].second, b.leafPairs[i].second);
+    ASSERT_EQ(a.leafPairs[i].planes[0], b.leafPairs[i].planes[0]);
+    ASSERT_EQ(a.leafPairs[i].planes[1], b.leafPairs[i].planes[1]);
+  }
+  ASSERT_EQ(a.fragments.size(), b.fragments.size());
+  for (std::size_t i = 0; i < a.fragments.size(); ++i)
+  {
+    ASSERT_EQ(a.fragments[i].source, b.fragments[i].source);
+    ASSERT_EQ(a.fragments[i].first, b.fragments[i].first);
+    ASSERT_EQ(a.fragments[i].count, b.fragments[i].count);
+  }
+  EXPECT_EQ(a.fragmentVertices, b.fragmentVertices);
+  EXPECT_EQ(a.points, b.points);
+  EXPECT_EQ(a.statistics.leafFragments, b.statistics.leafFragments);
+  EXPECT_EQ(a.statistics.fragmentsWithoutFallbacks, b.statistics.fragmentsWithoutFallbacks);
+  EXPECT_EQ(a.statistics.memoryBytes, b.statistics.memoryBytes);
+  std::vector<std::uint32_t> orderA;
+  std::vector<std::uint32_t> orderB;
+  const View view = View::perspective({ 0.3, 0.2, 6.0 });
+  scenevis::bsp::order(a, view, Direction::BackToFront, orderA);
+  scenevis::bsp::order(b, view, Direction::BackToFront, orderB);
+  EXPECT_EQ(orderA, orderB);
 }
 
 TEST(BspOrderedLeaves, IncrementalOrderRejectsLeaves)

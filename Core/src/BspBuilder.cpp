@@ -855,10 +855,6 @@ Tree Builder::run()
   Scored = Config.partition == BuildConfig::Partition::Scored;
   Threads = Config.threads > 0 ? static_cast<unsigned>(Config.threads)
                                : std::max(1u, std::thread::hardware_concurrency());
-  if (Config.orderedLeafSize > 0)
-  {
-    Threads = 1; // join() does not renumber leaves
-  }
   Cancel = &CancelFlag;
   std::vector<Task> tasks;
   if (pieces > 0)
@@ -921,6 +917,9 @@ Tree Builder::run()
   Out.fragmentVertices.shrink_to_fit();
   Out.points.shrink_to_fit();
   Out.splitPoints.shrink_to_fit();
+  Out.leaves.shrink_to_fit();
+  Out.leafPlanes.shrink_to_fit();
+  Out.leafPairs.shrink_to_fit();
   st.nodes = Out.nodes.size();
   st.fragments = Out.fragments.size();
   st.orderedLeaves = Out.leaves.size();
@@ -1449,14 +1448,36 @@ void Builder::join()
   const auto nodeOffset = static_cast<std::uint32_t>(Out.nodes.size());
   const auto fragmentOffset = static_cast<std::uint32_t>(Out.fragments.size());
   const auto vertexOffset = static_cast<std::uint32_t>(Out.fragmentVertices.size());
-  (ForkNode != kNone ? Out.nodes[ForkNode].back : Out.root) = nodeOffset + w.root;
+  const auto leafOffset = static_cast<std::uint32_t>(Out.leaves.size());
+  const auto planeOffset = static_cast<std::uint32_t>(Out.leafPlanes.size());
+  const auto pairOffset = static_cast<std::uint32_t>(Out.leafPairs.size());
+  // A child reference is a node or (kLeafBit) a leaf; each kind moves by its own offset.
+  auto moved = [nodeOffset, leafOffset](std::uint32_t reference)
+  {
+    if (reference == kNone)
+    {
+      return kNone;
+    }
+    return isLeaf(reference) ? reference + leafOffset : reference + nodeOffset;
+  };
+  (ForkNode != kNone ? Out.nodes[ForkNode].back : Out.root) = moved(w.root);
   for (Node node : w.nodes)
   {
-    node.front = node.front != kNone ? node.front + nodeOffset : kNone;
-    node.back = node.back != kNone ? node.back + nodeOffset : kNone;
+    node.front = moved(node.front);
+    node.back = moved(node.back);
     node.firstFragment += fragmentOffset;
     Out.nodes.push_back(node);
   }
+  for (OrderedLeaf leaf : w.leaves)
+  {
+    leaf.firstFragment += fragmentOffset;
+    leaf.firstPlane += planeOffset;
+    leaf.firstPair += pairOffset;
+    leaf.fallback = moved(leaf.fallback);
+    Out.leaves.push_back(leaf);
+  }
+  Out.leafPlanes.insert(Out.leafPlanes.end(), w.leafPlanes.begin(), w.leafPlanes.end());
+  Out.leafPairs.insert(Out.leafPairs.end(), w.leafPairs.begin(), w.leafPairs.end());
   for (Fragment f : w.fragments)
   {
     f.first += vertexOffset;
@@ -1477,6 +1498,8 @@ void Builder::join()
   st.depth = std::max(st.depth, w.statistics.depth);
   st.freePlaneNodes += w.statistics.freePlaneNodes;
   st.splits += w.statistics.splits;
+  st.leafFragments += w.statistics.leafFragments;
+  FallbackFragments += worker->FallbackFragments;
   Placed += worker->Placed;
 }
 

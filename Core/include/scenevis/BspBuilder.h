@@ -113,7 +113,7 @@ struct BuildConfig
    * intersecting pair is split as usual (its shorter children try again). When the pairs of a leaf
    * could form a cycle (its pair graph is not a forest), the split subtree is built as well, as the
    * leaf's fallback for the eyes that see one. 0 (default) builds no leaves; the tree is then
-   * exactly the one built without this option. A build with leaves runs on one thread.
+   * exactly the one built without this option.
    * IncrementalOrder does not take trees with leaves (yet).
    */
   std::uint32_t orderedLeafSize = 0;
