@@ -94,11 +94,12 @@ void order(const Tree& tree, const View& view, Direction direction, std::vector<
         write += leaf.fragmentCount;
         ++counts.leavesSorted;
       }
-      else
+      else if (leaf.fallback != kNone)
       {
         stack.push_back(leaf.fallback);
         ++counts.leavesFallenBack;
       }
+      // else unreachable: a leaf without fallback has a forest of pairs, which cannot stall.
       continue;
     }
     if (item & kEmitOwn)
