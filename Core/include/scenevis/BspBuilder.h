@@ -53,8 +53,8 @@
  * fragments the scores already chain them without splits), scoring short lists by such patches,
  * diagonal sweeps, two-level lookahead, a per-split weight in SubtreeCost, more candidates: none
  * gets the bunny below 1.98 fragments per triangle. Ordered leaves (Config::orderedLeafSize, off
- * by default) draw fewer: bunny 1.59, engine 2.02 per input polygon at 64, for 9x / 4x the order
- * time and 5.5x / 3.3x the tree memory (BENCHMARKS.md, "ordered leaves").
+ * by default) draw fewer: bunny 1.59, engine 2.02 per input polygon at 64, for 10x / 4.4x the
+ * order time and 3.8x / 2.7x the tree memory (BENCHMARKS.md, "ordered leaves").
  *
  * Tolerance: Tree::tolerance = max(relativeTolerance * bounds diagonal,
  * 16 * DBL_EPSILON * max |coordinate|): the second term is the coordinate resolution, which far
