@@ -10,6 +10,12 @@
 // BM_BspBuild/bunny/threads:<t> builds the Stanford bunny (69,451 triangles) from the binary STL
 // that scripts/fetch-data.sh puts in ${SCENEVIS_DATA_DIR:-~/.cache/scenevis-data} (key
 // bunny-stl of its manifest.txt); it is skipped when the file is absent.
+// BM_BspLeafOrder/<model>/leaf:<n> (issue 15 item 2): full order per view of a tree built with
+// BuildConfig::orderedLeafSize = n (0: no leaves), 24 views around the model (15-degree steps,
+// 20 degrees up, at 1.5 bounding diagonals); counters give fragments stored and drawn (mean over
+// the 24 views) per input polygon and the leaves that fell back per view. Models: the bunny, and
+// the 2CylinderEngine as a binary STL named by SCENEVIS_ENGINE_STL (BENCHMARKS.md says how it is
+// made from the glb).
 #include "scenevis/BspBuilder.h"
 #include "scenevis/BspTraversal.h"
 #include "scenevis/Scenes.h"
@@ -89,6 +95,94 @@ PolygonMesh loadBinaryStl(const std::string& path)
     mesh.addPolygon(tri, 3);
   }
   return mesh;
+}
+
+/// The binary STL of a model: a manifest key, or "env:<VARIABLE>" holding a path.
+PolygonMesh loadModel(const std::string& key)
+{
+  std::string path;
+  if (key.rfind("env:", 0) == 0)
+  {
+    const char* value = std::getenv(key.substr(4).c_str());
+    path = value ? value : "";
+  }
+  else
+  {
+    path = dataFile(key);
+  }
+  return path.empty() ? PolygonMesh{} : loadBinaryStl(path);
+}
+
+struct LeafFixture
+{
+  PolygonMesh mesh;
+  bsp::Tree tree;
+  std::vector<View> views;
+};
+
+/// Built once per (model, leaf size); empty mesh when the model is absent.
+const LeafFixture& leafFixture(const std::string& key, std::uint32_t leafSize)
+{
+  static std::map<std::pair<std::string, std::uint32_t>, std::unique_ptr<LeafFixture>> cache;
+  auto& slot = cache[{ key, leafSize }];
+  if (!slot)
+  {
+    slot = std::make_unique<LeafFixture>();
+    slot->mesh = loadModel(key);
+    if (slot->mesh.polygonCount() > 0)
+    {
+      bsp::BuildConfig config;
+      config.orderedLeafSize = leafSize;
+      slot->tree = bsp::build(slot->mesh, config);
+      const Box bounds = slot->mesh.bounds();
+      const double radius = 1.5 * bounds.diagonal();
+      const double e = 20.0 * 3.14159265358979323846 / 180.0;
+      for (int k = 0; k < 24; ++k)
+      {
+        const double a = k * 15.0 * 3.14159265358979323846 / 180.0;
+        slot->views.push_back(View::perspective(bounds.center() +
+          glm::dvec3(std::cos(a) * std::cos(e), std::sin(a) * std::cos(e), std::sin(e)) * radius));
+      }
+    }
+  }
+  return *slot;
+}
+
+void leafOrderBenchmark(benchmark::State& state, const std::string& key, std::uint32_t leafSize)
+{
+  const LeafFixture& f = leafFixture(key, leafSize);
+  if (f.mesh.polygonCount() == 0)
+  {
+    state.SkipWithError("model not available (see the file comment)");
+    return;
+  }
+  std::vector<std::uint32_t> result;
+  std::size_t view = 0;
+  for (auto _ : state)
+  {
+    bsp::order(f.tree, f.views[view], bsp::Direction::BackToFront, result);
+    benchmark::DoNotOptimize(result.data());
+    view = view + 1 == f.views.size() ? 0 : view + 1;
+  }
+  double drawn = 0.0;
+  double fallbacks = 0.0;
+  for (const View& v : f.views)
+  {
+    bsp::OrderStatistics statistics;
+    bsp::order(f.tree, v, bsp::Direction::BackToFront, result, &statistics);
+    drawn += static_cast<double>(result.size());
+    fallbacks += static_cast<double>(statistics.leavesFallenBack);
+  }
+  const double input = static_cast<double>(f.mesh.polygonCount());
+  const double views = static_cast<double>(f.views.size());
+  const bsp::BuildStatistics& st = f.tree.statistics;
+  state.counters["stored/input"] = static_cast<double>(st.fragments) / input;
+  state.counters["drawn/input"] = drawn / views / input;
+  state.counters["noCycle/input"] = static_cast<double>(st.fragmentsWithoutFallbacks) / input;
+  state.counters["leaves"] = static_cast<double>(st.orderedLeaves);
+  state.counters["fallbacks/view"] = fallbacks / views;
+  state.counters["treeBytes/tri"] = static_cast<double>(st.memoryBytes) / input;
+  state.counters["build_s"] = st.buildSeconds;
 }
 
 void modelBuildBenchmark(benchmark::State& state, const std::string& key, int threads)
@@ -300,6 +394,17 @@ int registerAll()
       std::string("bunny-stl"), threads)
       ->Unit(benchmark::kMillisecond)
       ->MeasureProcessCPUTime();
+  }
+  for (const char* model : { "bunny", "engine" })
+  {
+    const std::string key = model == std::string("bunny") ? "bunny-stl" : "env:SCENEVIS_ENGINE_STL";
+    for (std::uint32_t leafSize : { 0u, 8u, 16u, 32u, 64u })
+    {
+      benchmark::RegisterBenchmark(
+        (std::string("BM_BspLeafOrder/") + model + "/leaf:" + std::to_string(leafSize)).c_str(),
+        leafOrderBenchmark, key, leafSize)
+        ->Unit(benchmark::kMillisecond);
+    }
   }
   for (SceneKind kind : all)
   {

@@ -12,7 +12,11 @@
 //     no area (checkArea; excess area only with SCENEVIS_FUZZ_STRICT=1, see the open finding);
 //  4. the brute-force OrderOracle finds no violation in the back-to-front order, for the first
 //     view and the last one; each reported violation is re-cast in long double
-//     (confirmViolation) and only a confirmed one fails.
+//     (confirmViolation) and only a confirmed one fails;
+//  5. ordered leaves (BuildConfig::orderedLeafSize 8 / 16 / 64, from the top bits of the seed
+//     byte; 0 skips): a second tree built with them draws no fragment twice, FrontToBack is the
+//     reverse of BackToFront, every input polygon's drawn area equals its area in the first tree,
+//     and the oracle (as in 4, for the first view) finds no confirmed violation in what is drawn.
 //
 // Guards (when checks 3 and 4 are meaningful):
 //  - "conditioned" input: every point finite and within 1e8 of the origin (the optional 1e7
@@ -637,15 +641,25 @@ bool confirmViolation(const Tree& tree, const std::vector<scenevis::oracle::Poly
 
 std::size_t unconfirmedReports = 0;
 
-void checkOracle(const Tree& tree, const std::vector<scenevis::oracle::Polygon>& fragments,
+void checkOracle(const Tree& tree, const std::vector<scenevis::oracle::Polygon>& allFragments,
   const View& view, double tolerance)
 {
-  std::vector<std::uint32_t> order;
+  std::vector<std::uint32_t> drawn;
   // SCENEVIS_FUZZ_SELFTEST=1 hands the oracle the reversed (wrong) order: the check must then fail
   // on any input with a constrained pair, which shows the confirmation step keeps real violations.
   static const bool selfTest = std::getenv("SCENEVIS_FUZZ_SELFTEST") != nullptr;
   scenevis::bsp::order(
-    tree, view, selfTest ? Direction::FrontToBack : Direction::BackToFront, order);
+    tree, view, selfTest ? Direction::FrontToBack : Direction::BackToFront, drawn);
+  // With ordered leaves the order lists only the fragments drawn for this view: the oracle judges
+  // those (as polygons 0..n-1 in drawn order); ids are mapped back for the reports.
+  std::vector<scenevis::oracle::Polygon> drawnFragments;
+  std::vector<std::uint32_t> order(drawn.size());
+  for (std::uint32_t i = 0; i < drawn.size(); ++i)
+  {
+    drawnFragments.push_back(allFragments[drawn[i]]);
+    order[i] = i;
+  }
+  const auto& fragments = drawnFragments;
   // The oracle's depth tolerance is relative to the bounds of the polygons it is given; make it
   // 10x the BSP's absolute tolerance, and at least its default 1e-9.
   scenevis::Box box;
@@ -674,8 +688,8 @@ void checkOracle(const Tree& tree, const std::vector<scenevis::oracle::Polygon>&
       fragments[v.farther], fragments[v.nearer], view, oracleConfig);
     // relate() reports the witness on its first argument (the farther fragment).
     if (relation.relation != scenevis::oracle::Relation::FirstFarther ||
-      !confirmViolation(tree, fragments, v.farther, v.nearer, view, relation.witness,
-        report.depthTolerance))
+      !confirmViolation(tree, allFragments, drawn[v.farther], drawn[v.nearer], view,
+        relation.witness, report.depthTolerance))
     {
       ++unconfirmedReports;
       continue;
@@ -684,8 +698,8 @@ void checkOracle(const Tree& tree, const std::vector<scenevis::oracle::Polygon>&
       "FuzzBsp: %zu violation(s), %zu conflicting; eye (%.17g, %.17g, %.17g, %g); fragment %u "
       "(source %u) is farther than fragment %u (source %u)\n",
       report.violations.size(), report.conflictingPairs, view.eye.x, view.eye.y, view.eye.z,
-      view.eye.w, v.farther, tree.fragments[v.farther].source, v.nearer,
-      tree.fragments[v.nearer].source);
+      view.eye.w, drawn[v.farther], tree.fragments[drawn[v.farther]].source, drawn[v.nearer],
+      tree.fragments[drawn[v.nearer]].source);
     std::fprintf(stderr,
       "FuzzBsp: relate: %d, separation %.17g at (%.17g, %.17g, %.17g); depth tolerance %.17g\n",
       static_cast<int>(relation.relation), relation.separation, relation.witness.x,
@@ -705,10 +719,91 @@ void checkOracle(const Tree& tree, const std::vector<scenevis::oracle::Polygon>&
       {
         local.push_back(p - tree.origin);
       }
-      std::fprintf(stderr, "FuzzBsp: fragment %u: %zu vertices, area %.3g, diameter %.3g\n", f,
-        fragments[f].size(), areaOf(local), diameter);
+      std::fprintf(stderr, "FuzzBsp: fragment %u: %zu vertices, area %.3g, diameter %.3g\n",
+        drawn[f], fragments[f].size(), areaOf(local), diameter);
     }
     fail("the oracle found a violation, confirmed in long double");
+  }
+}
+
+/// Area of each input polygon's fragments among `ids` (relative to the tree's origin).
+std::vector<double> areaBySource(
+  const Tree& tree, const std::vector<std::uint32_t>& ids, std::size_t sources)
+{
+  std::vector<double> area(sources, 0.0);
+  std::vector<glm::dvec3> local;
+  for (const std::uint32_t id : ids)
+  {
+    const auto& f = tree.fragments[id];
+    local.clear();
+    for (std::uint32_t k = 0; k < f.count; ++k)
+    {
+      local.push_back(tree.points[tree.fragmentVertices[f.first + k]] - tree.origin);
+    }
+    area[f.source] += areaOf(local);
+  }
+  return area;
+}
+
+/// Check 5 (see the file comment): `plain` is the tree built without leaves.
+void checkOrderedLeaves(const PolygonMesh& mesh, const BuildConfig& base, const Tree& plain,
+  const View& view, bool areaApplies, bool oracleApplies, double tolerance)
+{
+  static const std::uint32_t sizes[] = { 0, 8, 16, 64 };
+  BuildConfig config = base;
+  config.orderedLeafSize = sizes[(base.seed >> 6) & 3];
+  if (config.orderedLeafSize == 0)
+  {
+    return;
+  }
+  const Tree tree = scenevis::bsp::build(mesh, config);
+  std::vector<std::uint32_t> forward;
+  std::vector<std::uint32_t> backward;
+  scenevis::bsp::order(tree, view, Direction::BackToFront, forward);
+  scenevis::bsp::order(tree, view, Direction::FrontToBack, backward);
+  std::reverse(backward.begin(), backward.end());
+  if (forward != backward)
+  {
+    fail("ordered leaves: FrontToBack is not the reverse of BackToFront");
+  }
+  std::vector<bool> seen(tree.fragments.size(), false);
+  for (const std::uint32_t id : forward)
+  {
+    if (id >= seen.size() || seen[id])
+    {
+      fail("ordered leaves: a fragment drawn twice or out of range");
+    }
+    seen[id] = true;
+  }
+  if (areaApplies)
+  {
+    std::vector<std::uint32_t> all(plain.fragments.size());
+    for (std::uint32_t i = 0; i < all.size(); ++i)
+    {
+      all[i] = i;
+    }
+    const std::vector<double> expected = areaBySource(plain, all, mesh.polygonCount());
+    const std::vector<double> drawn = areaBySource(tree, forward, mesh.polygonCount());
+    const double diagonal = mesh.bounds().diagonal();
+    for (std::size_t s = 0; s < expected.size(); ++s)
+    {
+      // Both sums are of the same polygon cut differently: they differ by rounding and by
+      // fragments within the plane tolerance of their cuts.
+      const double slack =
+        1e-9 * expected[s] + 64.0 * (tolerance + DBL_EPSILON * diagonal) * diagonal;
+      if (std::abs(drawn[s] - expected[s]) > slack)
+      {
+        std::fprintf(stderr, "FuzzBsp: input polygon %zu: drawn area %.17g, expected %.17g\n", s,
+          drawn[s], expected[s]);
+        fail("ordered leaves: an input polygon's drawn area differs");
+      }
+    }
+  }
+  if (oracleApplies)
+  {
+    std::vector<scenevis::oracle::Polygon> fragments = scenevis::oracle::fragmentPolygons(tree);
+    hideUntrustedSlivers(fragments, tree, tolerance);
+    checkOracle(tree, fragments, view, tolerance);
   }
 }
 
@@ -895,6 +990,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   {
     checkOracle(tree, fragmentPolygons, view, tolerance);
   }
+  checkOrderedLeaves(
+    mesh, d.config, tree, view, d.conditioned, eyeConditioned && oracleApplies(view), tolerance);
 
   // Camera moves: IncrementalOrder must equal the full walk after each.
   scenevis::bsp::IncrementalOrder incremental(tree, direction);

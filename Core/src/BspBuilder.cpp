@@ -10,6 +10,7 @@
 #include <chrono>
 #include <cmath>
 #include <exception>
+#include <iterator>
 #include <limits>
 #include <memory>
 #include <thread>
@@ -128,6 +129,7 @@ struct Task
   std::uint64_t key;
   bool isFront;      // which child of `parent` this task becomes
   bool oneSidedRun;  // see Builder::run()
+  bool noLeaf = false; // a leaf's fallback subtree: split as usual, no ordered leaves in it
 };
 
 /**
@@ -246,6 +248,17 @@ public:
 private:
   /// Processes one task (one node): picks its plane, splits its list, pushes its children.
   void step(const Task& task, std::vector<Task>& tasks);
+  /// Makes `task`'s list an ordered leaf (BspTree.h) when every pair is coplanar or separable;
+  /// pushes the fallback subtree's task when the leaf needs one. False: nothing was changed.
+  bool makeLeaf(const Task& task, std::vector<Task>& tasks);
+  /// A plane with `a` behind and `b` in front (each within Tol), from the axes between their
+  /// edges and normals; false when none of them separates the pair.
+  bool separatingPlane(const Frag& a, const Frag& b, glm::dvec4& plane) const;
+  /// Appends to Generators every plane through an edge of one of `a`, `b` and a vertex of the
+  /// other that separates them, oriented with `a` behind.
+  void separatingGenerators(const Frag& a, const Frag& b);
+  /// Points `task`'s parent (a node, a leaf's fallback, or the root) at `reference`.
+  void link(const Task& task, std::uint32_t reference);
   /// Builds the subtree of `task` (a list in this builder's Arena) in a worker builder.
   void fork(const Task& task);
   /// Waits for the worker and appends its subtree as if it had been built here, in order.
@@ -326,6 +339,11 @@ private:
   std::vector<double> SweepFlat;
   std::vector<double> SweepCost;
   std::vector<double> CostTable;
+  std::vector<LeafPair> LeafPairScratch;
+  std::vector<glm::dvec4> LeafPlaneScratch;
+  std::vector<std::uint32_t> LeafRoots;
+  std::vector<glm::dvec4> Generators;
+  std::size_t FallbackFragments = 0;
   std::vector<std::uint32_t> SamplePiece;
   std::vector<std::uint32_t> SampleEnd;
   std::vector<glm::dvec3> SamplePoints;
@@ -899,12 +917,20 @@ Tree Builder::run()
   Out.fragmentVertices.shrink_to_fit();
   Out.points.shrink_to_fit();
   Out.splitPoints.shrink_to_fit();
+  Out.leaves.shrink_to_fit();
+  Out.leafPlanes.shrink_to_fit();
+  Out.leafPairs.shrink_to_fit();
   st.nodes = Out.nodes.size();
   st.fragments = Out.fragments.size();
+  st.orderedLeaves = Out.leaves.size();
+  st.leafPairs = Out.leafPairs.size();
+  st.fragmentsWithoutFallbacks = st.fragments - FallbackFragments;
   st.memoryBytes = Out.nodes.capacity() * sizeof(Node) +
     Out.fragments.capacity() * sizeof(Fragment) +
     Out.fragmentVertices.capacity() * sizeof(std::uint32_t) +
-    Out.points.capacity() * sizeof(glm::dvec3) + Out.splitPoints.capacity() * sizeof(SplitPoint);
+    Out.points.capacity() * sizeof(glm::dvec3) + Out.splitPoints.capacity() * sizeof(SplitPoint) +
+    Out.leaves.capacity() * sizeof(OrderedLeaf) + Out.leafPlanes.capacity() * sizeof(glm::dvec4) +
+    Out.leafPairs.capacity() * sizeof(LeafPair);
   st.buildSeconds =
     std::chrono::duration<double>(std::chrono::steady_clock::now() - startTime).count();
   return std::move(Out);
@@ -914,6 +940,11 @@ void Builder::step(const Task& task, std::vector<Task>& tasks)
 {
   BuildStatistics& st = Out.statistics;
   const std::uint32_t n = task.end - task.begin;
+  if (!task.noLeaf && n <= std::min(Config.orderedLeafSize, kMaxLeafPolygons) &&
+    makeLeaf(task, tasks))
+  {
+    return;
+  }
 
   glm::dvec4 plane;
   std::uint32_t piece;
@@ -971,14 +1002,7 @@ void Builder::step(const Task& task, std::vector<Task>& tasks)
   node.plane = plane;
   node.firstFragment = static_cast<std::uint32_t>(Out.fragments.size());
   Out.nodes.push_back(node);
-  if (task.parent != kNone)
-  {
-    (task.isFront ? Out.nodes[task.parent].front : Out.nodes[task.parent].back) = nodeIndex;
-  }
-  else
-  {
-    Out.root = nodeIndex;
-  }
+  link(task, nodeIndex);
   st.depth = std::max<std::size_t>(st.depth, task.depth);
   if (piece == kNone)
   {
@@ -1037,6 +1061,10 @@ void Builder::step(const Task& task, std::vector<Task>& tasks)
       Out.fragmentVertices.end(), Verts.begin() + f.first, Verts.begin() + f.first + f.count);
   }
   Out.nodes[nodeIndex].fragmentCount = static_cast<std::uint32_t>(OwnScratch.size());
+  if (task.noLeaf)
+  {
+    FallbackFragments += OwnScratch.size();
+  }
 
   // A polygon plane with everything on one side and nothing split means a locally convex (or
   // concave) patch: its remaining polygons will keep doing that, and free planes have already
@@ -1044,8 +1072,8 @@ void Builder::step(const Task& task, std::vector<Task>& tasks)
   // one-sidedness fails.
   const bool oneSided =
     Scored && piece != kNone && nSplit == 0 && (nFront == 0 || nBack == 0);
-  const Task backTask{ task.begin, backEnd, nodeIndex, task.depth + 1,
-    childKey(task.key, false), false, oneSided };
+  const Task backTask{ task.begin, backEnd, nodeIndex, task.depth + 1, childKey(task.key, false),
+    false, oneSided, task.noLeaf };
   if (parallel() && !Worker && backEnd - task.begin >= kMinParallelList &&
     frontEnd - backEnd >= kMinParallelList)
   {
@@ -1060,10 +1088,291 @@ void Builder::step(const Task& task, std::vector<Task>& tasks)
   }
   if (frontEnd > backEnd)
   {
-    tasks.push_back(Task{ backEnd, frontEnd, nodeIndex, task.depth + 1,
-      childKey(task.key, true), true, oneSided });
+    tasks.push_back(Task{ backEnd, frontEnd, nodeIndex, task.depth + 1, childKey(task.key, true),
+      true, oneSided, task.noLeaf });
   }
-  Placed += OwnScratch.size();
+  if (!task.noLeaf)
+  {
+    Placed += OwnScratch.size();
+  }
+}
+
+void Builder::link(const Task& task, std::uint32_t reference)
+{
+  if (task.parent == kNone)
+  {
+    Out.root = reference;
+  }
+  else if (isLeaf(task.parent))
+  {
+    Out.leaves[task.parent & ~kLeafBit].fallback = reference;
+  }
+  else
+  {
+    (task.isFront ? Out.nodes[task.parent].front : Out.nodes[task.parent].back) = reference;
+  }
+}
+
+bool Builder::separatingPlane(const Frag& a, const Frag& b, glm::dvec4& plane) const
+{
+  const std::uint32_t* ia = Verts.data() + a.first;
+  const std::uint32_t* ib = Verts.data() + b.first;
+  auto edge = [this](const std::uint32_t* ids, std::uint32_t count, std::uint32_t k)
+  { return Local[ids[k + 1 == count ? 0 : k + 1]] - Local[ids[k]]; };
+  auto tryAxis = [&](glm::dvec3 d) -> bool
+  {
+    const double length = glm::length(d);
+    if (!(length > 0.0) || !std::isfinite(length))
+    {
+      return false;
+    }
+    d /= length;
+    double loA = std::numeric_limits<double>::infinity();
+    double hiA = -loA;
+    double loB = loA;
+    double hiB = -loA;
+    for (std::uint32_t k = 0; k < a.count; ++k)
+    {
+      const double s = glm::dot(d, Local[ia[k]]);
+      loA = std::min(loA, s);
+      hiA = std::max(hiA, s);
+    }
+    for (std::uint32_t k = 0; k < b.count; ++k)
+    {
+      const double s = glm::dot(d, Local[ib[k]]);
+      loB = std::min(loB, s);
+      hiB = std::max(hiB, s);
+    }
+    glm::dvec4 candidate;
+    if (hiA - loB <= Tol)
+    {
+      candidate = glm::dvec4(d, -0.5 * (hiA + loB));
+    }
+    else if (hiB - loA <= Tol)
+    {
+      candidate = glm::dvec4(-d, 0.5 * (hiB + loA));
+    }
+    else
+    {
+      return false;
+    }
+    // The verdict is the classification the partition planes get, so the leaf's order is exact
+    // in the same sense as the tree's.
+    const Side sa = classify(candidate, a);
+    const Side sb = classify(candidate, b);
+    if ((sa & Front) || (sb & Back) || (sa == On && sb == On))
+    {
+      return false;
+    }
+    plane = candidate;
+    return true;
+  };
+  const glm::dvec3 na(Planes[a.piece]);
+  const glm::dvec3 nb(Planes[b.piece]);
+  for (std::uint32_t i = 0; i < a.count; ++i)
+  {
+    const glm::dvec3 ea = edge(ia, a.count, i);
+    for (std::uint32_t j = 0; j < b.count; ++j)
+    {
+      if (tryAxis(glm::cross(ea, edge(ib, b.count, j))))
+      {
+        return true;
+      }
+    }
+    if (tryAxis(glm::cross(na, ea)))
+    {
+      return true;
+    }
+  }
+  for (std::uint32_t j = 0; j < b.count; ++j)
+  {
+    if (tryAxis(glm::cross(nb, edge(ib, b.count, j))))
+    {
+      return true;
+    }
+  }
+  return false;
+}
+
+void Builder::separatingGenerators(const Frag& a, const Frag& b)
+{
+  auto add = [this, &a, &b](const glm::dvec3& p, const glm::dvec3& q, const glm::dvec3& r)
+  {
+    glm::dvec3 n = glm::cross(q - p, r - p);
+    const double length = glm::length(n);
+    if (!(length > 0.0) || !std::isfinite(length))
+    {
+      return;
+    }
+    n /= length;
+    glm::dvec4 plane(n, -glm::dot(n, p));
+    Side sa = classify(plane, a);
+    Side sb = classify(plane, b);
+    if (sa == Straddle || sb == Straddle || (sa & sb) != 0 || (sa | sb) == On)
+    {
+      return;
+    }
+    if ((sa & Front) || (sb & Back))
+    {
+      plane = -plane;
+    }
+    Generators.push_back(plane);
+  };
+  for (int pass = 0; pass < 2; ++pass)
+  {
+    const Frag& e = pass == 0 ? a : b;
+    const Frag& v = pass == 0 ? b : a;
+    for (std::uint32_t i = 0; i < e.count; ++i)
+    {
+      const glm::dvec3& p = Local[Verts[e.first + i]];
+      const glm::dvec3& q = Local[Verts[e.first + (i + 1 == e.count ? 0 : i + 1)]];
+      for (std::uint32_t j = 0; j < v.count; ++j)
+      {
+        add(p, q, Local[Verts[v.first + j]]);
+      }
+    }
+  }
+}
+
+bool Builder::makeLeaf(const Task& task, std::vector<Task>& tasks)
+{
+  const std::uint32_t n = task.end - task.begin;
+  const Frag* list = Arena.data() + task.begin;
+  LeafPlaneScratch.clear();
+  LeafPairScratch.clear();
+  for (std::uint32_t i = 0; i < n; ++i)
+  {
+    LeafPlaneScratch.push_back(Planes[list[i].piece]);
+  }
+  // Union-find over the stored pairs: a cycle of precedences needs a cycle of pairs.
+  LeafRoots.resize(n);
+  for (std::uint32_t i = 0; i < n; ++i)
+  {
+    LeafRoots[i] = i;
+  }
+  auto findRoot = [this](std::uint32_t i)
+  {
+    while (LeafRoots[i] != i)
+    {
+      i = LeafRoots[i] = LeafRoots[LeafRoots[i]];
+    }
+    return i;
+  };
+  bool mayCycle = false;
+  for (std::uint32_t i = 0; i < n; ++i)
+  {
+    for (std::uint32_t j = i + 1; j < n; ++j)
+    {
+      const Side sj = classify(LeafPlaneScratch[i], list[j]);
+      const Side si = classify(LeafPlaneScratch[j], list[i]);
+      if (sj == On || si == On)
+      {
+        continue; // coplanar: any order is exact (as for a node's own fragments)
+      }
+      // Plane i: fragment i lies on it; the verdict "i before j" holds from the front when j is
+      // in front. Plane j likewise with the roles swapped. Normals are kept oriented as
+      // "i behind, j in front" to pick the other planes.
+      LeafPair pair{ static_cast<std::uint8_t>(i), static_cast<std::uint8_t>(j), {} };
+      std::fill(std::begin(pair.planes), std::end(pair.planes), kNoPlane);
+      std::uint32_t used = 0;
+      glm::dvec3 chosen[kPairPlanes];
+      if (sj != Straddle)
+      {
+        pair.planes[used] = static_cast<std::uint16_t>(i | (sj == Back ? kFlipPlane : 0));
+        chosen[used++] = glm::dvec3(LeafPlaneScratch[i]) * (sj == Back ? -1.0 : 1.0);
+      }
+      if (si != Straddle)
+      {
+        pair.planes[used] = static_cast<std::uint16_t>(j | (si == Front ? kFlipPlane : 0));
+        chosen[used++] = glm::dvec3(LeafPlaneScratch[j]) * (si == Front ? -1.0 : 1.0);
+      }
+      // More separating planes, each as far in direction from those chosen as possible: the more
+      // different they are, the more eyes see two of them disagree (and the pair unordered).
+      Generators.clear();
+      separatingGenerators(list[i], list[j]);
+      if (used == 0 && Generators.empty())
+      {
+        glm::dvec4 plane;
+        if (!separatingPlane(list[i], list[j], plane))
+        {
+          return false; // they intersect (or touch too closely to tell): split this list
+        }
+        Generators.push_back(plane);
+      }
+      while (used < kPairPlanes && !Generators.empty())
+      {
+        std::size_t best = 0;
+        double bestDot = std::numeric_limits<double>::infinity();
+        for (std::size_t g = 0; g < Generators.size(); ++g)
+        {
+          double worst = -1.0;
+          for (std::uint32_t m = 0; m < used; ++m)
+          {
+            worst = std::max(worst, glm::dot(glm::dvec3(Generators[g]), chosen[m]));
+          }
+          if (worst < bestDot)
+          {
+            bestDot = worst;
+            best = g;
+          }
+        }
+        if (bestDot > 0.9999)
+        {
+          break; // nothing new in direction
+        }
+        pair.planes[used] = static_cast<std::uint16_t>(LeafPlaneScratch.size());
+        chosen[used++] = glm::dvec3(Generators[best]);
+        LeafPlaneScratch.push_back(Generators[best]);
+        Generators[best] = Generators.back();
+        Generators.pop_back();
+      }
+      LeafPairScratch.push_back(pair);
+      const std::uint32_t ri = findRoot(i);
+      const std::uint32_t rj = findRoot(j);
+      mayCycle |= ri == rj;
+      LeafRoots[ri] = rj;
+    }
+  }
+
+  const auto leafIndex = static_cast<std::uint32_t>(Out.leaves.size());
+  OrderedLeaf leaf;
+  leaf.firstFragment = static_cast<std::uint32_t>(Out.fragments.size());
+  leaf.fragmentCount = n;
+  leaf.firstPlane = static_cast<std::uint32_t>(Out.leafPlanes.size());
+  leaf.planeCount = static_cast<std::uint32_t>(LeafPlaneScratch.size());
+  leaf.firstPair = static_cast<std::uint32_t>(Out.leafPairs.size());
+  leaf.pairCount = static_cast<std::uint32_t>(LeafPairScratch.size());
+  Out.leaves.push_back(leaf);
+  link(task, kLeafBit | leafIndex);
+  for (std::uint32_t i = 0; i < n; ++i)
+  {
+    const Frag& f = list[i];
+    Out.fragments.push_back(Fragment{
+      Sources[f.piece], static_cast<std::uint32_t>(Out.fragmentVertices.size()), f.count });
+    Out.fragmentVertices.insert(
+      Out.fragmentVertices.end(), Verts.begin() + f.first, Verts.begin() + f.first + f.count);
+  }
+  Out.leafPlanes.insert(Out.leafPlanes.end(), LeafPlaneScratch.begin(), LeafPlaneScratch.end());
+  Out.leafPairs.insert(Out.leafPairs.end(), LeafPairScratch.begin(), LeafPairScratch.end());
+  BuildStatistics& st = Out.statistics;
+  st.leafFragments += n;
+  st.depth = std::max<std::size_t>(st.depth, task.depth);
+  Placed += n;
+  if (mayCycle)
+  {
+    // The same list, split as usual, for the eyes that see a cycle. Placed counts input work, so
+    // the fallback's fragments are not counted twice (see step()).
+    Task fallback = task;
+    fallback.parent = kLeafBit | leafIndex;
+    fallback.depth = task.depth + 1;
+    fallback.noLeaf = true;
+    tasks.push_back(fallback);
+  }
+  else
+  {
+    Arena.resize(task.begin);
+  }
+  return true;
 }
 
 void Builder::fork(const Task& task)
@@ -1139,14 +1448,36 @@ void Builder::join()
   const auto nodeOffset = static_cast<std::uint32_t>(Out.nodes.size());
   const auto fragmentOffset = static_cast<std::uint32_t>(Out.fragments.size());
   const auto vertexOffset = static_cast<std::uint32_t>(Out.fragmentVertices.size());
-  (ForkNode != kNone ? Out.nodes[ForkNode].back : Out.root) = nodeOffset + w.root;
+  const auto leafOffset = static_cast<std::uint32_t>(Out.leaves.size());
+  const auto planeOffset = static_cast<std::uint32_t>(Out.leafPlanes.size());
+  const auto pairOffset = static_cast<std::uint32_t>(Out.leafPairs.size());
+  // A child reference is a node or (kLeafBit) a leaf; each kind moves by its own offset.
+  auto moved = [nodeOffset, leafOffset](std::uint32_t reference)
+  {
+    if (reference == kNone)
+    {
+      return kNone;
+    }
+    return isLeaf(reference) ? reference + leafOffset : reference + nodeOffset;
+  };
+  (ForkNode != kNone ? Out.nodes[ForkNode].back : Out.root) = moved(w.root);
   for (Node node : w.nodes)
   {
-    node.front = node.front != kNone ? node.front + nodeOffset : kNone;
-    node.back = node.back != kNone ? node.back + nodeOffset : kNone;
+    node.front = moved(node.front);
+    node.back = moved(node.back);
     node.firstFragment += fragmentOffset;
     Out.nodes.push_back(node);
   }
+  for (OrderedLeaf leaf : w.leaves)
+  {
+    leaf.firstFragment += fragmentOffset;
+    leaf.firstPlane += planeOffset;
+    leaf.firstPair += pairOffset;
+    leaf.fallback = moved(leaf.fallback);
+    Out.leaves.push_back(leaf);
+  }
+  Out.leafPlanes.insert(Out.leafPlanes.end(), w.leafPlanes.begin(), w.leafPlanes.end());
+  Out.leafPairs.insert(Out.leafPairs.end(), w.leafPairs.begin(), w.leafPairs.end());
   for (Fragment f : w.fragments)
   {
     f.first += vertexOffset;
@@ -1167,6 +1498,8 @@ void Builder::join()
   st.depth = std::max(st.depth, w.statistics.depth);
   st.freePlaneNodes += w.statistics.freePlaneNodes;
   st.splits += w.statistics.splits;
+  st.leafFragments += w.statistics.leafFragments;
+  FallbackFragments += worker->FallbackFragments;
   Placed += worker->Placed;
 }
 

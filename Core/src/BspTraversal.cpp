@@ -1,10 +1,13 @@
 #include "scenevis/BspTraversal.h"
 
+#include "BspSide.h"
+
 #include <glm/geometric.hpp>
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
 
 namespace scenevis
 {
@@ -13,15 +16,7 @@ namespace bsp
 namespace
 {
 
-/// Both traversals decide sides with this one expression, so update() can never disagree with
-/// order() on an eye that lies (numerically) on a plane.
-/// The side value of a plane for an eye; >= 0 means in front. The one expression both traversals
-/// use, evaluated in the same order on the same doubles, so they agree bit for bit.
-inline double sideValue(double px, double py, double pz, double pw, double ex, double ey,
-  double ez, double ew)
-{
-  return px * ex + py * ey + pz * ez + pw * ew;
-}
+using detail::sideValue;
 
 bool viewerInFront(const glm::dvec4& plane, const glm::dvec4& eye)
 {
@@ -29,6 +24,7 @@ bool viewerInFront(const glm::dvec4& plane, const glm::dvec4& eye)
 }
 
 constexpr std::uint32_t kEmitOwn = 0x80000000u;
+static_assert((kEmitOwn & kLeafBit) == 0, "stack tags must differ");
 
 /// Longest run of single-child nodes grouped into one unit of IncrementalOrder: long enough to
 /// cover the leaf chains of the scored builder (<= 128) whole, short enough that a unit's safe
@@ -59,11 +55,17 @@ float roundDown(double r)
 
 } // namespace
 
-void order(const Tree& tree, const View& view, Direction direction, std::vector<std::uint32_t>& out)
+void order(const Tree& tree, const View& view, Direction direction, std::vector<std::uint32_t>& out,
+  OrderStatistics* statistics)
 {
   out.resize(tree.fragments.size());
+  OrderStatistics counts;
   if (tree.empty())
   {
+    if (statistics)
+    {
+      *statistics = counts;
+    }
     return;
   }
   const glm::dvec4 eye = view.relativeTo(tree.origin).eye;
@@ -76,6 +78,30 @@ void order(const Tree& tree, const View& view, Direction direction, std::vector<
   {
     const std::uint32_t item = stack.back();
     stack.pop_back();
+    if (isLeaf(item))
+    {
+      const OrderedLeaf& leaf = tree.leaves[item & ~kLeafBit];
+      if (orderLeaf(tree, leaf, eye, write))
+      {
+        for (std::uint32_t k = 0; k < leaf.fragmentCount; ++k)
+        {
+          write[k] += leaf.firstFragment;
+        }
+        if (!backToFront)
+        {
+          std::reverse(write, write + leaf.fragmentCount);
+        }
+        write += leaf.fragmentCount;
+        ++counts.leavesSorted;
+      }
+      else if (leaf.fallback != kNone)
+      {
+        stack.push_back(leaf.fallback);
+        ++counts.leavesFallenBack;
+      }
+      // else unreachable: a leaf without fallback has a forest of pairs, which cannot stall.
+      continue;
+    }
     if (item & kEmitOwn)
     {
       const Node& node = tree.nodes[item & ~kEmitOwn];
@@ -115,6 +141,11 @@ void order(const Tree& tree, const View& view, Direction direction, std::vector<
       stack.push_back(first);
     }
   }
+  out.resize(static_cast<std::size_t>(write - out.data()));
+  if (statistics)
+  {
+    *statistics = counts;
+  }
 }
 
 IncrementalOrder::IncrementalOrder(const Tree& tree, Direction direction)
@@ -130,6 +161,10 @@ IncrementalOrder::IncrementalOrder(const Tree& tree, Direction direction)
     }
   }
   Scale = box.diagonal() > 0.0 ? box.diagonal() : 1.0;
+  if (!tree.leaves.empty())
+  {
+    throw std::invalid_argument("IncrementalOrder: trees with ordered leaves are not supported");
+  }
   Order.resize(tree.fragments.size());
   if (tree.empty())
   {

@@ -52,7 +52,9 @@
  * in which every polygon has all others on one side of its plane (convex patches: below 128
  * fragments the scores already chain them without splits), scoring short lists by such patches,
  * diagonal sweeps, two-level lookahead, a per-split weight in SubtreeCost, more candidates: none
- * gets the bunny below 1.98 fragments per triangle.
+ * gets the bunny below 1.98 fragments per triangle. Ordered leaves (Config::orderedLeafSize, off
+ * by default) draw fewer: bunny 1.59, engine 2.02 per input polygon at 64, for 10x / 4.4x the
+ * order time and 3.8x / 2.7x the tree memory (BENCHMARKS.md, "ordered leaves").
  *
  * Tolerance: Tree::tolerance = max(relativeTolerance * bounds diagonal,
  * 16 * DBL_EPSILON * max |coordinate|): the second term is the coordinate resolution, which far
@@ -103,6 +105,18 @@ struct BuildConfig
   /// Plane tolerance relative to the diagonal of the input bounds (never below the coordinate
   /// resolution, see the file comment).
   double relativeTolerance = 1e-10;
+  /**
+   * Ordered leaves (BspTree.h): a list of at most this many fragments (capped at
+   * kMaxLeafPolygons) is kept unsplit when every pair of its polygons is either coplanar or
+   * separated by a plane (the polygons' own planes, else an axis between their edges and normals):
+   * an order then sorts the leaf per view instead of drawing its split subtree. A list with an
+   * intersecting pair is split as usual (its shorter children try again). When the pairs of a leaf
+   * could form a cycle (its pair graph is not a forest), the split subtree is built as well, as the
+   * leaf's fallback for the eyes that see one. 0 (default) builds no leaves; the tree is then
+   * exactly the one built without this option.
+   * IncrementalOrder does not take trees with leaves (yet).
+   */
+  std::uint32_t orderedLeafSize = 0;
   /// Worker threads for the build: once a node's two sides are both large, they are built
   /// concurrently. The result (every array of the Tree) is identical for any value; 1 builds on
   /// the calling thread only, 0 means std::thread::hardware_concurrency().

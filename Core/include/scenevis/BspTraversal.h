@@ -8,6 +8,16 @@
  * the reverse. An eye exactly on a plane (dot == 0) counts as in front: any order of the two sides
  * is valid there, since they project to disjoint parts of the image. Own fragments of one node are
  * coplanar and emitted in ascending fragment id (deterministic). Walks are iterative.
+ *
+ * Ordered leaves (BspTree.h): each stored pair's planes are evaluated for the eye (the same side
+ * rule) and give a precedence unless two planes disagree (then no ray passes through both); the
+ * leaf's polygons are emitted in layers of a topological sort (Kahn's, on 64-bit rows), each layer
+ * in ascending leaf index. When the sort stalls, it walks back to a cycle and checks each of its
+ * precedences exactly (is there a plane through the eye that separates the pair? the pair's
+ * separating planes through an edge of one and a vertex of the other decide it), drops those no
+ * ray realises and goes on; a cycle of realised precedences makes the leaf's fallback subtree
+ * walked instead, for this eye. So an order of a tree with leaves lists the fragments drawn for
+ * that view: fewer than Tree::fragments.size().
  */
 
 #include "scenevis/BspTree.h"
@@ -28,9 +38,28 @@ enum class Direction
   FrontToBack
 };
 
-/// Writes a permutation of all fragment ids into `order` (resized to tree.fragments.size()).
+/// What one order() call did with the tree's ordered leaves.
+struct OrderStatistics
+{
+  std::size_t leavesSorted = 0;     ///< Leaves emitted unsplit.
+  std::size_t leavesFallenBack = 0; ///< Leaves whose pairs formed a cycle for this eye.
+};
+
+/**
+ * Writes the fragment ids to draw, in order, into `order`: a permutation of all fragment ids for a
+ * tree without ordered leaves; with leaves, each leaf's unsplit fragments or its fallback's (see
+ * the file comment). `statistics`, when given, receives the leaves' counts.
+ */
 void order(const Tree& tree, const View& view, Direction direction,
-  std::vector<std::uint32_t>& order);
+  std::vector<std::uint32_t>& order, OrderStatistics* statistics = nullptr);
+
+/**
+ * Back-to-front order of one ordered leaf for `eye` (relative to the tree's origin) as leaf
+ * indices 0 .. fragmentCount-1, written to `out` (fragmentCount entries). Returns false, with
+ * `out` unspecified, when the leaf's precedences form a cycle for this eye.
+ */
+bool orderLeaf(
+  const Tree& tree, const OrderedLeaf& leaf, const glm::dvec4& eye, std::uint32_t* out);
 
 /**
  * Keeps an order up to date as the viewer moves, touching only what changed.
@@ -56,7 +85,8 @@ public:
     std::size_t fragmentsMoved = 0;
   };
 
-  /// `tree` must outlive this object and must not change.
+  /// `tree` must outlive this object and must not change. Throws std::invalid_argument for a
+  /// tree with ordered leaves (not supported yet).
   IncrementalOrder(const Tree& tree, Direction direction);
 
   /// Brings order() up to date for `view`. The first call does a full walk.

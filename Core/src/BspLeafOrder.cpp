@@ -1,0 +1,256 @@
+#include "scenevis/BspTraversal.h"
+
+#include "BspSide.h"
+
+#include <glm/geometric.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+
+namespace scenevis
+{
+namespace bsp
+{
+namespace
+{
+
+using detail::sideValue;
+
+/// Lowest set bit's index (x != 0).
+inline std::uint32_t lowestBit(std::uint64_t x)
+{
+#if defined(__GNUC__) || defined(__clang__)
+  return static_cast<std::uint32_t>(__builtin_ctzll(x));
+#else
+  std::uint32_t k = 0;
+  while (!(x & 1u))
+  {
+    x >>= 1;
+    ++k;
+  }
+  return k;
+#endif
+}
+
+/**
+ * Whether some ray from `eye` may pass through both fragments. It may not when a plane through
+ * the eye separates them; the planes separating two convex polygons form a convex cone generated
+ * by the separating planes through three of their vertices (an edge of one and a vertex of the
+ * other, or a polygon's own plane), so such a plane exists exactly when two of those generators
+ * put the eye on different sides (in the verdict sense of LeafPair). Tolerances as in the build.
+ */
+bool mayOverlap(const Tree& tree, const Fragment& a, const Fragment& b, const glm::dvec4& eye)
+{
+  constexpr std::uint32_t kMaxVertices = 64;
+  if (a.count > kMaxVertices || b.count > kMaxVertices)
+  {
+    return true;
+  }
+  glm::dvec3 pa[kMaxVertices];
+  glm::dvec3 pb[kMaxVertices];
+  for (std::uint32_t k = 0; k < a.count; ++k)
+  {
+    pa[k] = tree.points[tree.fragmentVertices[a.first + k]] - tree.origin;
+  }
+  for (std::uint32_t k = 0; k < b.count; ++k)
+  {
+    pb[k] = tree.points[tree.fragmentVertices[b.first + k]] - tree.origin;
+  }
+  const double tol = tree.tolerance;
+  bool seen[2] = { false, false };
+  // Plane through p, q, r; returns true once both verdicts have been seen.
+  auto generator = [&](const glm::dvec3& p, const glm::dvec3& q, const glm::dvec3& r) -> bool
+  {
+    glm::dvec3 n = glm::cross(q - p, r - p);
+    const double length = glm::length(n);
+    if (!(length > 0.0) || !std::isfinite(length))
+    {
+      return false;
+    }
+    n /= length;
+    const double d = -glm::dot(n, p);
+    auto classify = [&](const glm::dvec3* points, std::uint32_t count)
+    {
+      int sides = 0;
+      for (std::uint32_t k = 0; k < count; ++k)
+      {
+        const double s = n.x * points[k].x + n.y * points[k].y + n.z * points[k].z + d;
+        sides |= (s > tol ? 1 : 0) | (s < -tol ? 2 : 0);
+      }
+      return sides;
+    };
+    const int sa = classify(pa, a.count);
+    const int sb = classify(pb, b.count);
+    // Separating: neither straddles, they are not on one side, and not both on the plane.
+    if (sa == 3 || sb == 3 || (sa & sb) != 0 || (sa | sb) == 0)
+    {
+      return false;
+    }
+    // a behind (sa has no front bit) and b in front, or the reverse (then flip).
+    const bool flip = (sa & 1) != 0 || (sb & 2) != 0;
+    const bool eyeFront = sideValue(n.x, n.y, n.z, d, eye.x, eye.y, eye.z, eye.w) >= 0.0;
+    seen[eyeFront != flip] = true;
+    return seen[0] && seen[1];
+  };
+  for (std::uint32_t i = 0; i < a.count; ++i)
+  {
+    const glm::dvec3& p = pa[i];
+    const glm::dvec3& q = pa[i + 1 == a.count ? 0 : i + 1];
+    for (std::uint32_t j = 0; j < b.count; ++j)
+    {
+      if (generator(p, q, pb[j]))
+      {
+        return false;
+      }
+    }
+  }
+  for (std::uint32_t j = 0; j < b.count; ++j)
+  {
+    const glm::dvec3& p = pb[j];
+    const glm::dvec3& q = pb[j + 1 == b.count ? 0 : j + 1];
+    for (std::uint32_t i = 0; i < a.count; ++i)
+    {
+      if (generator(p, q, pa[i]))
+      {
+        return false;
+      }
+    }
+  }
+  return !(generator(pa[0], pa[1], pa[2]) || generator(pb[0], pb[1], pb[2]));
+}
+
+} // namespace
+
+bool orderLeaf(const Tree& tree, const OrderedLeaf& leaf, const glm::dvec4& eye, std::uint32_t* out)
+{
+  // Side bits of the leaf's planes, 64 per word: its own planes and at most kPairPlanes per pair.
+  constexpr std::uint32_t kWords =
+    (kMaxLeafPolygons + kPairPlanes * kMaxLeafPolygons * (kMaxLeafPolygons - 1) / 2 + 63) / 64;
+  std::uint64_t side[kWords];
+  const glm::dvec4* planes = tree.leafPlanes.data() + leaf.firstPlane;
+  for (std::uint32_t w = 0; w * 64 < leaf.planeCount; ++w)
+  {
+    std::uint64_t bits = 0;
+    const std::uint32_t end = std::min(leaf.planeCount, w * 64 + 64);
+    for (std::uint32_t p = w * 64; p < end; ++p)
+    {
+      const glm::dvec4& q = planes[p];
+      bits |=
+        static_cast<std::uint64_t>(sideValue(q.x, q.y, q.z, q.w, eye.x, eye.y, eye.z, eye.w) >= 0.0)
+        << (p - w * 64);
+    }
+    side[w] = bits;
+  }
+  auto verdict = [&side](std::uint16_t plane) -> bool
+  {
+    const std::uint32_t p = plane & ~kFlipPlane;
+    return (((side[p >> 6] >> (p & 63)) & 1u) != 0) != ((plane & kFlipPlane) != 0);
+  };
+  // before[j]: the polygons that must be drawn before j (back to front).
+  // Only the leaf's rows are cleared (most leaves are far smaller than kMaxLeafPolygons).
+  const std::uint32_t n = leaf.fragmentCount;
+  std::uint64_t before[kMaxLeafPolygons];
+  std::fill(before, before + n, std::uint64_t{ 0 });
+  const LeafPair* pairs = tree.leafPairs.data() + leaf.firstPair;
+  for (std::uint32_t k = 0; k < leaf.pairCount; ++k)
+  {
+    const LeafPair& pair = pairs[k];
+    const bool firstBefore = verdict(pair.planes[0]);
+    bool agree = true;
+    for (std::uint32_t m = 1; m < kPairPlanes && pair.planes[m] != kNoPlane && agree; ++m)
+    {
+      agree = verdict(pair.planes[m]) == firstBefore;
+    }
+    if (!agree)
+    {
+      continue; // two planes disagree: no ray from this eye passes through both
+    }
+    if (firstBefore)
+    {
+      before[pair.second] |= std::uint64_t{ 1 } << pair.first;
+    }
+    else
+    {
+      before[pair.first] |= std::uint64_t{ 1 } << pair.second;
+    }
+  }
+  // Layers of Kahn's algorithm: every polygon with nothing left before it; a layer's polygons
+  // constrain none of each other (an edge would keep its target out of the layer).
+  std::uint64_t remaining = n >= 64 ? ~std::uint64_t{ 0 } : (std::uint64_t{ 1 } << n) - 1;
+  std::uint64_t realised[kMaxLeafPolygons]; // precedences confirmed by mayOverlap
+  bool stalled = false;
+  while (remaining != 0)
+  {
+    std::uint64_t ready = 0;
+    for (std::uint64_t r = remaining; r != 0; r &= r - 1)
+    {
+      const std::uint32_t j = lowestBit(r);
+      if ((before[j] & remaining) == 0)
+      {
+        ready |= std::uint64_t{ 1 } << j;
+      }
+    }
+    if (ready == 0)
+    {
+      // A stall: the stored planes only tell which polygon would be nearer if a ray met both, so
+      // a cycle may use precedences that no ray from this eye realises. Walk back along
+      // predecessors (every polygon left has one) to a cycle; drop its unrealised precedences
+      // and retry, or report it when all are realised (checked ones are remembered).
+      if (!stalled)
+      {
+        std::fill(realised, realised + n, std::uint64_t{ 0 });
+        stalled = true;
+      }
+      const Fragment* fragments = tree.fragments.data() + leaf.firstFragment;
+      std::uint32_t path[kMaxLeafPolygons + 1];
+      std::uint64_t onPath = 0;
+      std::uint32_t length = 0;
+      std::uint32_t j = lowestBit(remaining);
+      while (!(onPath & (std::uint64_t{ 1 } << j)))
+      {
+        onPath |= std::uint64_t{ 1 } << j;
+        path[length++] = j;
+        j = lowestBit(before[j] & remaining);
+      }
+      bool dropped = false;
+      for (std::uint32_t t = length; t-- > 0;)
+      {
+        // path[t] has predecessor path[t + 1] (or j, which closes the cycle).
+        const std::uint32_t to = path[t];
+        const std::uint32_t from = t + 1 < length ? path[t + 1] : j;
+        const std::uint64_t bit = std::uint64_t{ 1 } << from;
+        if (!(realised[to] & bit))
+        {
+          if (mayOverlap(tree, fragments[from], fragments[to], eye))
+          {
+            realised[to] |= bit;
+          }
+          else
+          {
+            before[to] &= ~bit;
+            dropped = true;
+          }
+        }
+        if (to == j)
+        {
+          break; // the cycle is path[t] .. path[length - 1] back to j
+        }
+      }
+      if (!dropped)
+      {
+        return false;
+      }
+      continue;
+    }
+    remaining &= ~ready;
+    for (; ready != 0; ready &= ready - 1)
+    {
+      *out++ = lowestBit(ready);
+    }
+  }
+  return true;
+}
+
+} // namespace bsp
+} // namespace scenevis
