@@ -3,6 +3,7 @@
 // room, leaks reported, bad input answered with a status. Oracles: the rooms each test scene was
 // built from (every polygon of a room must get one generated room, different rooms different
 // ones) and the openings cut into its walls (every opening inside a portal joining its rooms).
+#include "AxisQuad.h"
 #include "scenevis/PortalGeneration.h"
 #include "scenevis/PortalGeometry.h"
 #include "scenevis/PortalGraph.h"
@@ -66,17 +67,7 @@ struct ArchitectureSoup
     {
       return;
     }
-    const int u = (axis + 1) % 3, v = (axis + 2) % 3;
-    std::uint32_t ids[4];
-    for (int k = 0; k < 4; ++k)
-    {
-      glm::dvec3 p(0.0);
-      p[axis] = at;
-      p[u] = (k == 1 || k == 2) ? u1 : u0;
-      p[v] = (k >= 2) ? v1 : v0;
-      ids[positive ? k : 3 - k] = mesh.addPoint(p);
-    }
-    mesh.addPolygon(ids, 4);
+    scenevis::portaltest::addAxisQuad(mesh, axis, at, positive, u0, u1, v0, v1);
     authoredRoom.push_back(r);
   }
   /// The six faces of @p b, normals into it (@p inward) or out of it, split around openings.

@@ -8,6 +8,7 @@
 #include "scenevis/PortalGraph.h"
 #include "scenevis/PortalTraversal.h"
 
+#include "AxisQuad.h"
 #include "SightLines.h"
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -25,22 +26,10 @@ using namespace scenevis::portals;
 namespace
 {
 
-/// An axis-aligned quad in the plane coordinate[axis] == at, its normal along +axis (@p positive)
-/// or -axis.
 void quad(
   PolygonMesh& mesh, int axis, double at, bool positive, double u0, double u1, double v0, double v1)
 {
-  const int u = (axis + 1) % 3, v = (axis + 2) % 3;
-  std::uint32_t ids[4];
-  for (int k = 0; k < 4; ++k)
-  {
-    glm::dvec3 p(0.0);
-    p[axis] = at;
-    p[u] = (k == 1 || k == 2) ? u1 : u0;
-    p[v] = (k >= 2) ? v1 : v0;
-    ids[positive ? k : 3 - k] = mesh.addPoint(p);
-  }
-  mesh.addPolygon(ids, 4);
+  scenevis::portaltest::addAxisQuad(mesh, axis, at, positive, u0, u1, v0, v1);
 }
 
 /**

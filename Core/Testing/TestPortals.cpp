@@ -1,6 +1,7 @@
 // Specification of cells-and-portals visibility: graph validation, eye location, the traversal in
 // both narrowing modes (corridor, corner, cycles, eye on a portal, portal behind the eye,
 // outside), the PVS and its file, and conservativeness against a ray-cast oracle.
+#include "AxisQuad.h"
 #include "scenevis/PortalGeometry.h"
 #include "scenevis/PortalGraph.h"
 #include "scenevis/PortalPvs.h"
@@ -82,17 +83,7 @@ struct BoxRooms
     {
       return;
     }
-    const int u = (axis + 1) % 3, v = (axis + 2) % 3;
-    std::uint32_t ids[4];
-    for (int k = 0; k < 4; ++k)
-    {
-      glm::dvec3 p(0.0);
-      p[axis] = at;
-      p[u] = (k == 1 || k == 2) ? u1 : u0;
-      p[v] = (k >= 2) ? v1 : v0;
-      ids[k] = mesh.addPoint(p);
-    }
-    mesh.addPolygon(ids, 4);
+    scenevis::portaltest::addAxisQuad(mesh, axis, at, true, u0, u1, v0, v1);
     room.push_back(r);
   }
   /// Emit the faces of every room, each split around its (at most one) hole.
