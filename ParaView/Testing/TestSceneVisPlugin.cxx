@@ -21,6 +21,8 @@
 #include "vtkGenerateRooms.h"
 #include "vtkSceneVisRenderView.h"
 
+#include "PluginTesting.h"
+
 #include "vtkAlgorithm.h"
 #include "vtkCellArray.h"
 #include "vtkCellData.h"
@@ -58,14 +60,8 @@
 
 namespace
 {
-int failures = 0;
+using scenevis_pvtest::Check;
 vtkSMParaViewPipelineController* registrar = nullptr; // set when a state file is asked for
-
-void Check(bool ok, const std::string& what)
-{
-  std::cout << (ok ? "ok:   " : "FAIL: ") << what << "\n";
-  failures += ok ? 0 : 1;
-}
 
 /// The polygons of @p pd in cell order, as the oracle's loops of points.
 std::vector<scenevis::oracle::Polygon> PolygonsOf(vtkPolyData* pd)
@@ -219,95 +215,23 @@ void TestSorting(vtkSMSessionProxyManager* pxm, vtkSMParaViewPipelineController*
 
 constexpr int kImageSize = 240;
 
-/// A render view proxy of @p name looking at the origin from @p eye, without the orientation
-/// axes; @p peels > 0: depth peeling with that many peels; @p sort: SortTranslucentGeometry of
-/// the SceneVis view.
+/// A SceneVis or ParaView render view looking at the origin from @p eye (PluginTesting.h).
 vtkSmartPointer<vtkSMViewProxy> NewView(vtkSMSessionProxyManager* pxm,
   vtkSMParaViewPipelineController* controller, const char* name, const double eye[3], int peels,
   bool sort = false)
 {
-  vtkSmartPointer<vtkSMViewProxy> view;
-  view.TakeReference(vtkSMViewProxy::SafeDownCast(pxm->NewProxy("views", name)));
-  if (!view)
-  {
-    return view;
-  }
-  controller->InitializeProxy(view);
-  const int size[2] = { kImageSize, kImageSize };
-  vtkSMPropertyHelper(view, "ViewSize").Set(size, 2);
-  vtkSMPropertyHelper(view, "OrientationAxesVisibility").Set(0);
-  vtkSMPropertyHelper(view, "CameraPosition").Set(eye, 3);
-  const double focal[3] = { 0.0, 0.0, 0.0 }, up[3] = { 0.0, 1.0, 0.0 };
-  vtkSMPropertyHelper(view, "CameraFocalPoint").Set(focal, 3);
-  vtkSMPropertyHelper(view, "CameraViewUp").Set(up, 3);
-  vtkSMPropertyHelper(view, "CameraViewAngle").Set(30.0);
-  vtkSMPropertyHelper(view, "DepthPeeling").Set(peels > 0 ? 1 : 0);
-  if (peels > 0)
-  {
-    vtkSMPropertyHelper(view, "MaximumNumberOfPeels").Set(peels);
-  }
-  if (view->GetProperty("SortTranslucentGeometry"))
-  {
-    vtkSMPropertyHelper(view, "SortTranslucentGeometry").Set(sort ? 1 : 0);
-  }
-  view->UpdateVTKObjects();
-  return view;
+  const scenevis_pvtest::ViewCamera camera{ { eye[0], eye[1], eye[2] }, { 0.0, 0.0, 0.0 } };
+  return scenevis_pvtest::NewView(pxm, controller, name, camera, kImageSize, peels, sort);
 }
 
-/// @p source's output shown at opacity 0.4 in @p view, as an RGB image.
 vtkSmartPointer<vtkImageData> Render(vtkSMViewProxy* view, vtkSMSourceProxy* source)
 {
-  vtkNew<vtkSMParaViewPipelineControllerWithRendering> controller;
-  vtkSMProxy* representation = controller->Show(source, 0, view);
-  if (!representation)
-  {
-    return nullptr;
-  }
-  vtkSMPropertyHelper(representation, "Opacity").Set(0.4);
-  representation->UpdateVTKObjects();
-  view->StillRender();
-  return vtkSMSaveScreenshotProxy::CaptureImage(view, vtkVector2i(kImageSize, kImageSize));
+  return scenevis_pvtest::Render(view, source, kImageSize);
 }
 
-struct ImageError
-{
-  double mean = -1.0;      ///< mean absolute difference per channel, in 1/255 steps
-  double offPercent = 0.0; ///< pixels with a channel off by more than 16
-};
-
-ImageError Compare(vtkImageData* a, vtkImageData* b)
-{
-  ImageError error;
-  auto* pa = a ? vtkUnsignedCharArray::SafeDownCast(a->GetPointData()->GetScalars()) : nullptr;
-  auto* pb = b ? vtkUnsignedCharArray::SafeDownCast(b->GetPointData()->GetScalars()) : nullptr;
-  if (!pa || !pb || pa->GetNumberOfTuples() != pb->GetNumberOfTuples() ||
-    pa->GetNumberOfComponents() < 3 || pb->GetNumberOfComponents() < 3)
-  {
-    return error;
-  }
-  double sum = 0.0;
-  vtkIdType off = 0;
-  for (vtkIdType i = 0; i < pa->GetNumberOfTuples(); ++i)
-  {
-    int worst = 0;
-    for (int c = 0; c < 3; ++c)
-    {
-      const int d = std::abs(int(pa->GetTypedComponent(i, c)) - int(pb->GetTypedComponent(i, c)));
-      sum += d;
-      worst = std::max(worst, d);
-    }
-    off += worst > 16 ? 1 : 0;
-  }
-  error.mean = sum / (3.0 * pa->GetNumberOfTuples());
-  error.offPercent = 100.0 * off / pa->GetNumberOfTuples();
-  return error;
-}
-
-std::string Describe(const ImageError& e)
-{
-  return std::to_string(e.mean) + "/255 mean, " + std::to_string(e.offPercent) +
-    " % of pixels off by > 16";
-}
+using scenevis_pvtest::Compare;
+using scenevis_pvtest::Describe;
+using scenevis_pvtest::ImageError;
 
 void TestOrderedView(vtkSMSessionProxyManager* pxm, vtkSMParaViewPipelineController* controller,
   int sceneId, const std::string& sceneName)
@@ -448,6 +372,7 @@ int main(int argc, char* argv[])
     session->Delete();
   }
   vtkInitializationHelper::Finalize();
+  const int failures = scenevis_pvtest::Failures();
   std::cout << (failures ? "FAILED: " : "passed: ") << failures << " failed checks\n";
   return failures ? EXIT_FAILURE : EXIT_SUCCESS;
 }
