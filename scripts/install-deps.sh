@@ -12,8 +12,9 @@ packages=(
   # Python wrapping (`import vtk, scenevis`) and its tests. Never python3-paraview: it conflicts
   # with python3-vtk9 and would remove libvtk9-dev.
   python3-vtk9 python3-dev python3-pytest python3-numpy
-  # The ParaView plugin (ParaView/): ParaView 5.11 with its own VTK 9.2, beside libvtk9-dev.
-  paraview-dev
+  # The ParaView plugin (ParaView/): ParaView 5.11 with its own VTK 9.2, beside libvtk9-dev;
+  # mpiexec for its tests on two MPI ranks (Open MPI, the MPI ParaView is built with).
+  paraview-dev openmpi-bin
 )
 
 missing=()
