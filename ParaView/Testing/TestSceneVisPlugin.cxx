@@ -14,11 +14,14 @@
 //    input and ParaView's default view (4 peels) are measured beside them.
 // 4. "SceneVis Generate Rooms" on the demo building: its three output ports, and the same rooms,
 //    portals and leaks as a vtkGenerateRooms made directly (the XML defaults are the class's).
+// 5. The view's Culling: SceneVis's octree and occlusion cullers cull what is outside the view
+//    and what is hidden, and the image is VTK's culler's, pixel for pixel.
 // With STATE_FILE, the pipelines are also registered and saved as a ParaView state (.pvsm) that
 // the paraview GUI opens with the plugin: `paraview --plugins=PLUGIN_FILE --state=STATE_FILE`.
 #include "vtkBSPSortFilter.h"
 #include "vtkBSPTranslucentPass.h"
 #include "vtkGenerateRooms.h"
+#include "vtkOcclusionCuller.h"
 #include "vtkSceneVisRenderView.h"
 
 #include "PluginTesting.h"
@@ -292,6 +295,80 @@ void TestOrderedView(vtkSMSessionProxyManager* pxm, vtkSMParaViewPipelineControl
       "blends in drawing order)");
 }
 
+/**
+ * The view's Culling on an opaque row of 12 spheres (one representation each) behind a box, seen
+ * from in front of the box: 8 spheres are outside the view, 3 hidden by the box, 1 partly
+ * visible. The SceneVis octree culler must cull the 8, the occlusion culler also the 3, and
+ * both must give the image VTK's culler gives, pixel for pixel.
+ */
+void TestCulling(vtkSMSessionProxyManager* pxm, vtkSMParaViewPipelineController* controller)
+{
+  const double eye[3] = { 3.0, 0.0, 20.0 };
+  const scenevis_pvtest::ViewCamera camera{ { eye[0], eye[1], eye[2] }, { 3.0, 0.0, 0.0 } };
+  auto view =
+    scenevis_pvtest::NewView(pxm, controller, "SceneVisRenderView", camera, kImageSize, 0);
+  Check(view && view->GetProperty("Culling"), "the SceneVis view has a Culling property");
+  auto* object = view ? vtkSceneVisRenderView::SafeDownCast(view->GetClientSideObject()) : nullptr;
+  if (!object)
+  {
+    return;
+  }
+  vtkNew<vtkSMParaViewPipelineControllerWithRendering> shower;
+  std::vector<vtkSmartPointer<vtkSMSourceProxy>> sources;
+  for (int i = 0; i < 12; ++i)
+  {
+    auto sphere = NewPipelineProxy(pxm, controller, "sources", "SphereSource");
+    const double centre[3] = { 3.0 * i, 0.0, 0.0 };
+    vtkSMPropertyHelper(sphere, "Center").Set(centre, 3);
+    vtkSMPropertyHelper(sphere, "Radius").Set(1.0);
+    sources.push_back(sphere);
+  }
+  auto box = NewPipelineProxy(pxm, controller, "sources", "CubeSource");
+  const double boxCentre[3] = { 3.0, 0.0, 4.0 };
+  vtkSMPropertyHelper(box, "Center").Set(boxCentre, 3);
+  vtkSMPropertyHelper(box, "XLength").Set(8.0);
+  vtkSMPropertyHelper(box, "YLength").Set(8.0);
+  vtkSMPropertyHelper(box, "ZLength").Set(0.5);
+  Check(box != nullptr, "ParaView's CubeSource (the occluder)");
+  if (!box)
+  {
+    return;
+  }
+  sources.push_back(box);
+  for (auto& source : sources)
+  {
+    source->UpdateVTKObjects();
+    shower->Show(source, 0, view);
+  }
+  auto renderWith = [&](int mode)
+  {
+    vtkSMPropertyHelper(view, "Culling").Set(mode);
+    view->UpdateVTKObjects();
+    view->StillRender();
+    return vtkSMSaveScreenshotProxy::CaptureImage(view, vtkVector2i(kImageSize, kImageSize));
+  };
+  const auto byVTK = renderWith(vtkSceneVisRenderView::CULLING_VTK);
+  Check(object->GetSceneVisCuller() == nullptr, "Culling 0: VTK's culler");
+  const auto byOctree = renderWith(vtkSceneVisRenderView::CULLING_OCTREE);
+  vtkOctreeCuller* octree = object->GetSceneVisCuller();
+  const vtkIdType outside = octree ? octree->GetNumberOfPropsCulledByFrustum() : -1;
+  const auto octreeError = Compare(byOctree, byVTK);
+  Check(outside >= 8 && octreeError.mean == 0.0 && octreeError.offPercent == 0.0,
+    "Culling 1, the SceneVis octree culler: " + std::to_string(outside) +
+      " spheres outside the view culled (8 expected), the image unchanged (" +
+      Describe(octreeError) + ")");
+  const auto byOcclusion = renderWith(vtkSceneVisRenderView::CULLING_OCCLUSION);
+  auto* occlusion = vtkOcclusionCuller::SafeDownCast(object->GetSceneVisCuller());
+  const vtkIdType hidden = occlusion ? occlusion->GetNumberOfPropsCulledByOcclusion() : -1;
+  const auto occlusionError = Compare(byOcclusion, byVTK);
+  Check(hidden >= 3 && occlusionError.mean == 0.0 && occlusionError.offPercent == 0.0,
+    "Culling 2, the SceneVis occlusion culler: " + std::to_string(hidden) +
+      " spheres hidden by the box culled (3 expected), the image unchanged (" +
+      Describe(occlusionError) + ")");
+  renderWith(vtkSceneVisRenderView::CULLING_VTK);
+  Check(object->GetSceneVisCuller() == nullptr, "Culling back to 0: VTK's culler again");
+}
+
 void TestGenerateRooms(vtkSMSessionProxyManager* pxm, vtkSMParaViewPipelineController* controller)
 {
   auto building = NewPipelineProxy(pxm, controller, "sources", "SceneVisDemoScene");
@@ -363,6 +440,7 @@ int main(int argc, char* argv[])
       TestOrderedView(pxm, controller, 2, "interpenetrating triangles");
       TestOrderedView(pxm, controller, 0, "overlapping spheres");
       TestGenerateRooms(pxm, controller);
+      TestCulling(pxm, controller);
       if (registrar)
       {
         Check(pxm->SaveXMLState(argv[2]), std::string("state saved to ") + argv[2]);

@@ -4,6 +4,7 @@
 #include "vtkCellArray.h"
 #include "vtkDoubleArray.h"
 #include "vtkFloatArray.h"
+#include "vtkMapperPolyData.h"
 #include "vtkMath.h"
 #include "vtkMatrix4x4.h"
 #include "vtkPoints.h"
@@ -252,26 +253,45 @@ void vtkOccluderRasterizer::Draw(vtkProp* prop, const double bounds[6], const do
     return;
   }
   vtkPolyDataMapper* mapper = dynamic_cast<vtkPolyDataMapper*>(actor->GetMapper());
-  vtkPolyData* data =
-    mapper ? dynamic_cast<vtkPolyData*>(mapper->GetInputDataObject(0, 0)) : nullptr;
   vtkProperty* property = actor->GetProperty();
-  if (!data || !data->GetPoints() || property->GetRepresentation() != VTK_SURFACE ||
-    property->GetOpacity() < 1.0 || mapper->GetNumberOfClippingPlanes() > 0 ||
-    vtkMapper::GetResolveCoincidentTopology() == VTK_RESOLVE_SHIFT_ZBUFFER)
+  // The polydata the mapper draws: its input, or a composite input's visible blocks drawn with
+  // the actor's property (blocks with colours or opacities of their own are not occluders).
+  if (!mapper || property->GetRepresentation() != VTK_SURFACE || property->GetOpacity() < 1.0 ||
+    mapper->GetNumberOfClippingPlanes() > 0 ||
+    vtkMapper::GetResolveCoincidentTopology() == VTK_RESOLVE_SHIFT_ZBUFFER ||
+    !vtkMapperPolyData::Collect(mapper, this->Leaves, true))
   {
     return;
   }
   const auto start = std::chrono::steady_clock::now();
-  // Occluder selection first: most visible props of a wide view are skipped by it, before the
-  // actor's matrix (which may recompute it) is asked for.
-  Mesh* mesh = this->MeshOf(data);
-  if (this->MinimumPixelsPerTriangle > 0.0 && !mesh->Triangles.empty() &&
-    this->ScreenArea(bounds) <
-      this->MinimumPixelsPerTriangle * static_cast<double>(mesh->Triangles.size() / 3))
+  auto stopClock = [&]()
   {
-    ++this->OccludersSkipped;
     this->DrawSeconds +=
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  };
+  // Occluder selection first: most visible props of a wide view are skipped by it, before the
+  // actor's matrix (which may recompute it) is asked for.
+  this->LeafMeshes.clear();
+  std::size_t triangles = 0;
+  for (vtkPolyData* leaf : this->Leaves)
+  {
+    if (leaf->GetPoints())
+    {
+      Mesh* mesh = this->MeshOf(leaf);
+      this->LeafMeshes.emplace_back(leaf, mesh);
+      triangles += mesh->Triangles.size() / 3;
+    }
+  }
+  if (this->LeafMeshes.empty())
+  {
+    stopClock();
+    return;
+  }
+  if (this->MinimumPixelsPerTriangle > 0.0 && triangles > 0 &&
+    this->ScreenArea(bounds) < this->MinimumPixelsPerTriangle * static_cast<double>(triangles))
+  {
+    ++this->OccludersSkipped;
+    stopClock();
     return;
   }
   double model[16];
@@ -289,6 +309,7 @@ void vtkOccluderRasterizer::Draw(vtkProp* prop, const double bounds[6], const do
   {
     if (determinant <= 0.0)
     {
+      stopClock();
       return;
     }
     culling = property->GetBackfaceCulling()
@@ -308,65 +329,79 @@ void vtkOccluderRasterizer::Draw(vtkProp* prop, const double bounds[6], const do
   // Textures or scalars with alpha (checked after the cheap tests: it may map scalars).
   if (actor->HasTranslucentPolygonalGeometry() || !actor->HasOpaqueGeometry())
   {
-    this->DrawSeconds +=
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    stopClock();
     return;
   }
-  if (culling == so::FaceCulling::None && mesh->Closed)
+  double m[16];
+  vtkMatrix4x4::Multiply4x4(this->ClipFromWorld, model, m);
+  bool drawn = false;
+  for (const auto& leafMesh : this->LeafMeshes)
   {
-    // The actor's matrix may mirror (negative determinant): then outward faces wind clockwise.
-    const bool outwardIsFront = mesh->Outward == (determinant > 0.0);
-    culling = outwardIsFront ? so::FaceCulling::Back : so::FaceCulling::Front;
+    const Mesh& mesh = *leafMesh.second;
+    if (mesh.Triangles.empty())
+    {
+      continue;
+    }
+    so::FaceCulling faces = culling;
+    if (faces == so::FaceCulling::None && mesh.Closed)
+    {
+      // The actor's matrix may mirror (negative determinant): then outward faces wind clockwise.
+      const bool outwardIsFront = mesh.Outward == (determinant > 0.0);
+      faces = outwardIsFront ? so::FaceCulling::Back : so::FaceCulling::Front;
+    }
+    this->DrawMesh(leafMesh.first->GetPoints(), mesh, m, faces);
+    this->OccluderTriangles += static_cast<vtkIdType>(mesh.Triangles.size() / 3);
+    drawn = true;
   }
-  if (!mesh->Triangles.empty())
+  if (drawn)
   {
-    double m[16];
-    vtkMatrix4x4::Multiply4x4(this->ClipFromWorld, model, m);
-    vtkPoints* points = data->GetPoints();
-    const vtkIdType n = points->GetNumberOfPoints();
-    // Runs of triangles behind what the buffer already has are skipped before their vertices
-    // are projected (most of a part seen beside or behind a nearer one).
-    so::TriangleClusters clusters;
-    for (int r = 0; r < 4; ++r)
-    {
-      for (int c = 0; c < 4; ++c)
-      {
-        clusters.clipFromModel[c][r] = m[4 * r + c];
-      }
-    }
-    clusters.boxes = mesh->Clusters.data();
-    clusters.trianglesPerCluster = kTrianglesPerCluster;
-    const so::TriangleClusters* runs = mesh->Clusters.size() ==
-        6 * ((mesh->Triangles.size() / 3 + kTrianglesPerCluster - 1) / kTrianglesPerCluster)
-      ? &clusters
-      : nullptr;
-    // A plain float or double point array is handed over as it is (other arrays are copied to
-    // doubles first): the buffer transforms only the points of the triangles it looks at, not
-    // those of skipped runs.
-    so::ModelVertices vertices;
-    vertices.clipFromModel = clusters.clipFromModel;
-    if (vtkFloatArray* f = vtkFloatArray::FastDownCast(points->GetData()))
-    {
-      vertices.xyzFloat = f->GetPointer(0);
-    }
-    else if (vtkDoubleArray* d = vtkDoubleArray::FastDownCast(points->GetData()))
-    {
-      vertices.xyzDouble = d->GetPointer(0);
-    }
-    else
-    {
-      this->Points.resize(3 * static_cast<std::size_t>(n));
-      for (vtkIdType i = 0; i < n; ++i)
-      {
-        points->GetPoint(i, this->Points.data() + 3 * i);
-      }
-      vertices.xyzDouble = this->Points.data();
-    }
-    buffer.drawTriangles(vertices, static_cast<std::size_t>(n), mesh->Triangles.data(),
-      mesh->Triangles.size() / 3, culling, mesh->Neighbors.data(), runs);
     ++this->OccludersDrawn;
-    this->OccluderTriangles += static_cast<vtkIdType>(mesh->Triangles.size() / 3);
   }
-  this->DrawSeconds +=
-    std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  stopClock();
+}
+
+void vtkOccluderRasterizer::DrawMesh(
+  vtkPoints* points, const Mesh& mesh, const double clipFromModel[16], so::FaceCulling culling)
+{
+  const vtkIdType n = points->GetNumberOfPoints();
+  // Runs of triangles behind what the buffer already has are skipped before their vertices
+  // are projected (most of a part seen beside or behind a nearer one).
+  so::TriangleClusters clusters;
+  for (int r = 0; r < 4; ++r)
+  {
+    for (int c = 0; c < 4; ++c)
+    {
+      clusters.clipFromModel[c][r] = clipFromModel[4 * r + c];
+    }
+  }
+  clusters.boxes = mesh.Clusters.data();
+  clusters.trianglesPerCluster = kTrianglesPerCluster;
+  const so::TriangleClusters* runs = mesh.Clusters.size() ==
+      6 * ((mesh.Triangles.size() / 3 + kTrianglesPerCluster - 1) / kTrianglesPerCluster)
+    ? &clusters
+    : nullptr;
+  // A plain float or double point array is handed over as it is (other arrays are copied to
+  // doubles first): the buffer transforms only the points of the triangles it looks at, not
+  // those of skipped runs.
+  so::ModelVertices vertices;
+  vertices.clipFromModel = clusters.clipFromModel;
+  if (vtkFloatArray* f = vtkFloatArray::FastDownCast(points->GetData()))
+  {
+    vertices.xyzFloat = f->GetPointer(0);
+  }
+  else if (vtkDoubleArray* d = vtkDoubleArray::FastDownCast(points->GetData()))
+  {
+    vertices.xyzDouble = d->GetPointer(0);
+  }
+  else
+  {
+    this->Points.resize(3 * static_cast<std::size_t>(n));
+    for (vtkIdType i = 0; i < n; ++i)
+    {
+      points->GetPoint(i, this->Points.data() + 3 * i);
+    }
+    vertices.xyzDouble = this->Points.data();
+  }
+  this->DepthBuffer.drawTriangles(vertices, static_cast<std::size_t>(n), mesh.Triangles.data(),
+    mesh.Triangles.size() / 3, culling, mesh.Neighbors.data(), runs);
 }

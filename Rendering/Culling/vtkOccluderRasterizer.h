@@ -6,7 +6,9 @@
  * BeginFrame() sizes and clears the buffer for the renderer's viewport and camera; Draw(prop)
  * rasterizes a prop if OpenGL will draw it as an opaque surface, and does nothing otherwise:
  *
- * - only plain actors with a vtkPolyDataMapper whose input is a vtkPolyData, surface
+ * - only plain actors with a vtkPolyDataMapper whose input is a vtkPolyData, or a composite
+ *   mapper's visible polydata blocks when no block has a colour, opacity or material of its own
+ *   (ParaView's representations, VTK's multiblock readers; vtkMapperPolyData), surface
  *   representation, opacity 1 and no translucent geometry (textures / scalars with alpha), no
  *   mapper clipping planes, no z-buffer shift (VTK_RESOLVE_SHIFT_ZBUFFER) occlude; translucent
  *   props never occlude (they can still be culled behind opaque ones);
@@ -35,8 +37,10 @@
 #include <cstddef>
 #include <cstdint>
 #include <unordered_map>
+#include <utility>
 #include <vector>
 
+class vtkPoints;
 class vtkPolyData;
 class vtkProp;
 
@@ -97,6 +101,9 @@ private:
     }
   };
   Mesh* MeshOf(vtkPolyData* data);
+  /// Rasterize @p mesh of @p points (its polydata's) through @p clipFromModel (row-major).
+  void DrawMesh(vtkPoints* points, const Mesh& mesh, const double clipFromModel[16],
+    scenevis::occlusion::FaceCulling culling);
   /// Pixels of the viewport covered by the screen rectangle of world box @p bounds (the whole
   /// viewport when a corner is behind the eye or in front of the near plane).
   double ScreenArea(const double bounds[6]) const;
@@ -108,6 +115,9 @@ private:
   std::vector<double> Points; // an occluder's points as doubles, when its array is neither
                               // float nor double
   std::uint64_t Frame = 0;
+  // Draw() scratch: the polydata a prop's mapper draws, and their meshes.
+  std::vector<vtkPolyData*> Leaves;
+  std::vector<std::pair<vtkPolyData*, Mesh*>> LeafMeshes;
 };
 
 #endif

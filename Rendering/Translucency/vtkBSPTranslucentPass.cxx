@@ -11,17 +11,13 @@
 #include "vtkCamera.h"
 #include "vtkCellArray.h"
 #include "vtkCellData.h"
-#include "vtkCompositeDataDisplayAttributes.h"
-#include "vtkCompositeDataSet.h"
-#include "vtkCompositePolyDataMapper2.h"
 #include "vtkFloatArray.h"
 #include "vtkIdTypeArray.h"
 #include "vtkIntArray.h"
+#include "vtkMapperPolyData.h"
 #include "vtkMatrix4x4.h"
-#include "vtkMultiBlockDataSet.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
-#include "vtkPartitionedDataSet.h"
 #include "vtkPlaneCollection.h"
 #include "vtkPointData.h"
 #include "vtkPoints.h"
@@ -75,57 +71,6 @@ vtkPolyDataMapper* SortableMapper(vtkActor* actor)
 }
 
 /**
- * The visible leaves of a composite dataset below @p node (visible: @p visible, unless its own
- * block visibility in @p attributes says otherwise; children inherit), into @p leaves. False
- * when a leaf is not a polydata (not ours to draw).
- */
-bool CollectVisibleLeaves(vtkDataObject* node, bool visible,
-  const vtkCompositeDataDisplayAttributes* attributes, std::vector<vtkPolyData*>& leaves)
-{
-  if (!node)
-  {
-    return true;
-  }
-  if (attributes && attributes->HasBlockVisibility(node))
-  {
-    visible = attributes->GetBlockVisibility(node);
-  }
-  if (auto* blocks = vtkMultiBlockDataSet::SafeDownCast(node))
-  {
-    for (unsigned int i = 0; i < blocks->GetNumberOfBlocks(); ++i)
-    {
-      if (!CollectVisibleLeaves(blocks->GetBlock(i), visible, attributes, leaves))
-      {
-        return false;
-      }
-    }
-    return true;
-  }
-  if (auto* partitions = vtkPartitionedDataSet::SafeDownCast(node))
-  {
-    for (unsigned int i = 0; i < partitions->GetNumberOfPartitions(); ++i)
-    {
-      if (!CollectVisibleLeaves(
-            partitions->GetPartitionAsDataObject(i), visible, attributes, leaves))
-      {
-        return false;
-      }
-    }
-    return true;
-  }
-  auto* polydata = vtkPolyData::SafeDownCast(node);
-  if (!polydata)
-  {
-    return false;
-  }
-  if (visible && polydata->GetNumberOfCells() > 0)
-  {
-    leaves.push_back(polydata);
-  }
-  return true;
-}
-
-/**
  * The polydata a sortable mapper draws: its input, or the one visible non-empty polydata block
  * of a composite input drawn without per-block colours, opacities or materials (ParaView's
  * representations draw a polydata as a one-block multiblock through
@@ -134,28 +79,8 @@ bool CollectVisibleLeaves(vtkDataObject* node, bool visible,
  */
 vtkPolyData* SortableInput(vtkPolyDataMapper* mapper)
 {
-  vtkDataObject* input = mapper->GetInputDataObject(0, 0);
-  if (auto* polydata = vtkPolyData::SafeDownCast(input))
-  {
-    return polydata;
-  }
-  if (!vtkCompositeDataSet::SafeDownCast(input))
-  {
-    return nullptr;
-  }
-  const vtkCompositeDataDisplayAttributes* attributes = nullptr;
-  if (auto* compositeMapper = vtkCompositePolyDataMapper2::SafeDownCast(mapper))
-  {
-    attributes = compositeMapper->GetCompositeDataDisplayAttributes();
-    if (attributes &&
-      (attributes->HasBlockColors() || attributes->HasBlockOpacities() ||
-        attributes->HasBlockMaterials()))
-    {
-      return nullptr;
-    }
-  }
   std::vector<vtkPolyData*> leaves;
-  if (!CollectVisibleLeaves(input, true, attributes, leaves) || leaves.size() != 1)
+  if (!vtkMapperPolyData::Collect(mapper, leaves, true) || leaves.size() != 1)
   {
     return nullptr;
   }

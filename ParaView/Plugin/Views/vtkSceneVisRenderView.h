@@ -11,8 +11,18 @@
  * every frame (BSP trees built once per input, the order updated as the camera moves).
  * SortTranslucentGeometry off: translucent geometry is drawn in the order of its cells, for
  * data already ordered by the BSP Sort or Painter Sort filters. The view's depth peeling
- * settings are ignored. Its proxy is "SceneVis Ordered Translucency" (views group,
- * SceneVisRenderView), a RenderView with every RenderView property and SortTranslucentGeometry.
+ * settings are ignored.
+ *
+ * Culling (SetCulling): VTK's frustum coverage culler, as ParaView's render view has (default),
+ * or SceneVis's vtkOctreeCuller (a BVH over the view's props: frustum culling in O(log n)) or
+ * vtkOcclusionCuller (the same, and props hidden behind nearer opaque ones are not drawn; a
+ * conservative software depth buffer: no visible pixel is lost). Each representation is one
+ * prop, so culling pays for scenes of many representations. On MPI ranks each rank culls its
+ * own props with its own occluders, which is conservative for the composited image too (a prop
+ * hidden behind geometry of the same rank is hidden in the depth-composited image).
+ *
+ * Its proxy is "SceneVis Ordered Translucency" (views group, SceneVisRenderView), a RenderView
+ * with every RenderView property, SortTranslucentGeometry and Culling.
  *
  * @sa vtkOrderedTranslucentPass vtkBSPSortFilter
  */
@@ -22,8 +32,11 @@
 
 #include "SceneVisParaViewViewsModule.h" // For export macro
 #include "vtkPVRenderView.h"
+#include "vtkSmartPointer.h" // For the cullers
 
 class vtkBSPTranslucentPass;
+class vtkCuller;
+class vtkOctreeCuller;
 class vtkOrderedTranslucentPass;
 class vtkTranslucentPass;
 
@@ -46,14 +59,33 @@ public:
   /// The translucent step while sorting (its counters: sorted actors, fragments, trees built).
   vtkBSPTranslucentPass* GetSortingPass() { return this->SortingPass; }
 
+  enum CullingModes
+  {
+    CULLING_VTK = 0,      ///< VTK's vtkFrustumCoverageCuller (ParaView's own)
+    CULLING_OCTREE = 1,   ///< vtkOctreeCuller
+    CULLING_OCCLUSION = 2 ///< vtkOcclusionCuller
+  };
+  ///@{
+  /// How the view's renderer culls props (CullingModes; default CULLING_VTK).
+  void SetCulling(int mode);
+  vtkGetMacro(Culling, int);
+  ///@}
+
+  /// The SceneVis culler in use (vtkOcclusionCuller is a vtkOctreeCuller), null with VTK's.
+  vtkOctreeCuller* GetSceneVisCuller() const;
+
 protected:
   vtkSceneVisRenderView();
   ~vtkSceneVisRenderView() override;
 
   bool SortTranslucentGeometry = true;
+  int Culling = CULLING_VTK;
   vtkOrderedTranslucentPass* Steps;
   vtkBSPTranslucentPass* SortingPass;
   vtkTranslucentPass* DrawingOrderPass;
+  vtkSmartPointer<vtkCuller> VTKCuller; ///< the renderer's own culler, put back for CULLING_VTK
+  vtkSmartPointer<vtkOctreeCuller> OctreeCuller;    ///< made when first chosen
+  vtkSmartPointer<vtkOctreeCuller> OcclusionCuller; ///< a vtkOcclusionCuller, when first chosen
 
 private:
   vtkSceneVisRenderView(const vtkSceneVisRenderView&) = delete;

@@ -9,7 +9,9 @@
 // eye next to a part, parallel projections, the assembly at 1e7) and the generated building
 // (one actor per room and part: eyes in rooms, on the stairs, outside; 90 degree views), and the
 // building with vtkPortalCuller first and vtkOcclusionCuller after it (the renderer's culler
-// list): rooms seen through portals, furniture hidden behind their walls.
+// list): rooms seen through portals, furniture hidden behind their walls; and the CAD assembly
+// drawn through composite mappers (multiblock inputs, as ParaView and VTK's multiblock readers
+// draw), one of them holding a huge wall hidden by its block visibility, which must not occlude.
 // Over-draw (parts kept / parts visible) is printed beside vtkOctreeCuller's.
 #include "vtkOcclusionCuller.h"
 #include "vtkOctreeCuller.h"
@@ -25,10 +27,13 @@
 #include <vtkCamera.h>
 #include <vtkCellArray.h>
 #include <vtkCellData.h>
+#include <vtkCompositeDataDisplayAttributes.h>
+#include <vtkCompositePolyDataMapper2.h>
 #include <vtkCullerCollection.h>
 #include <vtkIdTypeArray.h>
-#include <vtkIntArray.h>
 #include <vtkImageData.h>
+#include <vtkIntArray.h>
+#include <vtkMultiBlockDataSet.h>
 #include <vtkNew.h>
 #include <vtkPoints.h>
 #include <vtkPolyData.h>
@@ -116,14 +121,58 @@ struct SceneActors
   vtkSmartPointer<vtkPolyData> all, opaque;
 };
 
-void Build(SceneActors& s, const scenevis::PolygonMesh& mesh, const glm::dvec3& shift)
+/// A square of side @p side in the plane z = @p z, centred on (@p x, @p y).
+vtkSmartPointer<vtkPolyData> Wall(double x, double y, double z, double side)
+{
+  vtkNew<vtkPoints> points;
+  for (int k = 0; k < 4; ++k)
+  {
+    points->InsertNextPoint(
+      x + ((k == 1 || k == 2) ? 0.5 : -0.5) * side, y + (k >= 2 ? 0.5 : -0.5) * side, z);
+  }
+  vtkNew<vtkCellArray> polys;
+  const vtkIdType quad[4] = { 0, 1, 2, 3 };
+  polys->InsertNextCell(4, quad);
+  vtkNew<vtkPolyData> pd;
+  pd->SetPoints(points);
+  pd->SetPolys(polys);
+  return pd;
+}
+
+/**
+ * One actor per group. @p hiddenWall: each part is drawn as ParaView's representations and
+ * VTK's multiblock readers draw, a vtkCompositePolyDataMapper2 over a multiblock; the first
+ * actor's also holds this wall as a second block, hidden by its block visibility (it must not
+ * occlude: it is not drawn, and the reference renders leave it out).
+ */
+void Build(SceneActors& s, const scenevis::PolygonMesh& mesh, const glm::dvec3& shift,
+  vtkPolyData* hiddenWall = nullptr)
 {
   std::vector<std::size_t> every(s.groups.size());
   for (std::size_t g = 0; g < every.size(); ++g)
   {
     every[g] = g;
-    vtkNew<vtkPolyDataMapper> mapper;
-    mapper->SetInputData(PolysOf(mesh, s.groups, { g }, All, shift));
+    vtkSmartPointer<vtkPolyDataMapper> mapper;
+    if (hiddenWall)
+    {
+      vtkNew<vtkMultiBlockDataSet> blocks;
+      blocks->SetBlock(0, PolysOf(mesh, s.groups, { g }, All, shift));
+      vtkNew<vtkCompositePolyDataMapper2> composite;
+      if (g == 0)
+      {
+        blocks->SetBlock(1, hiddenWall);
+        vtkNew<vtkCompositeDataDisplayAttributes> attributes;
+        attributes->SetBlockVisibility(hiddenWall, false);
+        composite->SetCompositeDataDisplayAttributes(attributes);
+      }
+      composite->SetInputDataObject(blocks);
+      mapper = composite;
+    }
+    else
+    {
+      mapper = vtkSmartPointer<vtkPolyDataMapper>::New();
+      mapper->SetInputData(PolysOf(mesh, s.groups, { g }, All, shift));
+    }
     mapper->ScalarVisibilityOff();
     vtkNew<vtkActor> actor;
     actor->SetMapper(mapper);
@@ -299,7 +348,9 @@ void LookAt(vtkCamera* camera, const glm::dvec3& eye, const glm::dvec3& focal, d
   camera->SetParallelScale(scale);
 }
 
-bool TestCad(vtkRenderWindow* window, const glm::dvec3& origin, int cameras, const char* name)
+/// @p composite: the parts drawn through composite mappers, one with a hidden wall (see Build).
+bool TestCad(vtkRenderWindow* window, const glm::dvec3& origin, int cameras, const char* name,
+  bool composite = false)
 {
   const sn::Scene scene = sn::cadAssembly(400, 60, 3, origin);
   SceneActors s;
@@ -314,7 +365,11 @@ bool TestCad(vtkRenderWindow* window, const glm::dvec3& origin, int cameras, con
     g.opacity = part.opacity;
     s.groups.push_back(g);
   }
-  Build(s, scene.mesh, glm::dvec3(0.0));
+  const scenevis::Box box = scene.mesh.bounds();
+  const glm::dvec3 centre = box.center();
+  const auto wall =
+    composite ? Wall(centre.x, centre.y, centre.z, 10.0 * glm::length(box.hi - box.lo)) : nullptr;
+  Build(s, scene.mesh, glm::dvec3(0.0), wall);
   vtkNew<vtkCamera> camera;
   s.renderer->SetActiveCamera(camera);
   vtkNew<vtkOcclusionCuller> occlusion;
@@ -437,6 +492,7 @@ int TestOcclusionCullerAccuracy(int, char*[])
   bool ok = true;
   ok &= TestCad(window, glm::dvec3(0.0), 40, "cad");
   ok &= TestCad(window, glm::dvec3(1e7, -1e7, 5e6), 10, "cad at 1e7");
+  ok &= TestCad(window, glm::dvec3(0.0), 20, "cad, composite mappers", true);
   ok &= TestBuilding(window, 36, false);
   ok &= TestBuilding(window, 36, true);
   {
