@@ -67,7 +67,9 @@ bool vtkMapperPolyData::Collect(
 {
   leaves.clear();
   vtkDataObject* input = mapper ? mapper->GetInputDataObject(0, 0) : nullptr;
-  if (auto* polydata = vtkPolyData::SafeDownCast(input))
+  // dynamic_cast, not SafeDownCast: the occlusion culler asks this of every visible prop, and
+  // SafeDownCast compares class names along the hierarchy.
+  if (auto* polydata = dynamic_cast<vtkPolyData*>(input))
   {
     leaves.push_back(polydata);
     return true;
