@@ -912,6 +912,10 @@ Tree Builder::run()
     return empty;
   }
 
+  if (Config.conformingFragments)
+  {
+    st.conformingVertices = makeConforming(Out);
+  }
   Out.nodes.shrink_to_fit();
   Out.fragments.shrink_to_fit();
   Out.fragmentVertices.shrink_to_fit();

@@ -117,6 +117,15 @@ struct BuildConfig
    * IncrementalOrder does not take trees with leaves (yet).
    */
   std::uint32_t orderedLeafSize = 0;
+  /**
+   * Fragments that meet edge to edge (makeConforming()): a split adds its point to the fragments
+   * on the other side of the split edge too, so that no fragment edge passes through another's
+   * vertex. OpenGL fills the pixels along an edge shared by two triangles exactly once only when
+   * both have the same end points; at a T-junction (one side split, the other not) the rounding of
+   * the split point to float leaves pixels covered twice or not at all, which blending shows as
+   * a wrong translucent layer. Default on; off: the fragments of the split alone.
+   */
+  bool conformingFragments = true;
   /// Worker threads for the build: once a node's two sides are both large, they are built
   /// concurrently. The result (every array of the Tree) is identical for any value; 1 builds on
   /// the calling thread only, 0 means std::thread::hardware_concurrency().
@@ -129,6 +138,15 @@ using ProgressCallback = std::function<bool(double fraction)>;
 
 Tree build(const PolygonMesh& mesh, const BuildConfig& config = {},
   const ProgressCallback& progress = {});
+
+/**
+ * Makes @p tree's fragments meet edge to edge: every split point that lies strictly inside a
+ * fragment's edge (made by splitting a polygon on the other side of that edge, or the same line
+ * further along) is inserted into it, in order. The fragments keep their shape and convexity (the
+ * inserted points are on their edges: collinear vertices). Returns the number of vertices
+ * inserted. build() calls it unless BuildConfig::conformingFragments is off.
+ */
+std::size_t makeConforming(Tree& tree);
 
 } // namespace bsp
 } // namespace scenevis

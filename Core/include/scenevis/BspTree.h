@@ -148,6 +148,9 @@ struct BuildStatistics
   std::size_t depth = 0;      ///< Longest root-to-leaf path, in nodes.
   std::size_t fragments = 0;  ///< Output fragments (== Tree::fragments.size()).
   std::size_t splits = 0;     ///< Polygon splits performed (each adds one fragment).
+  /// Split points added to the edges of fragments beside a split
+  /// (BuildConfig::conformingFragments).
+  std::size_t conformingVertices = 0;
   std::size_t orderedLeaves = 0; ///< Tree::leaves.size().
   std::size_t leafFragments = 0; ///< Unsplit fragments held by ordered leaves.
   std::size_t leafPairs = 0;     ///< Tree::leafPairs.size().
