@@ -240,6 +240,7 @@ struct Method
   /// frame to the end of that frame.
   int roomsAdoptedAt = -1;
   double roomsAdoptedAfterMs = 0.0;
+  double roomsAdoptedPlanMs = 0.0; ///< that frame's Plan()
   std::chrono::steady_clock::time_point warmedUp;
 
   Method(const std::string& methodName, const PathScene& scene, const Options& options)
@@ -322,6 +323,7 @@ struct Method
         std::string(this->planner->GetCullMethod()) == "portals")
       {
         this->roomsAdoptedAt = static_cast<int>(this->frameMs.size()) - 1;
+        this->roomsAdoptedPlanMs = this->planner->GetLastPlanTime();
         this->roomsAdoptedAfterMs = std::chrono::duration<double, std::milli>(
           std::chrono::steady_clock::now() - this->warmedUp)
                                       .count();
@@ -522,8 +524,10 @@ int main(int argc, char** argv)
     const Method& planner = *methods.front();
     if (planner.roomsAdoptedAt >= 0)
       std::printf("%-18s planner's generated rooms in use from timed frame %d (%.0f ms after the "
-                  "warm-up frame ended)\n",
-        name.c_str(), planner.roomsAdoptedAt, planner.roomsAdoptedAfterMs);
+                  "warm-up frame ended; that frame %.1f ms, its Plan() %.1f ms)\n",
+        name.c_str(), planner.roomsAdoptedAt, planner.roomsAdoptedAfterMs,
+        planner.frameMs[static_cast<std::size_t>(planner.roomsAdoptedAt)],
+        planner.roomsAdoptedPlanMs);
     else if (planner.roomsAdoptedAt == -2)
       std::printf("%-18s planner's generated rooms in use from the warm-up frame (generated in "
                   "it)\n",

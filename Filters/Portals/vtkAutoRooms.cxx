@@ -241,18 +241,12 @@ vtkArchitecturalLook vtkArchitecturalLook::Of(vtkPolyData* model)
 vtkAutoRooms vtkAutoRooms::Generate(
   vtkPolyData* model, const char* roomArrayName, double budgetSeconds)
 {
-  return vtkAutoRooms::Generate(
-    model, vtkArchitecturalLook::Of(model), roomArrayName, budgetSeconds);
-}
-
-vtkAutoRooms vtkAutoRooms::Generate(vtkPolyData* model, const vtkArchitecturalLook& look,
-  const char* roomArrayName, double budgetSeconds)
-{
   const auto start = std::chrono::steady_clock::now();
   vtkAutoRooms autoRooms;
+  const vtkArchitecturalLook look = vtkArchitecturalLook::Of(model);
   if (!look.LooksArchitectural)
   {
-    autoRooms.Milliseconds = look.Milliseconds;
+    autoRooms.Milliseconds = MillisecondsSince(start);
     autoRooms.Reason = "rooms and portals not generated: " + look.Reason;
     return autoRooms;
   }
@@ -266,7 +260,7 @@ vtkAutoRooms vtkAutoRooms::Generate(vtkPolyData* model, const vtkArchitecturalLo
   vtkNew<vtkCallbackCommand> quiet;
   generate->AddObserver(vtkCommand::WarningEvent, quiet);
   generate->Update();
-  autoRooms.Milliseconds = look.Milliseconds + MillisecondsSince(start);
+  autoRooms.Milliseconds = MillisecondsSince(start);
   autoRooms.RoomCount = generate->GetNumberOfRooms();
   autoRooms.PortalCount = static_cast<std::size_t>(generate->GetNumberOfPortals());
   autoRooms.ExteriorPortals = static_cast<std::size_t>(generate->GetNumberOfExteriorPortals());

@@ -97,15 +97,6 @@ struct SCENEVISFILTERSPORTALS_EXPORT vtkAutoRooms
   /// @p budgetSeconds of processor time (0: no limit).
   static vtkAutoRooms Generate(
     vtkPolyData* model, const char* roomArrayName = "RoomId", double budgetSeconds = BudgetSeconds);
-
-  /**
-   * The same, for a @p model already found to look architectural or not by @p look
-   * (vtkArchitecturalLook::Of(model)): a caller that tests on one thread and generates on another
-   * (vtkSceneVisPlanner in the background) tests once. Touches nothing but @p model and the
-   * objects it makes.
-   */
-  static vtkAutoRooms Generate(vtkPolyData* model, const vtkArchitecturalLook& look,
-    const char* roomArrayName = "RoomId", double budgetSeconds = BudgetSeconds);
 };
 
 #endif

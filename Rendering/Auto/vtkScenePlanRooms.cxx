@@ -106,19 +106,19 @@ bool vtkScenePlanRooms::Update(
   }
 
   vtkScenePlanRoomsModel model = vtkScenePlanRoomsModel::Gather(inventory);
-  const vtkArchitecturalLook look = vtkArchitecturalLook::Of(model.Model);
-  if (!background || !look.LooksArchitectural)
+  if (!background)
   {
-    const vtkAutoRooms generated =
-      vtkAutoRooms::Generate(model.Model, look, "RoomId", budgetSeconds);
+    const vtkAutoRooms generated = vtkAutoRooms::Generate(model.Model, "RoomId", budgetSeconds);
     return this->Use(generated, model, vtkScenePlanRooms::Signature(inventory)) || inUse;
   }
+  // The worker tests the look too (a few milliseconds): this render pays for the copy alone.
   std::ostringstream why;
-  why << "generating rooms in the background (" << look.Polygons << " polygons of "
-      << model.Pieces.size() << " actors; until then culling as without rooms)";
+  why << "generating rooms in the background (" << model.ModelPolys + model.ModelStrips
+      << " polygons of " << model.Pieces.size()
+      << " actors, if they look architectural; until then culling as without rooms)";
   this->Reason = why.str();
   this->Running.reset(new Job{ vtkScenePlanRoomsModel(), vtkScenePlanRooms::Signature(inventory) });
-  this->Worker->Start(std::move(model.Model), look, budgetSeconds);
+  this->Worker->Start(std::move(model.Model), budgetSeconds);
   model.Model = nullptr;
   this->Running->Model = std::move(model);
   return inUse;
@@ -135,8 +135,7 @@ bool vtkScenePlanRooms::Poll(vtkScenePlanInventory& inventory)
   bool changed = false;
   if (job->Wanted && vtkScenePlanRooms::Signature(inventory) == job->Signature)
   {
-    this->Use(generated, job->Model, job->Signature);
-    changed = true; // the reason, at least
+    changed = this->Use(generated, job->Model, job->Signature);
   }
   else
   {
@@ -146,15 +145,13 @@ bool vtkScenePlanRooms::Poll(vtkScenePlanInventory& inventory)
       this->Reason = "rooms and portals generated in the background discarded: an actor moved or "
                      "changed while they were generated (they are generated again when the "
                      "actors change)";
-      changed = true;
     }
   }
   if (this->Restart)
   {
     // The set of actors that came while the worker was busy.
     this->Restart = false;
-    this->Update(inventory, true, this->RestartBudget, true);
-    changed = true;
+    changed |= this->Update(inventory, true, this->RestartBudget, true);
   }
   return changed;
 }

@@ -11,13 +11,14 @@
  * portal, no leak), every actor gets the room of each of its cells (-1 for vertices and lines),
  * which the installer hands to the vtkPortalCuller (SetPropCellRooms) without touching the
  * application's data. Only scenes of at least 2 actors and at most
- * vtkArchitecturalLook::MaximumPolygons polygons that pass vtkArchitecturalLook's test (on the
- * render thread: a few milliseconds at most) are generated for, so that a scene that is no
- * building costs nothing measurable.
+ * vtkArchitecturalLook::MaximumPolygons polygons that pass vtkArchitecturalLook's test (a few
+ * milliseconds at most) are generated for, so that a scene that is no building costs nothing
+ * measurable.
  *
- * Synchronously, the generation runs inside Update(). In the background, Update() starts it on a
- * worker thread (vtkScenePlanRoomsWorker) with the model it gathered, and the reason says
- * "generating rooms in the background" until Poll(), called at every render, finds it done; its
+ * Synchronously, the test and the generation run inside Update(). In the background, Update()
+ * only gathers the model and starts both on a worker thread (vtkScenePlanRoomsWorker), and the
+ * reason says "generating rooms in the background" until Poll(), called at every render, finds
+ * it done (a scene that is no building then says so, without a plan change); its
  * rooms are then used only if the actors are still those it was generated for (Signature() at
  * the start equals Signature() now): otherwise they are discarded, as synchronous rooms are
  * dropped. A new set of actors while a generation runs: its result is discarded and, one worker
@@ -72,8 +73,8 @@ public:
   /**
    * When the generation in the background has ended: its rooms put in use if they are still
    * those of @p inventory's actors (brought up to date before the call), discarded otherwise,
-   * and the generation for a newer set of actors started. Returns true when what is in use or
-   * the reason changed. Costs one look at the worker otherwise.
+   * and the generation for a newer set of actors started. Returns true when what is in use
+   * changed (the reason may change without it). Costs one look at the worker otherwise.
    */
   bool Poll(vtkScenePlanInventory& inventory);
 

@@ -4,66 +4,68 @@
 
 #include "vtkActor.h"
 #include "vtkCellArray.h"
+#include "vtkDoubleArray.h"
 #include "vtkIntArray.h"
 #include "vtkMatrix4x4.h"
 #include "vtkNew.h"
 #include "vtkPoints.h"
 
-namespace
-{
-/// Appends @p cells to @p out with their point ids shifted by @p base.
-void AppendCells(vtkCellArray* cells, vtkIdType base, vtkCellArray* out)
-{
-  vtkIdType npts = 0;
-  const vtkIdType* pts = nullptr;
-  std::vector<vtkIdType> shifted;
-  for (cells->InitTraversal(); cells->GetNextCell(npts, pts);)
-  {
-    shifted.assign(pts, pts + npts);
-    for (vtkIdType& id : shifted)
-    {
-      id += base;
-    }
-    out->InsertNextCell(npts, shifted.data());
-  }
-}
-} // namespace
-
 vtkScenePlanRoomsModel vtkScenePlanRoomsModel::Gather(vtkScenePlanInventory& inventory)
 {
   vtkScenePlanRoomsModel gathered;
-  vtkNew<vtkPoints> points;
-  points->SetDataTypeToDouble();
-  vtkNew<vtkCellArray> polys;
-  vtkNew<vtkCellArray> strips;
+  std::vector<vtkPolyData*> inputs;
+  vtkIdType pointCount = 0;
   for (const vtkScenePlanActorEntry& entry : inventory.GetEntries())
   {
     auto* pd = vtkPolyData::SafeDownCast(entry.Input);
-    if (!entry.Counted || !pd || !pd->GetPoints())
+    if (entry.Counted && pd && pd->GetPoints())
     {
-      continue;
+      inputs.push_back(pd);
+      gathered.Pieces.push_back({ entry.Actor, pd->GetNumberOfVerts(), pd->GetNumberOfLines(),
+        pd->GetNumberOfPolys(), pd->GetNumberOfStrips(), 0, 0 });
+      pointCount += pd->GetNumberOfPoints();
     }
-    gathered.Pieces.push_back(
-      { entry.Actor, pd->GetNumberOfVerts(), pd->GetNumberOfLines(), pd->GetNumberOfPolys(),
-        pd->GetNumberOfStrips(), polys->GetNumberOfCells(), strips->GetNumberOfCells() });
-    vtkMatrix4x4* m = entry.Actor->GetMatrix();
-    const vtkIdType base = points->GetNumberOfPoints();
-    for (vtkIdType i = 0; i < pd->GetNumberOfPoints(); ++i)
+  }
+  // In bulk (this runs in the render): the points written in place, the cells appended with
+  // their point ids shifted.
+  vtkNew<vtkDoubleArray> coordinates;
+  coordinates->SetNumberOfComponents(3);
+  coordinates->SetNumberOfTuples(pointCount);
+  double* out = coordinates->GetPointer(0);
+  vtkNew<vtkCellArray> polys;
+  vtkNew<vtkCellArray> strips;
+  vtkIdType base = 0;
+  for (std::size_t k = 0; k < inputs.size(); ++k)
+  {
+    vtkPolyData* pd = inputs[k];
+    Piece& piece = gathered.Pieces[k];
+    piece.FirstPoly = polys->GetNumberOfCells();
+    piece.FirstStrip = strips->GetNumberOfCells();
+    vtkMatrix4x4* m = piece.Actor->GetMatrix();
+    vtkDataArray* in = pd->GetPoints()->GetData();
+    const vtkIdType n = pd->GetNumberOfPoints();
+    for (vtkIdType i = 0; i < n; ++i, out += 3)
     {
       double p[4] = { 0, 0, 0, 1 };
-      pd->GetPoint(i, p);
+      in->GetTuple(i, p);
       double q[4];
       m->MultiplyPoint(p, q);
-      points->InsertNextPoint(q[0] / q[3], q[1] / q[3], q[2] / q[3]);
+      out[0] = q[0] / q[3];
+      out[1] = q[1] / q[3];
+      out[2] = q[2] / q[3];
     }
-    AppendCells(pd->GetPolys(), base, polys);
-    AppendCells(pd->GetStrips(), base, strips);
+    polys->Append(pd->GetPolys(), base);
+    strips->Append(pd->GetStrips(), base);
+    base += n;
   }
+  vtkNew<vtkPoints> points;
+  points->SetData(coordinates);
   gathered.Model = vtkSmartPointer<vtkPolyData>::New();
   gathered.Model->SetPoints(points);
   gathered.Model->SetPolys(polys);
   gathered.Model->SetStrips(strips);
   gathered.ModelPolys = polys->GetNumberOfCells();
+  gathered.ModelStrips = strips->GetNumberOfCells();
   return gathered;
 }
 

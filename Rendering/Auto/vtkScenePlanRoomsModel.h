@@ -49,6 +49,7 @@ struct vtkScenePlanRoomsModel
   vtkSmartPointer<vtkPolyData> Model;
   std::vector<Piece> Pieces;
   vtkIdType ModelPolys = 0; ///< the model's polygons: its strips' rooms follow theirs
+  vtkIdType ModelStrips = 0;
 
   /// The counted actors of @p inventory that have polydata with points, as one model.
   static vtkScenePlanRoomsModel Gather(vtkScenePlanInventory& inventory);

@@ -10,17 +10,16 @@ vtkScenePlanRoomsWorker::~vtkScenePlanRoomsWorker()
   this->Wait();
 }
 
-void vtkScenePlanRoomsWorker::Start(
-  vtkSmartPointer<vtkPolyData> model, const vtkArchitecturalLook& look, double budgetSeconds)
+void vtkScenePlanRoomsWorker::Start(vtkSmartPointer<vtkPolyData> model, double budgetSeconds)
 {
   // std::launch::async: a thread now, never deferred into the Take() of a later render.
   this->Result = std::async(std::launch::async,
-    [model = std::move(model), look, budgetSeconds]() mutable
+    [model = std::move(model), budgetSeconds]() mutable
     {
       vtkAutoRooms rooms;
       try
       {
-        rooms = vtkAutoRooms::Generate(model, look, "RoomId", budgetSeconds);
+        rooms = vtkAutoRooms::Generate(model, "RoomId", budgetSeconds);
       }
       catch (const std::exception& e) // as data: the render thread's Take() must not throw
       {

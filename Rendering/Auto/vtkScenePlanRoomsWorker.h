@@ -5,12 +5,13 @@
  *
  * Private to the RenderingAuto module (not a vtkObject). Start() hands the worker a model that
  * nobody else holds (vtkScenePlanRoomsModel::Gather() made it) and returns at once; the thread
- * runs vtkAutoRooms::Generate on it, with the look already tested, under the processor-time
- * budget (the thread's own time: see scenevis::portals::GenerationConfig::budgetSeconds), and
- * touches nothing else: every VTK object it sees is the model or made by the generation, and its
- * warnings are caught by vtkAutoRooms as data (the reason), not printed. The thread releases the
- * model before it ends; the result's objects are handed over through the future, so that the
- * render thread owns them alone after Take().
+ * runs vtkAutoRooms::Generate on it (the architectural look's test, then the generation when it
+ * passes) under the processor-time budget (the thread's own time: see
+ * scenevis::portals::GenerationConfig::budgetSeconds), and touches nothing else: every VTK object
+ * it sees is the model or made by the generation, and its warnings are caught by vtkAutoRooms as
+ * data (the reason), not printed. The thread releases the model before it ends; the result's
+ * objects are handed over through the future, so that the render thread owns them alone after
+ * Take().
  *
  * A generation cannot be interrupted: its budget bounds it. The destructor waits for a running
  * one (at most the budget), so that the thread never outlives what owns it.
@@ -37,12 +38,10 @@ public:
   vtkScenePlanRoomsWorker& operator=(const vtkScenePlanRoomsWorker&) = delete;
 
   /**
-   * Generates rooms and portals for @p model (which the worker owns from now on), found to look
-   * architectural by @p look, within @p budgetSeconds of processor time (0: no limit). Only when
-   * not IsBusy().
+   * Tests and generates rooms and portals for @p model (which the worker owns from now on)
+   * within @p budgetSeconds of processor time (0: no limit). Only when not IsBusy().
    */
-  void Start(
-    vtkSmartPointer<vtkPolyData> model, const vtkArchitecturalLook& look, double budgetSeconds);
+  void Start(vtkSmartPointer<vtkPolyData> model, double budgetSeconds);
 
   /// A generation was started and its result not taken yet (it may be done).
   bool IsBusy() const { return this->Result.valid(); }

@@ -12,7 +12,9 @@
 //  (d) an actor added while it runs: that result is discarded, the new set generated for, then
 //      "portals" again, still conservative;
 //  (e) a planner deleted, and a renderer (owning its attached planner) deleted, while a
-//      generation runs: no crash, the renderer's own culler back.
+//      generation runs: no crash, the renderer's own culler back;
+//  (f) a scene that is no building (a grid of boxes): tested in the background too, then not
+//      generated for, and the reason says why.
 #include "vtkSceneVisPlanner.h"
 
 #include "PlannerTesting.h"
@@ -241,6 +243,21 @@ int TestSceneVisPlannerBackgroundRooms(int, char*[])
     window->RemoveRenderer(renderer);
     renderer = nullptr; // and its planner with it, while the worker runs
     ok &= Check(pending, "a renderer (owning its planner) deleted while generating: clean");
+  }
+
+  // --- (f) not a building ------------------------------------------------------------------------
+  {
+    vtkNew<vtkRenderer> boxes;
+    window->GetRenderers()->RemoveAllItems();
+    window->AddRenderer(boxes);
+    plannertesting::BoxGrid grid(boxes, 4, 4, 1, 0.5);
+    vtkSceneVisPlanner* other = vtkSceneVisPlanner::Attach(boxes);
+    boxes->ResetCamera();
+    window->Render();
+    const bool adopted = RenderUntilAdopted(window, other, 2);
+    ok &= Check(adopted && other->GetNumberOfRoomGenerations() == 0 && !IsPortals(other) &&
+        Has(other->GetCullReason(), "rooms and portals not generated"),
+      "a grid of boxes: not generated (" + std::string(other->GetCullReason()) + ")");
   }
   return vtkOutput.ExitCode(ok ? EXIT_SUCCESS : EXIT_FAILURE);
 }
