@@ -142,9 +142,8 @@ bool vtkScenePlanRooms::Poll(vtkScenePlanInventory& inventory)
     this->Generations += generated.Tried ? 1 : 0;
     if (job->Wanted)
     {
-      this->Reason = "rooms and portals generated in the background discarded: an actor moved or "
-                     "changed while they were generated (they are generated again when the "
-                     "actors change)";
+      this->Reason = "the generation in the background discarded: an actor moved or changed "
+                     "while it ran (rooms are generated again when the actors change)";
     }
   }
   if (this->Restart)
