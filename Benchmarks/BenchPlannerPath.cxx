@@ -31,6 +31,9 @@
 //   --smoke: one small scene, 4 frames (CI).
 //   --csv FILE: also one row per scene in FILE (docs/planner-path.csv is written this way): what
 //   the planner chose, its total, the best fixed choice and each fixed choice's total.
+//   --rooms-background on|off: the planner generates rooms on a worker thread (its default) or in
+//   the render that needs them; for building-generated the warm-up frame's time is printed, and,
+//   in the background, the timed frame at which the rooms were adopted ("portals").
 #include "vtkSceneVisPlanner.h"
 
 #include "../Tools/CameraFile.h"
@@ -87,6 +90,9 @@ struct Options
   std::vector<std::string> scenes;
   bool smoke = false;
   std::string csv; ///< --csv FILE: one row per scene
+  /// --rooms-background on|off: the planner generates rooms in the background or in the render
+  /// (-1: the planner's default).
+  int roomsInBackground = -1;
 };
 
 /// @p text as one CSV field: quoted (quotes doubled) when it holds a comma or a quote.
@@ -229,6 +235,13 @@ struct Method
   vtkNew<vtkBSPTranslucentPass> sorted;
   std::vector<double> frameMs;
   std::map<std::string, int> planFrames; ///< the planner's choices and on how many frames
+  /// The planner's generated rooms: the timed frame (0-based) at which they were first in use
+  /// (-2: from the warm-up frame on; -1: not yet), and the wall time from the end of the warm-up
+  /// frame to the end of that frame.
+  int roomsAdoptedAt = -1;
+  double roomsAdoptedAfterMs = 0.0;
+  double roomsAdoptedPlanMs = 0.0; ///< that frame's Plan()
+  std::chrono::steady_clock::time_point warmedUp;
 
   Method(const std::string& methodName, const PathScene& scene, const Options& options)
     : name(methodName)
@@ -253,6 +266,8 @@ struct Method
     if (methodName == "planner")
     {
       this->planner = vtkSceneVisPlanner::Attach(this->renderer);
+      if (options.roomsInBackground >= 0)
+        this->planner->SetGenerateRoomsInBackground(options.roomsInBackground == 1);
       if (scene.portals && scene.plannerGetsPortals)
         this->planner->SetPortals(scene.portals);
       return;
@@ -301,8 +316,19 @@ struct Method
     this->frameMs.push_back(
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
     if (this->planner)
+    {
       ++this->planFrames[std::string(this->planner->GetCullMethod()) + " + " +
         this->planner->GetTranslucencyMethod()];
+      if (this->roomsAdoptedAt == -1 && this->planner->GetNumberOfRoomGenerations() > 0 &&
+        std::string(this->planner->GetCullMethod()) == "portals")
+      {
+        this->roomsAdoptedAt = static_cast<int>(this->frameMs.size()) - 1;
+        this->roomsAdoptedPlanMs = this->planner->GetLastPlanTime();
+        this->roomsAdoptedAfterMs = std::chrono::duration<double, std::milli>(
+          std::chrono::steady_clock::now() - this->warmedUp)
+                                      .count();
+      }
+    }
   }
 
   double Total() const
@@ -387,10 +413,13 @@ bool ParseOptions(int argc, char** argv, Options& options)
       options.smoke = true;
     else if (arg == "--csv" && hasValue)
       options.csv = argv[++i];
+    else if (arg == "--rooms-background" && hasValue &&
+      (std::string(argv[i + 1]) == "on" || std::string(argv[i + 1]) == "off"))
+      options.roomsInBackground = std::string(argv[++i]) == "on" ? 1 : 0;
     else
     {
       std::cerr << "usage: scenevis_planner_path_bench [--frames N] [--size WxH] [--scene NAME]... "
-                   "[--smoke] [--csv FILE]\n";
+                   "[--smoke] [--csv FILE] [--rooms-background on|off]\n";
       return false;
     }
   }
@@ -455,12 +484,23 @@ int main(int argc, char** argv)
     for (auto& method : methods)
     {
       method->Render(path);
-      if (method->planner && method->planner->GetNumberOfRoomGenerations() > 0)
-        std::printf("%-18s planner's first Plan(), not timed in its total: %.0f ms (rooms and "
-                    "portals generated: %s)\n",
-          name.c_str(), method->planner->GetLastPlanTime(), method->planner->GetCullReason());
+      if (method->planner &&
+        (method->planner->GetNumberOfRoomGenerations() > 0 ||
+          method->planner->IsRoomGenerationPending()))
+        std::printf("%-18s planner's first Plan(), not timed in its total: %.1f ms, its frame "
+                    "%.1f ms (rooms and portals %s: %s)\n",
+          name.c_str(), method->planner->GetLastPlanTime(), method->frameMs.back(),
+          method->planner->IsRoomGenerationPending() ? "pending" : "generated",
+          method->planner->GetCullReason());
       method->frameMs.clear();
       method->planFrames.clear();
+      // -2: in use from the warm-up frame on (generated in it).
+      method->roomsAdoptedAt = method->planner &&
+          method->planner->GetNumberOfRoomGenerations() > 0 &&
+          std::string(method->planner->GetCullMethod()) == "portals"
+        ? -2
+        : -1;
+      method->warmedUp = std::chrono::steady_clock::now();
     }
     for (int f = 0; f < options.frames; ++f)
     {
@@ -481,6 +521,20 @@ int main(int argc, char** argv)
       std::printf("%-18s %-26s %10.1f %9.2f  %s\n", name.c_str(), method->name.c_str(),
         method->Total(), method->Total() / best, method->PlanSummary().c_str());
     }
+    const Method& planner = *methods.front();
+    if (planner.roomsAdoptedAt >= 0)
+      std::printf("%-18s planner's generated rooms in use from timed frame %d (%.0f ms after the "
+                  "warm-up frame ended; that frame %.1f ms, its Plan() %.1f ms)\n",
+        name.c_str(), planner.roomsAdoptedAt, planner.roomsAdoptedAfterMs,
+        planner.frameMs[static_cast<std::size_t>(planner.roomsAdoptedAt)],
+        planner.roomsAdoptedPlanMs);
+    else if (planner.roomsAdoptedAt == -2)
+      std::printf("%-18s planner's generated rooms in use from the warm-up frame (generated in "
+                  "it)\n",
+        name.c_str());
+    else if (planner.planner->IsRoomGenerationPending())
+      std::printf(
+        "%-18s planner's rooms still generating after %d frames\n", name.c_str(), options.frames);
     std::printf("%-18s planner / best fixed (%s) = %.2f over %d frames, %zu parts%s\n",
       name.c_str(), bestName.c_str(), methods.front()->Total() / best, options.frames,
       scene.parts.size(), scene.translucent ? ", translucent" : ", opaque");

@@ -12,6 +12,7 @@
 #include <ctime>
 #include <map>
 #include <numeric>
+#include <time.h> // clock_gettime, CLOCK_THREAD_CPUTIME_ID (POSIX)
 #include <tuple>
 #include <utility>
 
@@ -31,11 +32,19 @@ double secondsSince(Clock::time_point t)
   return std::chrono::duration<double>(Clock::now() - t).count();
 }
 
-/// Processor seconds this process used since @p t (std::clock): what the budget counts, so that
-/// the same scene gets the same answer on a busy machine as on a quiet one.
-double cpuSecondsSince(std::clock_t t)
+/// Processor seconds the calling thread has used: what the budget counts, so that the same scene
+/// gets the same answer on a busy machine as on a quiet one, and on a worker thread (the planner
+/// generates in the background) as on the render thread: the process's time (std::clock) would
+/// also count the threads rendering meanwhile. Generation runs on one thread. Where there is no
+/// thread clock, std::clock.
+double cpuSeconds()
 {
-  return static_cast<double>(std::clock() - t) / CLOCKS_PER_SEC;
+#if defined(CLOCK_THREAD_CPUTIME_ID)
+  timespec now{};
+  if (clock_gettime(CLOCK_THREAD_CPUTIME_ID, &now) == 0)
+    return static_cast<double>(now.tv_sec) + 1e-9 * static_cast<double>(now.tv_nsec);
+#endif
+  return static_cast<double>(std::clock()) / CLOCKS_PER_SEC;
 }
 
 struct UnionFind
@@ -422,7 +431,7 @@ CellSceneInput GeneratedPortals::cellScene(const PolygonMesh& mesh) const
 GeneratedPortals generatePortals(const GenerationInput& input, const GenerationConfig& config)
 {
   const auto start = Clock::now();
-  const std::clock_t cpuStart = std::clock();
+  const double cpuStart = cpuSeconds();
   GeneratedPortals out;
   GenerationStatistics& stats = out.statistics;
   if (!input.mesh || input.mesh->polygonCount() == 0)
@@ -437,7 +446,7 @@ GeneratedPortals generatePortals(const GenerationInput& input, const GenerationC
   // Past the budget: no rooms, and the step it stopped after in the message.
   auto overBudget = [&](const char* step)
   {
-    const double seconds = cpuSecondsSince(cpuStart);
+    const double seconds = cpuSeconds() - cpuStart;
     if (config.budgetSeconds <= 0.0 || seconds <= config.budgetSeconds)
     {
       return false;

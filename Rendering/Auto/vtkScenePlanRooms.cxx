@@ -1,36 +1,31 @@
 #include "vtkScenePlanRooms.h"
 
 #include "vtkScenePlanInventory.h"
+#include "vtkScenePlanRoomsModel.h"
+#include "vtkScenePlanRoomsWorker.h"
 
 #include "vtkActor.h"
 #include "vtkAutoRooms.h"
-#include "vtkCellArray.h"
-#include "vtkIntArray.h"
 #include "vtkMatrix4x4.h"
-#include "vtkNew.h"
-#include "vtkPoints.h"
 
 #include <cstdint>
+#include <sstream>
 
-namespace
+/// What a generation in the background was started for.
+struct vtkScenePlanRooms::Job
 {
-/// Appends @p cells to @p out with their point ids shifted by @p base.
-void AppendCells(vtkCellArray* cells, vtkIdType base, vtkCellArray* out)
+  vtkScenePlanRoomsModel Model; ///< without its polydata: the worker has it
+  std::vector<double> Signature;
+  /// False once its actors are no longer the planner's (a new set, or Clear()).
+  bool Wanted = true;
+};
+
+vtkScenePlanRooms::vtkScenePlanRooms()
+  : Worker(new vtkScenePlanRoomsWorker)
 {
-  vtkIdType npts = 0;
-  const vtkIdType* pts = nullptr;
-  std::vector<vtkIdType> shifted;
-  for (cells->InitTraversal(); cells->GetNextCell(npts, pts);)
-  {
-    shifted.assign(pts, pts + npts);
-    for (vtkIdType& id : shifted)
-    {
-      id += base;
-    }
-    out->InsertNextCell(npts, shifted.data());
-  }
 }
-} // namespace
+
+vtkScenePlanRooms::~vtkScenePlanRooms() = default;
 
 void vtkScenePlanRooms::Clear()
 {
@@ -38,9 +33,24 @@ void vtkScenePlanRooms::Clear()
   this->Rooms.clear();
   this->GeneratedFrom.clear();
   this->Reason.clear();
+  if (this->Running)
+  {
+    this->Running->Wanted = false;
+  }
+  this->Restart = false;
 }
 
-std::vector<double> vtkScenePlanRooms::Signature(vtkScenePlanInventory& inventory) const
+bool vtkScenePlanRooms::IsPending() const
+{
+  return this->Restart || (this->Running && this->Running->Wanted);
+}
+
+void vtkScenePlanRooms::Wait() const
+{
+  this->Worker->Wait();
+}
+
+std::vector<double> vtkScenePlanRooms::Signature(vtkScenePlanInventory& inventory)
 {
   std::vector<double> signature;
   for (const vtkScenePlanActorEntry& entry : inventory.GetEntries())
@@ -60,13 +70,14 @@ std::vector<double> vtkScenePlanRooms::Signature(vtkScenePlanInventory& inventor
 }
 
 bool vtkScenePlanRooms::Update(
-  vtkScenePlanInventory& inventory, bool newActors, double budgetSeconds)
+  vtkScenePlanInventory& inventory, bool newActors, double budgetSeconds, bool background)
 {
   const bool inUse = this->Portals != nullptr;
   if (!newActors)
   {
-    // The same actors: keep what was generated for them while they stay as they were.
-    if (inUse && this->Signature(inventory) != this->GeneratedFrom)
+    // The same actors: keep what was generated for them while they stay as they were (a
+    // generation in the background is checked when it ends).
+    if (inUse && vtkScenePlanRooms::Signature(inventory) != this->GeneratedFrom)
     {
       this->Portals = nullptr;
       this->Rooms.clear();
@@ -84,80 +95,77 @@ bool vtkScenePlanRooms::Update(
     // Nothing to gain (one actor is drawn whenever its room may be seen) or too big to try.
     return inUse;
   }
-
-  // The counted actors' polygons and strips in world coordinates, as one model.
-  vtkNew<vtkPoints> points;
-  points->SetDataTypeToDouble();
-  vtkNew<vtkCellArray> polys;
-  vtkNew<vtkCellArray> strips;
-  struct Piece
+  if (background && this->Worker->IsBusy())
   {
-    vtkActor* Actor;
-    vtkPolyData* Data;
-    vtkIdType FirstPoly;
-    vtkIdType FirstStrip;
-  };
-  std::vector<Piece> pieces;
-  for (const vtkScenePlanActorEntry& entry : inventory.GetEntries())
-  {
-    auto* pd = vtkPolyData::SafeDownCast(entry.Input);
-    if (!entry.Counted || !pd || !pd->GetPoints())
-    {
-      continue;
-    }
-    pieces.push_back({ entry.Actor, pd, polys->GetNumberOfCells(), strips->GetNumberOfCells() });
-    vtkMatrix4x4* m = entry.Actor->GetMatrix();
-    const vtkIdType base = points->GetNumberOfPoints();
-    for (vtkIdType i = 0; i < pd->GetNumberOfPoints(); ++i)
-    {
-      double p[4] = { 0, 0, 0, 1 };
-      pd->GetPoint(i, p);
-      double q[4];
-      m->MultiplyPoint(p, q);
-      points->InsertNextPoint(q[0] / q[3], q[1] / q[3], q[2] / q[3]);
-    }
-    AppendCells(pd->GetPolys(), base, polys);
-    AppendCells(pd->GetStrips(), base, strips);
+    // One generation at a time: this set of actors is generated for when the running one ends.
+    this->Restart = true;
+    this->RestartBudget = budgetSeconds;
+    this->Reason = "generating rooms in the background (for these actors once the generation "
+                   "for the previous ones has ended)";
+    return inUse;
   }
-  vtkNew<vtkPolyData> model;
-  model->SetPoints(points);
-  model->SetPolys(polys);
-  model->SetStrips(strips);
-  const vtkAutoRooms generated = vtkAutoRooms::Generate(model, "RoomId", budgetSeconds);
+
+  vtkScenePlanRoomsModel model = vtkScenePlanRoomsModel::Gather(inventory);
+  if (!background)
+  {
+    const vtkAutoRooms generated = vtkAutoRooms::Generate(model.Model, "RoomId", budgetSeconds);
+    return this->Use(generated, model, vtkScenePlanRooms::Signature(inventory)) || inUse;
+  }
+  // The worker tests the look too (a few milliseconds): this render pays for the copy alone.
+  std::ostringstream why;
+  why << "generating rooms in the background (" << model.ModelPolys + model.ModelStrips
+      << " polygons of " << model.Pieces.size()
+      << " actors, if they look architectural; until then culling as without rooms)";
+  this->Reason = why.str();
+  this->Running.reset(new Job{ vtkScenePlanRoomsModel(), vtkScenePlanRooms::Signature(inventory) });
+  this->Worker->Start(std::move(model.Model), budgetSeconds);
+  model.Model = nullptr;
+  this->Running->Model = std::move(model);
+  return inUse;
+}
+
+bool vtkScenePlanRooms::Poll(vtkScenePlanInventory& inventory)
+{
+  if (!this->Running || !this->Worker->IsDone())
+  {
+    return false;
+  }
+  const vtkAutoRooms generated = this->Worker->Take();
+  const std::unique_ptr<Job> job = std::move(this->Running);
+  bool changed = false;
+  if (job->Wanted && vtkScenePlanRooms::Signature(inventory) == job->Signature)
+  {
+    changed = this->Use(generated, job->Model, job->Signature);
+  }
+  else
+  {
+    this->Generations += generated.Tried ? 1 : 0;
+    if (job->Wanted)
+    {
+      this->Reason = "the generation in the background discarded: an actor moved or changed "
+                     "while it ran (rooms are generated again when the actors change)";
+    }
+  }
+  if (this->Restart)
+  {
+    // The set of actors that came while the worker was busy.
+    this->Restart = false;
+    changed |= this->Update(inventory, true, this->RestartBudget, true);
+  }
+  return changed;
+}
+
+bool vtkScenePlanRooms::Use(
+  const vtkAutoRooms& generated, const vtkScenePlanRoomsModel& model, std::vector<double> signature)
+{
   this->Generations += generated.Tried ? 1 : 0;
   this->Reason = generated.Reason;
   if (!generated.Used)
   {
-    return inUse;
+    return false;
   }
-
-  // Each actor's cells: vertices and lines -1, then its polygons, then its strips.
-  const vtkIdType stripBase = polys->GetNumberOfCells();
-  for (const Piece& piece : pieces)
-  {
-    vtkPolyData* pd = piece.Data;
-    vtkNew<vtkIntArray> rooms;
-    rooms->SetName("RoomId");
-    rooms->SetNumberOfTuples(pd->GetNumberOfCells());
-    vtkIdType cell = 0;
-    for (const vtkIdType n : { pd->GetNumberOfVerts(), pd->GetNumberOfLines() })
-    {
-      for (vtkIdType k = 0; k < n; ++k)
-      {
-        rooms->SetValue(cell++, -1);
-      }
-    }
-    for (vtkIdType k = 0; k < pd->GetNumberOfPolys(); ++k)
-    {
-      rooms->SetValue(cell++, generated.Rooms->GetValue(piece.FirstPoly + k));
-    }
-    for (vtkIdType k = 0; k < pd->GetNumberOfStrips(); ++k)
-    {
-      rooms->SetValue(cell++, generated.Rooms->GetValue(stripBase + piece.FirstStrip + k));
-    }
-    this->Rooms.emplace_back(piece.Actor, rooms);
-  }
+  this->Rooms = model.CellRoomsOf(generated.Rooms);
   this->Portals = generated.Portals;
-  this->GeneratedFrom = this->Signature(inventory);
+  this->GeneratedFrom = std::move(signature);
   return true;
 }

@@ -91,6 +91,10 @@ public:
   /// Rooms and portals generated when the application gives none (SetGenerateRooms).
   vtkScenePlanRooms Rooms;
   bool RoomsSettingChanged = false;
+  /// The generated rooms' reason the culling reason quotes (it may move on under the same plan).
+  std::string RoomsReasonShown;
+  /// The facts line of the plan in force (those it was adopted on).
+  std::string AdoptedFacts;
   vtkMTimeType PortalsTime = 0;
 
   // --- change detection ---
@@ -130,6 +134,8 @@ public:
       this->Portals ? vtkScenePlanRooms::CellRooms() : this->Rooms.GetCellRooms());
   }
   void Adopt(const vtkScenePlanChoice& cull, const vtkScenePlanChoice& translucency);
+  /// The reason texts of the plan in force: its facts and the generated rooms' latest reason.
+  void ComposeReason();
   /// The translucency method for the culling method @p cull.
   vtkScenePlanChoice ChooseTranslucency(const vtkScenePlanChoice& cull);
 };
@@ -144,6 +150,7 @@ void vtkSceneVisPlanner::vtkInternals::UndoAll(vtkRenderer* ren)
   this->Translucency = { "none", "not planned yet" };
   this->CullReasonText = this->ReasonText = "not planned yet";
   this->Planned = false;
+  this->RoomsReasonShown.clear();
   this->Pending.clear();
   this->PendingFrames = 0;
   this->SceneKey.clear();
@@ -151,16 +158,23 @@ void vtkSceneVisPlanner::vtkInternals::UndoAll(vtkRenderer* ren)
   this->Camera = nullptr;
 }
 
+void vtkSceneVisPlanner::vtkInternals::ComposeReason()
+{
+  this->CullReasonText = this->Cull.Reason + " (" + this->AdoptedFacts + ")";
+  this->RoomsReasonShown = this->Portals ? std::string() : this->Rooms.GetReason();
+  if (!this->RoomsReasonShown.empty())
+    this->CullReasonText += "; " + this->RoomsReasonShown;
+  this->ReasonText = "culling " + this->Cull.Method + ": " + this->CullReasonText +
+    "; translucency " + this->Translucency.Method + ": " + this->Translucency.Reason;
+}
+
 void vtkSceneVisPlanner::vtkInternals::Adopt(
   const vtkScenePlanChoice& cull, const vtkScenePlanChoice& translucency)
 {
   this->Cull = cull;
   this->Translucency = translucency;
-  this->CullReasonText = cull.Reason + " (" + this->Inventory.GetFacts().Summary() + ")";
-  if (!this->Portals && !this->Rooms.GetReason().empty())
-    this->CullReasonText += "; " + this->Rooms.GetReason();
-  this->ReasonText = "culling " + cull.Method + ": " + this->CullReasonText + "; translucency " +
-    translucency.Method + ": " + translucency.Reason;
+  this->AdoptedFacts = this->Inventory.GetFacts().Summary();
+  this->ComposeReason();
   this->Planned = true;
   this->Pending.clear();
   this->PendingFrames = 0;
@@ -303,8 +317,8 @@ void vtkSceneVisPlanner::Plan()
     // No portals of the application's: generated ones, tried once per set of actors.
     if (!in.Portals && this->GenerateRooms)
     {
-      if (in.Rooms.Update(
-            in.Inventory, structure || roomsSetting || portalsChanged, this->RoomGenerationBudget))
+      if (in.Rooms.Update(in.Inventory, structure || roomsSetting || portalsChanged,
+            this->RoomGenerationBudget, this->GenerateRoomsInBackground))
         in.UsePortals();
     }
     else if (roomsSetting)
@@ -327,6 +341,13 @@ void vtkSceneVisPlanner::Plan()
     {
       in.WarnedEmpty = false;
     }
+  }
+  // Rooms generated in the background that have come: planned for as a change of the scene (the
+  // facts' rooms and portals), exactly as if they had been generated in this render.
+  if (in.Rooms.Poll(in.Inventory))
+  {
+    in.UsePortals();
+    sceneChanged = true;
   }
   // The view: only the camera's and viewport's parameters that change what is seen.
   vtkCamera* camera = ren->GetActiveCamera();
@@ -427,6 +448,9 @@ void vtkSceneVisPlanner::Plan()
       }
     }
   }
+  // The generated rooms' story moved on (generating, generated, discarded) under the same plan.
+  if (in.Planned && !in.Portals && in.Rooms.GetReason() != in.RoomsReasonShown)
+    in.ComposeReason();
   in.Inventory.SetIgnoringModifications(false);
   this->LastPlanTime =
     std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
@@ -463,6 +487,16 @@ void vtkSceneVisPlanner::SetGenerateRooms(bool generate)
   this->GenerateRooms = generate;
   this->Internals->RoomsSettingChanged = true;
   this->Modified();
+}
+
+bool vtkSceneVisPlanner::IsRoomGenerationPending() const
+{
+  return this->Internals->Rooms.IsPending();
+}
+
+void vtkSceneVisPlanner::WaitForRoomGeneration()
+{
+  this->Internals->Rooms.Wait();
 }
 
 int vtkSceneVisPlanner::GetNumberOfRoomGenerations() const
@@ -530,7 +564,9 @@ void vtkSceneVisPlanner::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "RoomGenerationBudget: " << this->RoomGenerationBudget << " s\n";
   os << indent << "GenerateRooms: " << this->GenerateRooms << " ("
      << in.Rooms.GetNumberOfGenerations() << " generations"
-     << (in.Rooms.GetPortals() ? ", in use" : "") << ")\n";
+     << (in.Rooms.GetPortals() ? ", in use" : "")
+     << (in.Rooms.IsPending() ? ", one pending in the background" : "") << ")\n";
+  os << indent << "GenerateRoomsInBackground: " << this->GenerateRoomsInBackground << "\n";
   vtkRenderPass* pass = in.Installer.GetPass();
   vtkCuller* culler = in.Installer.GetCuller();
   os << indent << "Culler: " << (culler ? culler->GetClassName() : "(none)") << "\n";

@@ -25,7 +25,8 @@
  * with vtkScenePlanRule::ManyProps+ actors, how much of the triangles the camera sees and the
  * estimated depth complexity (the in-view actors' screen rectangles over the area they span);
  * the rooms and portals of the portals given with SetPortals(), or of those it generated for
- * actors that look like a building (SetGenerateRooms). Other props (volumes, 2D actors,
+ * actors that look like a building (SetGenerateRooms; by default in the background,
+ * SetGenerateRoomsInBackground). Other props (volumes, 2D actors,
  * assemblies) are left alone and not counted. The actors are the application's: with ManyProps+
  * of them the planner always culls (facts.fixedActors, see vtkScenePlanRule).
  *
@@ -200,14 +201,55 @@ public:
    * they are at least 2 rooms and 1 portal with no leak: the plan is then "portals", each actor's
    * cells get their rooms in the portal culler (the application's data is not touched), and the
    * culling reason says what was generated or why not. The rooms hold for the actors as they
-   * were: when one moves or changes, they are dropped until the set of actors changes. Default
-   * on. GetNumberOfRoomGenerations() counts the generations run.
+   * were: when one moves or changes, they are dropped until the set of actors changes. By
+   * default the generation runs in the background and the first renders plan without rooms
+   * (SetGenerateRoomsInBackground). Default on. GetNumberOfRoomGenerations() counts the
+   * generations run (used or not; one in the background when it has ended).
    */
   void SetGenerateRooms(bool generate);
   vtkGetMacro(GenerateRooms, bool);
   vtkBooleanMacro(GenerateRooms, bool);
   int GetNumberOfRoomGenerations() const;
   ///@}
+
+  ///@{
+  /**
+   * Generate rooms on a worker thread instead of inside the render that needs them (the demo
+   * building's 0.65-0.85 s, up to the budget, would be one frame). The render that would
+   * generate copies the actors' polygons into a model of its own (no VTK object shared with the
+   * application), starts a worker thread on it (the architectural look's test, then the
+   * generation when it passes) and plans as without rooms, its culling reason saying "generating
+   * rooms in the background": that frame costs what an ordinary plan costs plus the copy (2-3 ms
+   * for the 4,201 polygons of scenevis_planner_path_bench's building-generated, against about
+   * 1 s generated in the render). At the first render after the worker has ended, the
+   * rooms are used exactly as the synchronous path uses them (and the plan becomes "portals") if
+   * the actors are still those they were generated for (same actors, inputs, input MTimes and
+   * matrices); otherwise they are discarded and the reason says so. Actors added or removed
+   * while it runs: its result is discarded and the new set is generated for when it ends (one
+   * worker at a time). A scene that is no building is told so at the render after the test
+   * ended, without a change of plan. A generation cannot be interrupted: SetRenderer() and
+   * SetGenerateRooms(false) leave it to end and discard it, the planner's end waits for what is
+   * left of it (the budget bounds it; it counts the worker thread's processor time, not the
+   * renderer's). Default on.
+   */
+  vtkSetMacro(GenerateRoomsInBackground, bool);
+  vtkGetMacro(GenerateRoomsInBackground, bool);
+  vtkBooleanMacro(GenerateRoomsInBackground, bool);
+  ///@}
+
+  /// Rooms are being generated in the background for the current actors, or have been and will
+  /// be adopted (or discarded) by the next Plan().
+  bool IsRoomGenerationPending() const;
+
+  /**
+   * Blocks until the generation running in the background (if any) has ended, for tests and
+   * applications that want the rooms before going on (a still image, a benchmark); the next
+   * Plan() (render) adopts them. Returns at once when nothing runs. When the set of actors
+   * changed while it ran, that Plan() starts the generation for the new set instead (still
+   * pending: wait again). The planner does not render by itself: an application that renders
+   * only on demand gets the rooms at its next render.
+   */
+  void WaitForRoomGeneration();
 
   ///@{
   /// Processor seconds a generation of rooms may take (0: no limit); past it, no rooms (the plan
@@ -228,6 +270,7 @@ protected:
   vtkIdType ChunkedMinimumTriangles = 65536;
   double LastPlanTime = 0.0;
   bool GenerateRooms = true;
+  bool GenerateRoomsInBackground = true;
   double RoomGenerationBudget; ///< vtkAutoRooms::BudgetSeconds
 
   /// The renderer's DeleteEvent: forget it without touching it (it is being destroyed).

@@ -115,8 +115,9 @@ struct GenerationConfig
   double passageThickness = 0.5;
   /// Growth of the scene box around the input bounds, as a fraction of their diagonal.
   double margin = 0.1;
-  /// Processor seconds the generation may take (0: no limit; std::clock, so a loaded machine
-  /// stretches the wall time but not the answer). Checked between its steps (after
+  /// Processor seconds the generation may take (0: no limit; the calling thread's processor time
+  /// where POSIX has a thread clock, else std::clock: a loaded machine, or other threads of the
+  /// process at work, stretch the wall time but not the answer). Checked between its steps (after
   /// the BSP, each round of opening splits, the openings) and every 256 cells of the leak search;
   /// past it, generation stops with GenerationStatus::OverBudget and no rooms (never a partial,
   /// unchecked answer). A caller that tries generation on speculation (`--cull auto`) bounds what

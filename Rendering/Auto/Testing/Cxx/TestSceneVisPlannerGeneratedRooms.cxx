@@ -1,5 +1,7 @@
 // vtkSceneVisPlanner on a building whose actors say nothing of rooms or portals (2 floors x 3 x 3
-// rooms, one actor per room plus one for the outside, no RoomId anywhere, no SetPortals()):
+// rooms, one actor per room plus one for the outside, no RoomId anywhere, no SetPortals()),
+// generating in the render (GenerateRoomsInBackgroundOff; in the background:
+// TestSceneVisPlannerBackgroundRooms):
 //  (a) at the first render it generates rooms and portals (once) and plans "portals": a
 //      vtkPortalCuller in place of VTK's culler, the reason saying what was generated;
 //  (b) from an eye in the middle of every room, what the culler kept has 0 false negatives
@@ -14,11 +16,11 @@
 #include "vtkSceneVisPlanner.h"
 
 #include "PlannerTesting.h"
+#include "RoomWalk.h"
 
 #include "vtkPortalCuller.h"
 
 #include "scenevis/Scenes.h"
-#include "scenevis/testing/IdBuffer.h"
 #include "scenevis/testing/RenderWindow.h"
 #include "scenevis/testing/Scenes.h"
 #include "scenevis/testing/StrictVtkOutput.h"
@@ -29,9 +31,7 @@
 #include <vtkRenderWindow.h>
 #include <vtkRenderer.h>
 
-#include <cstdint>
 #include <cstdlib>
-#include <iostream>
 #include <string>
 #include <vector>
 
@@ -39,72 +39,12 @@ namespace
 {
 namespace st = scenevis::testing;
 using plannertesting::Check;
+using plannertesting::Walk;
+using plannertesting::WalkRooms;
 
 bool Has(const char* text, const char* part)
 {
   return std::string(text).find(part) != std::string::npos;
-}
-
-/// The building's rooms from eyes in the middle of each room: whether every visible room was
-/// drawn, and in how many views some actor was culled.
-struct Walk
-{
-  bool conservative = true;
-  std::size_t culledViews = 0;
-  std::size_t drawn = 0;
-  std::size_t visible = 0;
-  std::size_t traversed = 0; ///< views the portal culler traversed (no frustum-only fallback)
-};
-
-Walk WalkRooms(vtkRenderWindow* window, vtkRenderer* renderer, vtkSceneVisPlanner* planner,
-  const scenevis::scenes::BuildingScene& b, const std::vector<vtkSmartPointer<vtkActor>>& actors,
-  vtkPolyData* all, std::size_t rooms)
-{
-  const int outsideNode = static_cast<int>(b.rooms.size());
-  vtkNew<plannertesting::RecordingCuller> recorder;
-  vtkCamera* camera = renderer->GetActiveCamera();
-  Walk walk;
-  for (std::size_t r = 0; r < rooms; ++r)
-  {
-    const auto& room = b.rooms[r];
-    const auto& box = room.bounds;
-    const double eye[3] = { (box.lo.x + box.hi.x) / 2, (box.lo.y + box.hi.y) / 2,
-      box.lo.z + 0.6 * (box.hi.z - box.lo.z) };
-    camera->SetPosition(eye);
-    camera->SetFocalPoint(eye[0] + 1.0, eye[1] + 0.3 * (room.ix % 2 ? 1 : -1), eye[2] - 0.1);
-    camera->SetViewUp(0, 0, 1);
-    camera->SetClippingRange(0.05, 200.0);
-    planner->Plan(); // so that the recorder goes after the planner's culler
-    renderer->RemoveCuller(recorder);
-    renderer->AddCuller(recorder);
-    window->Render();
-    std::vector<std::uint32_t> drawn;
-    for (vtkProp* prop : recorder->Kept)
-      for (std::size_t a = 0; a < actors.size(); ++a)
-        if (actors[a].Get() == prop && a <= b.rooms.size())
-          drawn.push_back(static_cast<std::uint32_t>(a == 0 ? outsideNode : a - 1));
-    st::IdRenderOptions options;
-    options.originalIdArray = "RoomNode";
-    options.cameraClippingRange = true;
-    const std::vector<std::uint32_t> visible =
-      st::VisibleSet(st::RenderIdBuffer(window, all, camera, options));
-    const st::CullingCheck check = st::CullingIsConservative(visible, drawn);
-    if (!check.conservative)
-      std::cout << "room " << room.id << ": " << check.Summary() << "\n";
-    walk.conservative &= check.conservative;
-    walk.culledViews += recorder->Kept.size() < actors.size() ? 1 : 0;
-    auto* portals = vtkPortalCuller::SafeDownCast(planner->GetCuller());
-    walk.traversed += portals && std::string(portals->GetFallbackReason()).empty() &&
-        std::string(portals->GetGraphReport()).find("error") == std::string::npos
-      ? 1
-      : 0;
-    if (portals && !std::string(portals->GetFallbackReason()).empty())
-      std::cout << "room " << room.id << ": frustum only, " << portals->GetFallbackReason() << "\n";
-    walk.drawn += drawn.size();
-    walk.visible += visible.size();
-  }
-  renderer->RemoveCuller(recorder);
-  return walk;
 }
 } // namespace
 
@@ -130,6 +70,8 @@ int TestSceneVisPlannerGeneratedRooms(int, char*[])
   // No time limit: under AddressSanitizer the 0.65 s generation takes more than the default 3 s
   // of processor time (the budget's own test is Core.PortalGeneration.PastItsBudget...).
   planner->SetRoomGenerationBudget(0.0);
+  // In the render that needs them (the background: TestSceneVisPlannerBackgroundRooms).
+  planner->GenerateRoomsInBackgroundOff();
   renderer->ResetCamera();
   window->Render();
   const std::string reason = planner->GetCullReason();
@@ -202,6 +144,7 @@ int TestSceneVisPlannerGeneratedRooms(int, char*[])
   window->AddRenderer(boxes);
   plannertesting::BoxGrid grid(boxes, 4, 4, 1, 0.5);
   vtkSceneVisPlanner* other = vtkSceneVisPlanner::Attach(boxes);
+  other->GenerateRoomsInBackgroundOff();
   boxes->ResetCamera();
   window->Render();
   ok &= Check(other->GetNumberOfRoomGenerations() == 0 &&
