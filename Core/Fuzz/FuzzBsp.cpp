@@ -16,7 +16,10 @@
 //  5. ordered leaves (BuildConfig::orderedLeafSize 8 / 16 / 64, from the top bits of the seed
 //     byte; 0 skips): a second tree built with them draws no fragment twice, FrontToBack is the
 //     reverse of BackToFront, every input polygon's drawn area equals its area in the first tree,
-//     and the oracle (as in 4, for the first view) finds no confirmed violation in what is drawn.
+//     and the oracle (as in 4, for the first view) finds no confirmed violation in what is drawn;
+//  6. conforming fragments (BuildConfig::conformingFragments, on unless the input turns it off):
+//     no fragment edge joins the two end points of an edge a split point was made on (the split
+//     point lies on that segment: a T-junction); exact, no tolerance.
 //
 // Guards (when checks 3 and 4 are meaningful):
 //  - "conditioned" input: every point finite and within 1e8 of the origin (the optional 1e7
@@ -37,6 +40,8 @@
 // A failed check prints what failed and aborts (libFuzzer saves the input as crash-*).
 
 #include "FuzzBspInput.h"
+
+#include <unordered_set>
 
 #include "scenevis/BspBuilder.h"
 #include "scenevis/BspTraversal.h"
@@ -337,6 +342,33 @@ void checkPermutation(const std::vector<std::uint32_t>& order, std::size_t size)
       fail("order is not a permutation", f, static_cast<double>(size));
     }
     seen[f] = 1;
+  }
+}
+
+/// Check 6 (see the file comment).
+void checkConforming(const Tree& tree)
+{
+  if (!tree.statistics.inputPolygons || tree.splitPoints.empty())
+  {
+    return;
+  }
+  std::unordered_set<std::uint64_t> splitEdges;
+  for (const auto& sp : tree.splitPoints)
+  {
+    splitEdges.insert(
+      (static_cast<std::uint64_t>(std::min(sp.a, sp.b)) << 32) | std::max(sp.a, sp.b));
+  }
+  for (const auto& f : tree.fragments)
+  {
+    for (std::uint32_t k = 0; k < f.count; ++k)
+    {
+      const std::uint32_t u = tree.fragmentVertices[f.first + k];
+      const std::uint32_t v = tree.fragmentVertices[f.first + (k + 1) % f.count];
+      if (splitEdges.count((static_cast<std::uint64_t>(std::min(u, v)) << 32) | std::max(u, v)))
+      {
+        fail("a fragment edge passes through a split point (T-junction)", u, v);
+      }
+    }
   }
 }
 
@@ -938,6 +970,10 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     dumpCase(d, tree);
   }
   checkStructure(mesh, tree);
+  if (d.config.conformingFragments)
+  {
+    checkConforming(tree);
+  }
 
   std::vector<std::uint32_t> forward;
   std::vector<std::uint32_t> backward;
