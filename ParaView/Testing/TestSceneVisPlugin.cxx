@@ -365,6 +365,22 @@ void TestCulling(vtkSMSessionProxyManager* pxm, vtkSMParaViewPipelineController*
     "Culling 2, the SceneVis occlusion culler: " + std::to_string(hidden) +
       " spheres hidden by the box culled (3 expected), the image unchanged (" +
       Describe(occlusionError) + ")");
+  // Interactive renders that draw ParaView's decimated LOD geometry (threshold 0 MB: always):
+  // the full-resolution occluders may not be what is drawn, so no occlusion culling then.
+  vtkSMPropertyHelper(view, "LODThreshold").Set(0.0);
+  view->UpdateVTKObjects();
+  view->StillRender();
+  view->InteractiveRender();
+  const bool lod = object->GetUseLODForInteractiveRender();
+  const vtkIdType hiddenInLod = occlusion ? occlusion->GetNumberOfPropsCulledByOcclusion() : -1;
+  const vtkIdType outsideInLod = occlusion ? occlusion->GetNumberOfPropsCulledByFrustum() : -1;
+  Check(lod && hiddenInLod == 0 && outsideInLod >= 8,
+    "Culling 2, an interactive render drawing level-of-detail geometry: no occlusion culling (" +
+      std::to_string(hiddenInLod) + " culled by occlusion), frustum culling stays (" +
+      std::to_string(outsideInLod) + ")");
+  view->StillRender();
+  Check(occlusion && occlusion->GetNumberOfPropsCulledByOcclusion() >= 3,
+    "Culling 2, the next still render: occlusion culling again");
   renderWith(vtkSceneVisRenderView::CULLING_VTK);
   Check(object->GetSceneVisCuller() == nullptr, "Culling back to 0: VTK's culler again");
 }

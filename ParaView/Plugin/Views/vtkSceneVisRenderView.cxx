@@ -78,6 +78,19 @@ void vtkSceneVisRenderView::SetCulling(int mode)
 }
 
 //------------------------------------------------------------------------------
+void vtkSceneVisRenderView::Render(bool interactive, bool skip_rendering)
+{
+  if (auto* occlusion = vtkOcclusionCuller::SafeDownCast(this->OcclusionCuller))
+  {
+    // vtkPVLODActor then draws its decimated geometry, but the occluders rasterized are what the
+    // actors' mappers hold at full resolution: a prop seen through a gap of the decimated
+    // surface would be culled. Frustum culling stays.
+    occlusion->SetOcclusionCulling(!(interactive && this->GetUseLODForInteractiveRender()));
+  }
+  this->Superclass::Render(interactive, skip_rendering);
+}
+
+//------------------------------------------------------------------------------
 vtkOctreeCuller* vtkSceneVisRenderView::GetSceneVisCuller() const
 {
   switch (this->Culling)

@@ -19,7 +19,10 @@
  * conservative software depth buffer: no visible pixel is lost). Each representation is one
  * prop, so culling pays for scenes of many representations. On MPI ranks each rank culls its
  * own props with its own occluders, which is conservative for the composited image too (a prop
- * hidden behind geometry of the same rank is hidden in the depth-composited image).
+ * hidden behind geometry of the same rank is hidden in the depth-composited image). In
+ * interactive renders that draw ParaView's decimated level-of-detail geometry (data above the
+ * view's LOD threshold) props are not culled by occlusion: the occluders are the full-resolution
+ * surfaces, which the decimated ones drawn in their place may not cover.
  *
  * Its proxy is "SceneVis Ordered Translucency" (views group, SceneVisRenderView), a RenderView
  * with every RenderView property, SortTranslucentGeometry and Culling.
@@ -77,6 +80,9 @@ public:
 protected:
   vtkSceneVisRenderView();
   ~vtkSceneVisRenderView() override;
+
+  /// Occlusion culling off for the interactive renders that draw level-of-detail geometry.
+  void Render(bool interactive, bool skip_rendering) override;
 
   bool SortTranslucentGeometry = true;
   int Culling = CULLING_VTK;
