@@ -23,8 +23,8 @@
 // clipping range is reset to the props every frame.
 //
 // Run: build/bin/scenevis_planner_path_bench [--frames N] [--size WxH] [--scene NAME]...
-//   NAME: cad, cad-opaque, spheres, cyclic-quads, building (demos; the building 3 floors of
-//   10 x 10 rooms, inside: the middle of a ground-floor room), building-generated (2 floors of
+//   NAME: cad, cad-opaque, spheres, cyclic-quads, triangles, building (demos; the building 3 floors
+//   of 10 x 10 rooms, inside: the middle of a ground-floor room), building-generated (2 floors of
 //   5 x 5 rooms; the planner generates rooms and portals, "opaque + portals" has the hand-made
 //   ones; the generation in the untimed warm-up frame is printed), engine (engine-glb), bunny
 //   (bunny-stl, opacity 0.4), level-MAP (the data cache).
@@ -181,7 +181,8 @@ PathScene LoadScene(const std::string& name, std::string& error)
   PathScene scene;
   scene.name = name;
   vtkSmartPointer<vtkPolyData> pd;
-  if (name == "cad" || name == "cad-opaque" || name == "spheres" || name == "cyclic-quads")
+  if (name == "cad" || name == "cad-opaque" || name == "spheres" || name == "cyclic-quads" ||
+    name == "triangles")
   {
     vtkNew<vtkDemoSceneSource> source;
     source->SetSceneByName(name == "cad-opaque" ? "cad" : name.c_str());
@@ -432,7 +433,7 @@ bool ParseOptions(int argc, char** argv, Options& options)
       options.scenes = { "cad" };
   }
   if (options.scenes.empty())
-    options.scenes = { "cad", "cad-opaque", "spheres", "cyclic-quads", "building",
+    options.scenes = { "cad", "cad-opaque", "spheres", "cyclic-quads", "triangles", "building",
       "building-generated", "engine", "bunny", "level-ctf_inyard" };
   return true;
 }

@@ -1,6 +1,6 @@
-// TestSceneVisPlugin PLUGIN_FILE [STATE_FILE]: the SceneVis ParaView plugin loaded into ParaView's
-// server manager the way pvbatch and pvpython load a plugin (a built-in session, LoadPlugin), its
-// proxies created and run as a ParaView pipeline, and the results judged:
+// TestSceneVisPlugin PLUGIN_FILE [STATE_FILE] [--vtk91 SCENEVIS_TOOL]: the SceneVis ParaView plugin
+// loaded into ParaView's server manager the way pvbatch and pvpython load a plugin (a built-in
+// session, LoadPlugin), its proxies created and run as a ParaView pipeline, and the results judged:
 // 1. "SceneVis Demo Scene" -> "SceneVis BSP Sort" with the camera as proxy properties: the output
 //    order is exact by the brute-force order oracle (scenevis/OrderOracle.h) from an eye in front,
 //    after the camera property moves the eye behind (the tree is kept: one build), and for a
@@ -16,6 +16,9 @@
 //    portals and leaks as a vtkGenerateRooms made directly (the XML defaults are the class's).
 // 5. The view's Culling: SceneVis's octree and occlusion cullers cull what is outside the view
 //    and what is hidden, and the image is VTK's culler's, pixel for pixel.
+// 6. With --vtk91 SCENEVIS_TOOL (the main build's command-line tool, VTK 9.1): the view's image of
+//    the translucent triangles and spheres matches the tool's exact image (`scenevis render --sort
+//    multi-actor`, same camera, light, background and normals) within 0.5/255 mean.
 // With STATE_FILE, the pipelines are also registered and saved as a ParaView state (.pvsm) that
 // the paraview GUI opens with the plugin: `paraview --plugins=PLUGIN_FILE --state=STATE_FILE`.
 #include "vtkBSPSortFilter.h"
@@ -34,6 +37,8 @@
 #include "vtkImageData.h"
 #include "vtkInitializationHelper.h"
 #include "vtkNew.h"
+#include "vtkPNGReader.h"
+#include "vtkPNGWriter.h"
 #include "vtkPointData.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
@@ -429,16 +434,127 @@ void TestGenerateRooms(vtkSMSessionProxyManager* pxm, vtkSMParaViewPipelineContr
       direct->GetNumberOfLeakCells() == generator->GetNumberOfLeakCells(),
     "Generate Rooms: the proxy's defaults give what the class's defaults give");
 }
+/**
+ * The plugin's view against SceneVis under the system's VTK 9.1 (issue 17: "the plugin's
+ * BSP-sorted render of the translucent demo matches the VTK 9.1 image within 0.5/255 mean"). The
+ * VTK 9.1 image is rendered by the main build's command-line tool @p tool (`scenevis render`,
+ * vtkBSPTranslucentPass through `--sort multi-actor`) with the view's camera; the SceneVis view is
+ * set up the way a plain VTK renderer draws: no light kit (the renderer's own headlight), the
+ * tool's background and point normals, the demo's RGBA cell colours drawn directly. The two differ
+ * only in the VTK (9.1 against ParaView's 9.2) and in ParaView's rendering around the pass.
+ */
+void TestAgainstVtk91(vtkSMSessionProxyManager* pxm, vtkSMParaViewPipelineController* controller,
+  const std::string& tool, int sceneId, const std::string& sceneName, const std::string& toolScene)
+{
+  auto scene = NewPipelineProxy(pxm, controller, "sources", "SceneVisDemoScene");
+  vtkSMPropertyHelper(scene, "Scene").Set(sceneId);
+  scene->UpdateVTKObjects();
+  scene->UpdatePipeline();
+  double bounds[6];
+  Output(scene)->GetBounds(bounds);
+  const double size = bounds[1] - bounds[0] + bounds[3] - bounds[2] + bounds[5] - bounds[4];
+  const double eye[3] = { 0.15 * size, 0.1 * size, 1.0 * size };
+
+  const std::string png = "TestSceneVisPlugin-vtk91-" + toolScene + ".png";
+  const std::string command = "\"" + tool + "\" render --scene " + toolScene + " --camera " +
+    std::to_string(eye[0]) + "," + std::to_string(eye[1]) + "," + std::to_string(eye[2]) +
+    ",0,0,0 --up 0,1,0 --view-angle 30 --size " + std::to_string(kImageSize) + "x" +
+    std::to_string(kImageSize) + " --cull none --sort multi-actor --out " + png + " > /dev/null";
+  const bool rendered = std::system(command.c_str()) == 0;
+  Check(rendered, "VTK 9.1, " + sceneName + ": " + command);
+  vtkNew<vtkPNGReader> reader;
+  reader->SetFileName(png.c_str());
+  if (rendered)
+  {
+    reader->Update();
+  }
+  vtkImageData* vtk91 = rendered ? reader->GetOutput() : nullptr;
+
+  auto view = NewView(pxm, controller, "SceneVisRenderView", eye, 0, true);
+  if (!view)
+  {
+    return;
+  }
+  // No light kit; one white headlight of intensity 1, as the light vtkRenderer creates itself.
+  vtkSMPropertyHelper(view, "UseLight").Set(0);
+  vtkSmartPointer<vtkSMProxy> headlight;
+  headlight.TakeReference(pxm->NewProxy("additional_lights", "Light"));
+  if (!headlight)
+  {
+    Check(false, "VTK 9.1, " + sceneName + ": ParaView's Light proxy");
+    return;
+  }
+  controller->InitializeProxy(headlight);
+  vtkSMPropertyHelper(headlight, "LightType").Set(1); // Headlight (intensity 1, white)
+  headlight->UpdateVTKObjects();
+  vtkSMPropertyHelper(view, "AdditionalLights").Add(headlight);
+  if (view->GetProperty("UseColorPaletteForBackground"))
+  {
+    vtkSMPropertyHelper(view, "UseColorPaletteForBackground").Set(0);
+  }
+  const double background[3] = { 26 / 255.0, 26 / 255.0, 31 / 255.0 }; // Tools/ViewSetup.h
+  vtkSMPropertyHelper(view, "Background").Set(background, 3);
+  view->UpdateVTKObjects();
+  vtkNew<vtkSMParaViewPipelineControllerWithRendering> rendering;
+  // The tool's smooth shading (Tools/SceneLoading.cxx): point normals, feature angle 50.
+  auto normals = NewPipelineProxy(pxm, controller, "filters", "PolyDataNormals", scene);
+  if (!normals)
+  {
+    Check(false, "VTK 9.1, " + sceneName + ": ParaView's PolyDataNormals filter");
+    return;
+  }
+  vtkSMPropertyHelper(normals, "FeatureAngle").Set(50.0);
+  normals->UpdateVTKObjects();
+  normals->UpdatePipeline();
+  vtkSMProxy* representation = rendering->Show(normals, 0, view);
+  if (!representation)
+  {
+    return;
+  }
+  vtkSMPropertyHelper(representation, "ColorArrayName")
+    .SetInputArrayToProcess(vtkDataObject::FIELD_ASSOCIATION_CELLS, "Colors");
+  vtkSMPropertyHelper(representation, "MapScalars").Set(0); // RGBA as it is
+  representation->UpdateVTKObjects();
+  view->StillRender();
+  auto plugin = vtkSMSaveScreenshotProxy::CaptureImage(view, vtkVector2i(kImageSize, kImageSize));
+  const ImageError error = Compare(plugin, vtk91);
+  std::cout << "      " << sceneName << ", SceneVisRenderView (ParaView 5.11, VTK 9.2) against "
+            << "`scenevis render --sort multi-actor` (VTK 9.1), " << kImageSize << "x" << kImageSize
+            << ": " << Describe(error) << "\n";
+  if (const char* out = std::getenv("SCENEVIS_PLUGIN_IMAGES"))
+  {
+    vtkNew<vtkPNGWriter> writer;
+    writer->SetInputData(plugin);
+    writer->SetFileName((std::string(out) + "/plugin-" + toolScene + ".png").c_str());
+    writer->Write();
+  }
+  Check(error.mean >= 0.0 && error.mean <= 0.5,
+    "VTK 9.1, " + sceneName +
+      ": the plugin's view matches SceneVis under VTK 9.1 within 0.5/255 mean");
+}
 } // namespace
 
 int main(int argc, char* argv[])
 {
   if (argc < 2)
   {
-    std::cerr << "usage: TestSceneVisPlugin PLUGIN_FILE [STATE_FILE]\n";
+    std::cerr << "usage: TestSceneVisPlugin PLUGIN_FILE [STATE_FILE] [--vtk91 SCENEVIS_TOOL]\n";
     return EXIT_FAILURE;
   }
   const std::string plugin = argv[1];
+  const char* stateFile = nullptr;
+  std::string vtk91Tool;
+  for (int i = 2; i < argc; ++i)
+  {
+    if (std::string(argv[i]) == "--vtk91" && i + 1 < argc)
+    {
+      vtk91Tool = argv[++i];
+    }
+    else
+    {
+      stateFile = argv[i];
+    }
+  }
   vtkInitializationHelper::Initialize(argv[0], vtkProcessModule::PROCESS_BATCH);
   {
     vtkNew<vtkSMParaViewPipelineController> controller;
@@ -451,15 +567,20 @@ int main(int argc, char* argv[])
     Check(loaded, "LoadPlugin " + plugin);
     if (loaded)
     {
-      registrar = argc > 2 ? controller.GetPointer() : nullptr;
+      registrar = stateFile ? controller.GetPointer() : nullptr;
       TestSorting(pxm, controller);
       TestOrderedView(pxm, controller, 2, "interpenetrating triangles");
       TestOrderedView(pxm, controller, 0, "overlapping spheres");
       TestGenerateRooms(pxm, controller);
       TestCulling(pxm, controller);
+      if (!vtk91Tool.empty())
+      {
+        TestAgainstVtk91(pxm, controller, vtk91Tool, 2, "interpenetrating triangles", "triangles");
+        TestAgainstVtk91(pxm, controller, vtk91Tool, 0, "overlapping spheres", "spheres");
+      }
       if (registrar)
       {
-        Check(pxm->SaveXMLState(argv[2]), std::string("state saved to ") + argv[2]);
+        Check(pxm->SaveXMLState(stateFile), std::string("state saved to ") + stateFile);
       }
     }
     vtkProcessModule::GetProcessModule()->UnRegisterSession(session);
