@@ -241,8 +241,10 @@ using scenevis_pvtest::Compare;
 using scenevis_pvtest::Describe;
 using scenevis_pvtest::ImageError;
 
-void TestOrderedView(vtkSMSessionProxyManager* pxm, vtkSMParaViewPipelineController* controller,
-  int sceneId, const std::string& sceneName)
+/// Demo scene @p sceneId of the plugin's source, updated, and the eye the ordered views use (in
+/// front, slightly off axis, looking at the origin: the triangles fill the view).
+vtkSmartPointer<vtkSMSourceProxy> DemoScene(vtkSMSessionProxyManager* pxm,
+  vtkSMParaViewPipelineController* controller, int sceneId, double eye[3])
 {
   auto scene = NewPipelineProxy(pxm, controller, "sources", "SceneVisDemoScene");
   vtkSMPropertyHelper(scene, "Scene").Set(sceneId);
@@ -251,7 +253,17 @@ void TestOrderedView(vtkSMSessionProxyManager* pxm, vtkSMParaViewPipelineControl
   double bounds[6];
   Output(scene)->GetBounds(bounds);
   const double size = bounds[1] - bounds[0] + bounds[3] - bounds[2] + bounds[5] - bounds[4];
-  const double eye[3] = { 0.15 * size, 0.1 * size, 1.0 * size }; // the triangles fill the view
+  eye[0] = 0.15 * size;
+  eye[1] = 0.1 * size;
+  eye[2] = 1.0 * size;
+  return scene;
+}
+
+void TestOrderedView(vtkSMSessionProxyManager* pxm, vtkSMParaViewPipelineController* controller,
+  int sceneId, const std::string& sceneName)
+{
+  double eye[3];
+  auto scene = DemoScene(pxm, controller, sceneId, eye);
   auto sort = NewPipelineProxy(pxm, controller, "filters", "SceneVisBSPSort", scene);
   SetCamera(sort, eye, false);
 
@@ -446,14 +458,8 @@ void TestGenerateRooms(vtkSMSessionProxyManager* pxm, vtkSMParaViewPipelineContr
 void TestAgainstVtk91(vtkSMSessionProxyManager* pxm, vtkSMParaViewPipelineController* controller,
   const std::string& tool, int sceneId, const std::string& sceneName, const std::string& toolScene)
 {
-  auto scene = NewPipelineProxy(pxm, controller, "sources", "SceneVisDemoScene");
-  vtkSMPropertyHelper(scene, "Scene").Set(sceneId);
-  scene->UpdateVTKObjects();
-  scene->UpdatePipeline();
-  double bounds[6];
-  Output(scene)->GetBounds(bounds);
-  const double size = bounds[1] - bounds[0] + bounds[3] - bounds[2] + bounds[5] - bounds[4];
-  const double eye[3] = { 0.15 * size, 0.1 * size, 1.0 * size };
+  double eye[3];
+  auto scene = DemoScene(pxm, controller, sceneId, eye);
 
   const std::string png = "TestSceneVisPlugin-vtk91-" + toolScene + ".png";
   const std::string command = "\"" + tool + "\" render --scene " + toolScene + " --camera " +
