@@ -20,7 +20,7 @@
 // --rooms X,Y,FLOORS  --halls N (open halls per floor, default 6)
 // --hall-size N (largest hall side in rooms, default 12)  --seed N  --threads N (0 = all cores)
 // --budget S (flow budget, 0 = none)  --max-steps N (flow steps per portal before it closes)
-// --passages 0|1 (passage might-see in the flow, default 1)
+// --passages 0|1 (passage might-see in the flow, default 0)
 // --merge-after N (flow steps before the merged flow finishes a source, 0 = never; default 2000)
 // --max-regions N (regions per room before the exact traversal merges them, default 8)
 // --ray-oracle N (N x N rays per camera walked through the portals: each room they enter must be
@@ -63,8 +63,8 @@ std::size_t maxStepsPerPortal = scenevis::portals::PvsOptions().maxFlowStepsPerP
 std::size_t maxRegionsPerRoom = scenevis::portals::TraversalOptions().maxRegionsPerRoom;
 /// --ray-oracle N: N x N rays per camera checked against the PVS (0: none).
 std::size_t rayOracle = 0;
-/// --passages 0: the flow without passage might-see (PvsOptions::passages), to compare.
-bool usePassages = true;
+/// --passages 0|1: the flow without or with passage might-see (PvsOptions::passages).
+bool usePassages = scenevis::portals::PvsOptions().passages;
 /// --merge-after N: flow steps before a source's walk gives way to the merged flow (0 = never).
 std::size_t mergeAfter = scenevis::portals::PvsOptions().mergeAfterSteps;
 double since(Clock::time_point t)

@@ -365,6 +365,7 @@ TEST(PortalPvsFlow, PassagesKeepEverySampledSightLineAndOnlyNarrowTheFlow)
     const PortalGraph g = PortalGraph::build(cellSceneOf(m));
     PvsOptions options;
     options.threads = 1;
+    options.passages = true;
     PvsStats stats;
     const PortalPvs narrowed = PortalPvs::compute(g, options, &stats);
     options.passages = false;
@@ -399,6 +400,7 @@ TEST(PortalPvsFlow, PassagesWithFourThreadsAndAStepCapStayConservative)
   oracle.sample(30000, 17);
   PvsOptions options;
   options.threads = 4;
+  options.passages = true;
   const PortalPvs many = PortalPvs::compute(g, options);
   EXPECT_EQ(misses(oracle, many).size(), 0u);
   options.maxFlowStepsPerPortal = 5;
@@ -413,7 +415,8 @@ TEST(PortalPvsFlow, MergedFlowKeepsEverySampledSightLineAndHoldsTheWalksSets)
   // The merged flow (PvsOptions::mergeAfterSteps) keeps one polygon per portal reached instead
   // of one per path. Forced on every source (after 1 step), on one thread: it holds everything
   // the walk over paths finds (every path's polygons lie inside the merged ones), stays within
-  // the might-see sets, closes no flow, and loses no pair a sampled segment proves visible.
+  // the might-see sets, closes no flow, and loses no pair a sampled segment proves visible;
+  // with and without passages (every other level).
   std::size_t merged = 0, walked = 0, might = 0, pairs = 0;
   std::vector<scenes::MazeConfig> configs = { mazeOf(7, 6, 2, 5, 1), mazeOf(8, 8, 2, 1, 2) };
   for (std::uint64_t seed = 61; seed <= 76; ++seed)
@@ -428,6 +431,7 @@ TEST(PortalPvsFlow, MergedFlowKeepsEverySampledSightLineAndHoldsTheWalksSets)
       std::to_string(c.floors) + " seed " + std::to_string(c.seed);
     PvsOptions options;
     options.threads = 1;
+    options.passages = c.seed % 2 == 1;
     options.mergeAfterSteps = 0;
     const PortalPvs walk = PortalPvs::compute(g, options);
     options.mergeAfterSteps = 1;
@@ -461,6 +465,7 @@ TEST(PortalPvsFlow, MergedFlowOnFourThreadsAndUnderABudgetStaysConservative)
   oracle.sample(30000, 19);
   PvsOptions options;
   options.threads = 4;
+  options.passages = true;
   options.mergeAfterSteps = 1;
   PvsStats stats;
   const PortalPvs many = PortalPvs::compute(g, options, &stats);

@@ -30,7 +30,7 @@
  *     reach are the intersection of the might-see sets (or, once computed, the final sets) of
  *     the portals passed, so work done for one portal bounds the others: portals are processed
  *     in order of increasing might-see count, on PvsOptions::threads threads. With
- *     PvsOptions::passages (default), each step from the portal q passed into a node through
+ *     PvsOptions::passages (off by default), each step from the portal q passed into a node through
  *     its portal r also keeps only the passage of (q, r): the portals a line crossing q then r
  *     may still cross (see PvsOptions::passages), computed once per pair before the flows.
  *  3. PVS(X) = X, its neighbours, and the node behind every portal the flows of X's portals
@@ -112,8 +112,11 @@ struct PvsOptions
   /// plane of q and r. A flow stepping from q through r then keeps only those bits beyond r, so
   /// every consecutive pair of its path bounds what lies beyond it (not only the source and the
   /// last pass, as the clipping does). Memory: one bit set of the directed portals per pair
-  /// (Freedoom MAP12: 130,262 pairs, 189 MB, freed after the flows). Off: no passages.
-  bool passages = true;
+  /// (Freedoom MAP12: 130,262 pairs, 189 MB, freed after the flows). Off by default: with the
+  /// merged flow (mergeAfterSteps) finishing long flows, their 3-5 s and memory do not pay
+  /// (MAP12: 27.6 s CPU with them, 24.3 s without; BENCHMARKS.md); without the merged flow
+  /// they halve the flows a step cap closes.
+  bool passages = false;
   /// PortalFlow: flow steps for one source portal after which its walk over paths stops and
   /// the merged flow finishes it instead (0 = never): one polygon per portal reached (the
   /// convex hull of what every path let through) and one set of bits, processed again while
