@@ -92,6 +92,7 @@ struct Shared
   std::atomic<std::size_t> totalSteps{ 0 }, degraded{ 0 };
   std::atomic<std::size_t> mergedSteps{ 0 }, merged{ 0 };
   std::size_t mergeAfter = 0;
+  std::atomic<std::uint32_t> recentAborts{ 0 }; ///< The last 32 walks: 1 = gave way to merging.
 
   const std::uint64_t* mightOf(std::size_t p) const { return &this->mightSee[p * this->words]; }
   std::uint64_t* visOf(std::size_t p) { return &this->vis[p * this->words]; }
@@ -761,8 +762,25 @@ PortalPvs computePortalFlow(const PortalGraph& g, const PvsOptions& options, Pvs
         const std::size_t limit = stepLimit(order.size() - i);
         thread_local MergedScratch merged;
         bool aborted = false;
-        bool ok = !sh.stop.load(std::memory_order_relaxed) &&
-          sh.flow(s, levels, scratch, limit, closed, sh.mergeAfter, aborted);
+        // Sources come in order of might-see count, and past some count nearly every walk
+        // gives way to the merged flow: once 24 of the last 32 walks did, the walk is skipped
+        // (every 8th source still walks, to notice when that stops).
+        const bool skipWalk = sh.mergeAfter && i % 8 != 0 &&
+          __builtin_popcount(sh.recentAborts.load(std::memory_order_relaxed)) >= 24;
+        bool ok = !sh.stop.load(std::memory_order_relaxed);
+        if (ok && skipWalk)
+        {
+          aborted = true;
+        }
+        else if (ok)
+        {
+          ok = sh.flow(s, levels, scratch, limit, closed, sh.mergeAfter, aborted);
+          std::uint32_t h = sh.recentAborts.load(std::memory_order_relaxed);
+          while (!sh.recentAborts.compare_exchange_weak(
+            h, (h << 1) | (aborted ? 1u : 0u), std::memory_order_relaxed))
+          {
+          }
+        }
         if (ok && aborted)
         {
           // Too many paths: the merged flow finishes the source (the walk's finds are kept).
