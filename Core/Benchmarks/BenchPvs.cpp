@@ -20,6 +20,8 @@
 // --rooms X,Y,FLOORS  --halls N (open halls per floor, default 6)
 // --hall-size N (largest hall side in rooms, default 12)  --seed N  --threads N (0 = all cores)
 // --budget S (flow budget, 0 = none)  --max-steps N (flow steps per portal before it closes)
+// --passages 0|1 (passage might-see in the flow, default 0)
+// --merge-after N (flow steps before the merged flow finishes a source, 0 = never; default 2000)
 // --max-regions N (regions per room before the exact traversal merges them, default 8)
 // --ray-oracle N (N x N rays per camera walked through the portals: each room they enter must be
 // in the PVS; exit 1 otherwise)
@@ -61,6 +63,10 @@ std::size_t maxStepsPerPortal = scenevis::portals::PvsOptions().maxFlowStepsPerP
 std::size_t maxRegionsPerRoom = scenevis::portals::TraversalOptions().maxRegionsPerRoom;
 /// --ray-oracle N: N x N rays per camera checked against the PVS (0: none).
 std::size_t rayOracle = 0;
+/// --passages 0|1: the flow without or with passage might-see (PvsOptions::passages).
+bool usePassages = scenevis::portals::PvsOptions().passages;
+/// --merge-after N: flow steps before a source's walk gives way to the merged flow (0 = never).
+std::size_t mergeAfter = scenevis::portals::PvsOptions().mergeAfterSteps;
 double since(Clock::time_point t)
 {
   return std::chrono::duration<double>(Clock::now() - t).count();
@@ -93,6 +99,16 @@ void PrintFlow(double wallSeconds, double cpuSeconds, const PvsStats& stats, con
     stats.directedPortals, stats.averageMightSee, stats.averagePortalVis, stats.flowSteps,
     stats.degradedPortals, stats.budgetExceeded ? " (budget exceeded)" : "", stats.averageSetSize,
     entries(flow));
+  if (stats.mergedPortals)
+  {
+    std::printf("merged flow: %zu directed portals finished by it, %zu merged steps\n",
+      stats.mergedPortals, stats.mergedSteps);
+  }
+  if (stats.passages)
+  {
+    std::printf("passages: %zu portal pairs, %.1f portals each, %.1f MB, %.2f s\n", stats.passages,
+      stats.averagePassage, double(stats.passageBytes) / 1e6, stats.passageSeconds);
+  }
 }
 
 /// Pairs (rooms) the oracle proved visible that @p pvs lacks.
@@ -162,6 +178,8 @@ int benchSceneFile(const std::string& scene, const std::string& portalsFile,
   options.threads = threads;
   options.budgetSeconds = budget;
   options.maxFlowStepsPerPortal = maxStepsPerPortal;
+  options.passages = usePassages;
+  options.mergeAfterSteps = mergeAfter;
   PvsStats stats;
   t0 = Clock::now();
   const std::clock_t c0 = std::clock();
@@ -363,6 +381,14 @@ int main(int argc, char** argv)
     {
       maxStepsPerPortal = std::strtoull(value, nullptr, 10);
     }
+    else if (key == "--merge-after")
+    {
+      mergeAfter = std::strtoull(value, nullptr, 10);
+    }
+    else if (key == "--passages")
+    {
+      usePassages = std::atoi(value) != 0;
+    }
     else if (key == "--ray-oracle")
     {
       rayOracle = std::strtoull(value, nullptr, 10);
@@ -431,6 +457,8 @@ int main(int argc, char** argv)
   options.threads = threads;
   options.budgetSeconds = budget;
   options.maxFlowStepsPerPortal = maxStepsPerPortal;
+  options.passages = usePassages;
+  options.mergeAfterSteps = mergeAfter;
   PvsStats stats;
   t0 = Clock::now();
   std::clock_t c0 = std::clock();

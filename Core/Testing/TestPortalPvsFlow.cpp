@@ -346,3 +346,133 @@ TEST(PortalPvsFlow, FuzzRandomMazesAgainstTheSamplingOracle)
   std::printf("fuzz: %zu levels, %zu proven pairs, PVS entries flow %zu, might-see %zu\n", levels,
     pairs, flowTotal, mightTotal);
 }
+
+TEST(PortalPvsFlow, PassagesKeepEverySampledSightLineAndOnlyNarrowTheFlow)
+{
+  // Passage might-see (PvsOptions::passages) only removes bits the separating planes of two
+  // consecutive portals rule out: on one thread the sets are within those of the flow without
+  // passages, and no pair a sampled segment proves visible is lost. Mazes with open halls and
+  // aligned openings (long sight lines through many portals) and random mazes.
+  std::size_t with = 0, without = 0, pairs = 0, passages = 0;
+  std::vector<scenes::MazeConfig> configs = { mazeOf(7, 6, 2, 5, 1), mazeOf(8, 8, 2, 1, 2) };
+  for (std::uint64_t seed = 41; seed <= 52; ++seed)
+  {
+    configs.push_back(randomMaze(seed));
+  }
+  for (const scenes::MazeConfig& c : configs)
+  {
+    const auto m = scenes::maze(c);
+    const PortalGraph g = PortalGraph::build(cellSceneOf(m));
+    PvsOptions options;
+    options.threads = 1;
+    options.passages = true;
+    PvsStats stats;
+    const PortalPvs narrowed = PortalPvs::compute(g, options, &stats);
+    options.passages = false;
+    const PortalPvs plain = PortalPvs::compute(g, options);
+    const std::string name = std::to_string(c.roomsX) + "x" + std::to_string(c.roomsY) + "x" +
+      std::to_string(c.floors) + " seed " + std::to_string(c.seed);
+    EXPECT_GT(stats.passages, 0u) << name;
+    EXPECT_TRUE(subset(narrowed, plain)) << name;
+    PortalSegmentOracle oracle(m, g);
+    oracle.sample(30000, c.seed + 100);
+    std::size_t missed = 0;
+    const auto first = misses(oracle, narrowed, &missed);
+    EXPECT_EQ(missed, 0u) << name << ": " << joined(first);
+    EXPECT_EQ(misses(oracle, plain).size(), 0u) << name << " (without passages)";
+    with += totalSize(narrowed);
+    without += totalSize(plain);
+    pairs += oracle.provenPairs();
+    passages += stats.passages;
+  }
+  std::printf("passages: %zu levels, %zu portal pairs, %zu proven pairs, PVS entries with "
+              "passages %zu, without %zu\n",
+    configs.size(), passages, pairs, with, without);
+}
+
+TEST(PortalPvsFlow, PassagesWithFourThreadsAndAStepCapStayConservative)
+{
+  // Threads change which bounds a flow meets (another portal's final set or its might-see set)
+  // and a step cap closes flows: the passages must hold in every case.
+  const auto m = scenes::maze(mazeOf(8, 8, 2, 1, 2));
+  const PortalGraph g = PortalGraph::build(cellSceneOf(m));
+  PortalSegmentOracle oracle(m, g);
+  oracle.sample(30000, 17);
+  PvsOptions options;
+  options.threads = 4;
+  options.passages = true;
+  const PortalPvs many = PortalPvs::compute(g, options);
+  EXPECT_EQ(misses(oracle, many).size(), 0u);
+  options.maxFlowStepsPerPortal = 5;
+  PvsStats stats;
+  const PortalPvs capped = PortalPvs::compute(g, options, &stats);
+  EXPECT_GT(stats.degradedPortals, 0u);
+  EXPECT_EQ(misses(oracle, capped).size(), 0u);
+}
+
+TEST(PortalPvsFlow, MergedFlowKeepsEverySampledSightLineAndHoldsTheWalksSets)
+{
+  // The merged flow (PvsOptions::mergeAfterSteps) keeps one polygon per portal reached instead
+  // of one per path. Forced on every source (after 1 step), on one thread: it holds everything
+  // the walk over paths finds (every path's polygons lie inside the merged ones), stays within
+  // the might-see sets, closes no flow, and loses no pair a sampled segment proves visible;
+  // with and without passages (every other level).
+  std::size_t merged = 0, walked = 0, might = 0, pairs = 0;
+  std::vector<scenes::MazeConfig> configs = { mazeOf(7, 6, 2, 5, 1), mazeOf(8, 8, 2, 1, 2) };
+  for (std::uint64_t seed = 61; seed <= 76; ++seed)
+  {
+    configs.push_back(randomMaze(seed));
+  }
+  for (const scenes::MazeConfig& c : configs)
+  {
+    const auto m = scenes::maze(c);
+    const PortalGraph g = PortalGraph::build(cellSceneOf(m));
+    const std::string name = std::to_string(c.roomsX) + "x" + std::to_string(c.roomsY) + "x" +
+      std::to_string(c.floors) + " seed " + std::to_string(c.seed);
+    PvsOptions options;
+    options.threads = 1;
+    options.passages = c.seed % 2 == 1;
+    options.mergeAfterSteps = 0;
+    const PortalPvs walk = PortalPvs::compute(g, options);
+    options.mergeAfterSteps = 1;
+    PvsStats stats;
+    const PortalPvs mergedPvs = PortalPvs::compute(g, options, &stats);
+    const PortalPvs mightPvs = computeWith(g, PvsMethod::MightSee);
+    EXPECT_EQ(stats.degradedPortals, 0u) << name;
+    EXPECT_TRUE(subset(walk, mergedPvs)) << name;
+    EXPECT_TRUE(subset(mergedPvs, mightPvs)) << name;
+    PortalSegmentOracle oracle(m, g);
+    oracle.sample(30000, c.seed + 200);
+    std::size_t missed = 0;
+    const auto first = misses(oracle, mergedPvs, &missed);
+    EXPECT_EQ(missed, 0u) << name << ": " << joined(first);
+    merged += totalSize(mergedPvs);
+    walked += totalSize(walk);
+    might += totalSize(mightPvs);
+    pairs += oracle.provenPairs();
+  }
+  EXPECT_LT(merged, might) << "the merged flow narrows the might-see sets";
+  std::printf("merged flow: %zu levels, %zu proven pairs, PVS entries walk %zu, merged %zu, "
+              "might-see %zu\n",
+    configs.size(), pairs, walked, merged, might);
+}
+
+TEST(PortalPvsFlow, MergedFlowOnFourThreadsAndUnderABudgetStaysConservative)
+{
+  const auto m = scenes::maze(mazeOf(8, 8, 2, 1, 2));
+  const PortalGraph g = PortalGraph::build(cellSceneOf(m));
+  PortalSegmentOracle oracle(m, g);
+  oracle.sample(30000, 19);
+  PvsOptions options;
+  options.threads = 4;
+  options.passages = true;
+  options.mergeAfterSteps = 1;
+  PvsStats stats;
+  const PortalPvs many = PortalPvs::compute(g, options, &stats);
+  EXPECT_GT(stats.mergedPortals, 0u);
+  EXPECT_EQ(misses(oracle, many).size(), 0u);
+  options.budgetSeconds = 1e-12; // merged flows close at once
+  const PortalPvs late = PortalPvs::compute(g, options, &stats);
+  EXPECT_TRUE(stats.budgetExceeded);
+  EXPECT_EQ(misses(oracle, late).size(), 0u);
+}

@@ -203,6 +203,99 @@ inline bool chopAll(
   return true;
 }
 
+/**
+ * chop() for a polygon known to lie in the sphere (@p centre, @p radius) -- a portal or any
+ * clipped part of it: the sphere decides a plane it does not straddle without the vertices.
+ */
+inline bool chopWithin(Winding& w, const glm::dvec4& plane, const glm::dvec3& centre, double radius,
+  double slack, Winding& scratch)
+{
+  const double d = geometry::planeDistance(plane, centre);
+  if (d - radius >= -slack)
+  {
+    return w.size() >= 3; // wholly kept
+  }
+  if (d + radius < -slack)
+  {
+    return false; // wholly behind
+  }
+  return chop(w, plane, slack, scratch);
+}
+
+/// chopAll() for a polygon within a sphere (chopWithin()); the planes that reject the whole
+/// sphere are looked for first, before any clipping.
+inline bool chopAllWithin(Winding& target, const std::vector<glm::dvec4>& planes,
+  const glm::dvec3& centre, double radius, double slack, Winding& scratch)
+{
+  for (const glm::dvec4& plane : planes)
+  {
+    if (geometry::planeDistance(plane, centre) + radius < -slack)
+    {
+      return false;
+    }
+  }
+  for (const glm::dvec4& plane : planes)
+  {
+    if (!chopWithin(target, plane, centre, radius, slack, scratch))
+    {
+      return false;
+    }
+  }
+  return true;
+}
+
+/**
+ * The convex hull of the points of @p a and @p b, which lie in one plane of unit normal
+ * @p normal, into @p out (counter-clockwise around the normal); returns its area. @p work is
+ * scratch space. The merged flow's union of the polygons that reached one portal.
+ */
+inline double mergeHull(const Winding& a, const Winding& b, const glm::dvec3& normal, Winding& out,
+  std::vector<glm::dvec3>& work)
+{
+  glm::dvec3 u, v;
+  geometry::planeBasis(normal, u, v);
+  // work[i] = (x, y, index into a then b): sorted by x then y (Andrew's monotone chain).
+  work.clear();
+  for (std::size_t i = 0; i < a.size() + b.size(); ++i)
+  {
+    const glm::dvec3& q = i < a.size() ? a[i] : b[i - a.size()];
+    work.emplace_back(glm::dot(q, u), glm::dot(q, v), static_cast<double>(i));
+  }
+  std::sort(work.begin(), work.end(),
+    [](const glm::dvec3& p, const glm::dvec3& q)
+    { return p.x < q.x || (p.x == q.x && p.y < q.y); });
+  auto cross = [](const glm::dvec3& o, const glm::dvec3& p, const glm::dvec3& q)
+  { return (p.x - o.x) * (q.y - o.y) - (p.y - o.y) * (q.x - o.x); };
+  const std::size_t n = work.size();
+  std::vector<glm::dvec3> h(2 * n + 1);
+  std::size_t k = 0;
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    while (k >= 2 && cross(h[k - 2], h[k - 1], work[i]) <= 0.0)
+    {
+      --k;
+    }
+    h[k++] = work[i];
+  }
+  for (std::size_t i = n - 1, t = k + 1; i > 0; --i)
+  {
+    while (k >= t && cross(h[k - 2], h[k - 1], work[i - 1]) <= 0.0)
+    {
+      --k;
+    }
+    h[k++] = work[i - 1];
+  }
+  out.clear();
+  double area = 0.0;
+  for (std::size_t i = 0; i + 1 < k; ++i)
+  {
+    const auto idx = static_cast<std::size_t>(h[i].z);
+    out.push_back(idx < a.size() ? a[idx] : b[idx - a.size()]);
+    area += h[i].x * h[i + 1].y - h[i + 1].x * h[i].y;
+  }
+  return 0.5 * area;
+}
+
 /// Runs @p work(i) for i in [0, count) on @p threads threads, calling @p tick about every 50 ms
 /// on this thread; tick returns false to ask the workers to stop (they check Shared::stop).
 template <class Work, class Tick>

@@ -4,6 +4,7 @@
 #include "scenevis/PortalPvs.h"
 
 #include "PortalFlowClip.h"
+#include "PortalPassages.h"
 #include "PortalPvsInternal.h"
 
 #include <glm/geometric.hpp>
@@ -24,9 +25,13 @@ namespace
 using flow::bit;
 using flow::chop;
 using flow::chopAll;
+using flow::chopAllWithin;
+using flow::chopWithin;
 using flow::DirectedPortal;
 using flow::maxDistance;
+using flow::mergeHull;
 using flow::minDistance;
+using flow::Passages;
 using flow::popcount;
 using flow::runParallel;
 using flow::separators;
@@ -38,7 +43,8 @@ using Clock = std::chrono::steady_clock;
 struct Level
 {
   std::int32_t node = 0;
-  std::uint32_t next = 0; ///< Position in the node's out-portal list.
+  std::uint32_t entry = 0; ///< The directed portal passed into node (the source at the root).
+  std::uint32_t next = 0;  ///< Position in the node's out-portal list.
   glm::dvec4 plane{ 0.0 };
   Winding pass;   ///< The portal passed, clipped (empty at the root: no pass yet).
   Winding source; ///< The source portal, clipped.
@@ -49,6 +55,24 @@ struct Level
   bool separatorsReady = false;
 };
 
+/// The merged flow's state per portal reached (Shared::mergedFlow), reused by every source of
+/// a thread.
+struct MergedScratch
+{
+  std::vector<std::int32_t> slot;     ///< Per directed portal: its row, or -1 when not reached.
+  std::vector<std::uint32_t> touched; ///< Portals with a row (to reset slot).
+  std::vector<Winding> pass;          ///< Per row: the merged polygon of the portal.
+  std::vector<std::vector<glm::dvec4>> separators; ///< Per row: of (source, pass), on demand.
+  std::vector<double> area;                        ///< Per row: the pass polygon's area.
+  std::vector<int> growth;                         ///< Per row: times the polygon grew.
+  std::vector<unsigned char> state;                ///< Per row: queued, separators ready.
+  std::vector<std::uint64_t> might;                ///< Per row: words of bits.
+  std::vector<std::uint32_t> queue;
+  Winding clip, hull;
+  const Winding none;
+  std::vector<glm::dvec3> work;
+};
+
 struct Shared
 {
   std::vector<DirectedPortal> portals;
@@ -57,6 +81,8 @@ struct Shared
   std::vector<char> edgeOk; ///< Per (q, r in out(q.to)): a line may cross q then r.
   std::size_t words = 0;
   std::vector<std::uint64_t> mightSee, vis; ///< words per directed portal.
+  Passages passages; ///< Per edge (q, r): what a line through q then r may see (when used).
+  bool usePassages = false;
   std::vector<std::atomic<unsigned char>> done;
   double on = 0.0, slack = 0.0;
   std::size_t maxSteps = 0;
@@ -64,6 +90,9 @@ struct Shared
   /// stop: cancelled (flows abort); closing: the budget ran out (flows close their branches).
   std::atomic<bool> stop{ false }, closing{ false }, budgetHit{ false };
   std::atomic<std::size_t> totalSteps{ 0 }, degraded{ 0 };
+  std::atomic<std::size_t> mergedSteps{ 0 }, merged{ 0 };
+  std::size_t mergeAfter = 0;
+  std::atomic<std::uint32_t> recentAborts{ 0 }; ///< The last 32 walks: 1 = gave way to merging.
 
   const std::uint64_t* mightOf(std::size_t p) const { return &this->mightSee[p * this->words]; }
   std::uint64_t* visOf(std::size_t p) { return &this->vis[p * this->words]; }
@@ -144,9 +173,10 @@ struct Shared
    * bits of its level: the intersection of the might-see or final sets of the portals on the
    * path), which bounds whatever lies beyond it. @p closed says whether that happened.
    */
-  bool flow(
-    std::size_t s, std::vector<Level>& levels, Winding& scratch, std::size_t limit, bool& closed)
+  bool flow(std::size_t s, std::vector<Level>& levels, Winding& scratch, std::size_t limit,
+    bool& closed, std::size_t abortAfter, bool& aborted)
   {
+    aborted = false;
     const DirectedPortal& src = this->portals[s];
     std::uint64_t* visS = this->visOf(s);
     const std::size_t W = this->words;
@@ -156,6 +186,7 @@ struct Shared
     }
     Level& root = levels[0];
     root.node = src.to;
+    root.entry = static_cast<std::uint32_t>(s);
     root.next = 0;
     root.plane = src.plane;
     root.pass.clear();
@@ -183,6 +214,17 @@ struct Shared
       {
         continue;
       }
+      // The passage (portal passed into this node, p): what a line crossing both may see next.
+      const std::size_t edge = this->succStart[L.entry] + L.next - 1;
+      const std::uint64_t* passage = nullptr;
+      if (this->usePassages)
+      {
+        if (!this->edgeOk[edge])
+        {
+          continue; // no line crosses the entry and then p
+        }
+        passage = this->passages.of(edge);
+      }
       if (depth + 1 == levels.size())
       {
         levels.emplace_back(); // grows to the deepest flow once per thread, then reused
@@ -199,10 +241,21 @@ struct Shared
       auto intersect = [&]()
       {
         std::uint64_t more = 0;
-        for (std::size_t w = 0; w < W; ++w)
+        if (passage)
         {
-          N.might[w] = L2.might[w] & test[w];
-          more |= N.might[w] & ~visS[w];
+          for (std::size_t w = 0; w < W; ++w)
+          {
+            N.might[w] = L2.might[w] & test[w] & passage[w];
+            more |= N.might[w] & ~visS[w];
+          }
+        }
+        else
+        {
+          for (std::size_t w = 0; w < W; ++w)
+          {
+            N.might[w] = L2.might[w] & test[w];
+            more |= N.might[w] & ~visS[w];
+          }
         }
         return more != 0;
       };
@@ -225,7 +278,7 @@ struct Shared
         continue;
       }
       N.pass = dp.winding;
-      if (!chop(N.pass, src.plane, this->slack, scratch))
+      if (!chopWithin(N.pass, src.plane, dp.centre, dp.radius, this->slack, scratch))
       {
         continue;
       }
@@ -237,7 +290,7 @@ struct Shared
       }
       if (depth > 0)
       {
-        if (!chop(N.pass, L2.plane, this->slack, scratch))
+        if (!chopWithin(N.pass, L2.plane, dp.centre, dp.radius, this->slack, scratch))
         {
           continue;
         }
@@ -252,7 +305,7 @@ struct Shared
           separators(L2.source, L2.pass, this->on, L2.separators);
           L2.separatorsReady = true;
         }
-        if (!chopAll(N.pass, *planes, this->slack, scratch))
+        if (!chopAllWithin(N.pass, *planes, dp.centre, dp.radius, this->slack, scratch))
         {
           continue;
         }
@@ -279,6 +332,7 @@ struct Shared
         continue;
       }
       N.node = dp.to;
+      N.entry = p;
       N.next = 0;
       N.plane = dp.plane;
       N.separatorsReady = false;
@@ -293,8 +347,198 @@ struct Shared
         closeNow = closeNow || this->closing.load(std::memory_order_relaxed);
       }
       closeNow = closeNow || (limit && steps >= limit);
+      if (abortAfter && steps >= abortAfter && !closeNow)
+      {
+        aborted = true; // the caller finishes this source with the merged flow
+        break;
+      }
     }
     this->totalSteps.fetch_add(steps, std::memory_order_relaxed);
+    closed = closeNow;
+    return ok;
+  }
+
+  /**
+   * The merged flow from directed portal @p s (PvsOptions::mergeAfterSteps): a worklist over
+   * portals instead of a walk over paths. Each portal r reached keeps one pass polygon, the
+   * convex hull of the parts of r that every path reaching it let through, and one set of bits
+   * (the union of the might bits of those paths); a portal whose polygon or bits grow is
+   * processed again. A line through the source and portals p1 .. pk crosses each pi inside its
+   * merged polygon (the clipping by the separating planes of the source and a larger pass keeps
+   * more), so the result holds everything the flow would find: conservative, looser where paths
+   * meet, and polynomial. The source is not clipped. After PvsOptions-independent kMaxGrowth
+   * growths a polygon becomes its whole portal (in front of the source), so the worklist ends.
+   * False when cancelled; once the budget runs out the queued portals are closed as in flow().
+   */
+  bool mergedFlow(std::size_t s, MergedScratch& m, Winding& scratch, bool& closed)
+  {
+    constexpr int kMaxGrowth = 8;
+    const DirectedPortal& src = this->portals[s];
+    std::uint64_t* visS = this->visOf(s);
+    const std::size_t W = this->words;
+    m.slot.resize(this->portals.size(), -1);
+    std::size_t used = 0, steps = 0;
+    auto slotOf = [&](std::uint32_t r)
+    {
+      if (m.slot[r] < 0)
+      {
+        m.slot[r] = static_cast<std::int32_t>(used++);
+        m.touched.push_back(r);
+        if (m.pass.size() < used)
+        {
+          m.pass.resize(used);
+          m.separators.resize(used);
+        }
+        m.area.resize(std::max(m.area.size(), used));
+        m.growth.resize(std::max(m.growth.size(), used));
+        m.state.resize(std::max(m.state.size(), used));
+        m.might.resize(std::max(m.might.size(), used * W));
+        const std::size_t k = used - 1;
+        m.pass[k].clear();
+        m.area[k] = 0.0;
+        m.growth[k] = 0;
+        m.state[k] = 0;
+        std::fill(m.might.begin() + static_cast<std::ptrdiff_t>(k * W),
+          m.might.begin() + static_cast<std::ptrdiff_t>((k + 1) * W), 0);
+      }
+      return static_cast<std::size_t>(m.slot[r]);
+    };
+    constexpr unsigned char kQueued = 1, kSeparatorsReady = 2;
+    m.queue.clear();
+    bool ok = true;
+    bool closeNow = this->closing.load(std::memory_order_relaxed);
+    // The root (p == s) passes nothing yet: its bits are the source's might-see set.
+    for (std::size_t head = 0; head <= m.queue.size(); ++head)
+    {
+      const bool root = head == 0;
+      const std::uint32_t p = root ? static_cast<std::uint32_t>(s) : m.queue[head - 1];
+      const std::size_t sp = root ? 0 : static_cast<std::size_t>(m.slot[p]);
+      if (!root)
+      {
+        m.state[sp] &= static_cast<unsigned char>(~kQueued);
+      }
+      const std::uint64_t* mp = root ? this->mightOf(s) : &m.might[sp * W];
+      if (closeNow && !root)
+      {
+        for (std::size_t w = 0; w < W; ++w)
+        {
+          visS[w] |= mp[w]; // as flow() closes a branch
+        }
+        continue;
+      }
+      const DirectedPortal& dp = this->portals[p];
+      const auto node = static_cast<std::size_t>(dp.to);
+      std::uint32_t e = this->succStart[p];
+      for (std::uint32_t k = this->outStart[node]; k < this->outStart[node + 1]; ++k, ++e)
+      {
+        const std::uint32_t r = this->outList[k];
+        if (!bit(mp, r))
+        {
+          continue;
+        }
+        const std::uint64_t* passage = nullptr;
+        if (this->usePassages)
+        {
+          if (!this->edgeOk[e])
+          {
+            continue;
+          }
+          passage = this->passages.of(e);
+        }
+        const std::uint64_t* test = this->done[r].load(std::memory_order_acquire)
+          ? &this->vis[static_cast<std::size_t>(r) * W]
+          : this->mightOf(r);
+        const DirectedPortal& dr = this->portals[r];
+        ++steps;
+        if (!dr.usable)
+        {
+          setBit(visS, r); // no narrowing through it: everything it may lead to
+          for (std::size_t w = 0; w < W; ++w)
+          {
+            visS[w] |= mp[w] & test[w] & (passage ? passage[w] : ~std::uint64_t(0));
+          }
+          continue;
+        }
+        m.clip = dr.winding;
+        if (!chopWithin(m.clip, src.plane, dr.centre, dr.radius, this->slack, scratch))
+        {
+          continue;
+        }
+        if (!root)
+        {
+          if (!chopWithin(m.clip, dp.plane, dr.centre, dr.radius, this->slack, scratch))
+          {
+            continue;
+          }
+          if (!(m.state[sp] & kSeparatorsReady))
+          {
+            separators(src.winding, m.pass[sp], this->on, m.separators[sp]);
+            m.state[sp] |= kSeparatorsReady;
+          }
+          if (!chopAllWithin(m.clip, m.separators[sp], dr.centre, dr.radius, this->slack, scratch))
+          {
+            continue;
+          }
+        }
+        setBit(visS, r);
+        const std::size_t sr = slotOf(r);
+        mp = root ? this->mightOf(s) : &m.might[sp * W]; // slotOf may have moved the bits
+        std::uint64_t* mr = &m.might[sr * W];
+        std::uint64_t more = 0;
+        for (std::size_t w = 0; w < W; ++w)
+        {
+          const std::uint64_t b = mp[w] & test[w] & (passage ? passage[w] : ~std::uint64_t(0));
+          more |= b & ~mr[w];
+          mr[w] |= b;
+        }
+        bool grew = more != 0;
+        if (m.growth[sr] <= kMaxGrowth)
+        {
+          if (m.pass[sr].empty())
+          {
+            m.area[sr] = mergeHull(m.clip, m.none, glm::dvec3(dr.plane), m.pass[sr], m.work);
+            grew = true;
+          }
+          else
+          {
+            const double a = mergeHull(m.pass[sr], m.clip, glm::dvec3(dr.plane), m.hull, m.work);
+            if (a > m.area[sr] * (1.0 + 1e-12))
+            {
+              m.pass[sr].swap(m.hull);
+              m.area[sr] = a;
+              m.state[sr] &= static_cast<unsigned char>(~kSeparatorsReady);
+              grew = true;
+              if (++m.growth[sr] > kMaxGrowth)
+              {
+                // Saturated: the whole portal in front of the source; it cannot grow again.
+                m.pass[sr] = dr.winding;
+                chop(m.pass[sr], src.plane, this->slack, scratch);
+              }
+            }
+          }
+        }
+        if (grew && !(m.state[sr] & kQueued))
+        {
+          m.state[sr] |= kQueued;
+          m.queue.push_back(r);
+        }
+      }
+      if ((steps & 255u) == 0 || root)
+      {
+        if (this->stop.load(std::memory_order_relaxed))
+        {
+          ok = false;
+          break;
+        }
+        closeNow = closeNow || this->closing.load(std::memory_order_relaxed);
+      }
+    }
+    for (const std::uint32_t r : m.touched)
+    {
+      m.slot[r] = -1;
+    }
+    m.touched.clear();
+    this->mergedSteps.fetch_add(steps, std::memory_order_relaxed);
     closed = closeNow;
     return ok;
   }
@@ -314,6 +558,7 @@ PortalPvs computePortalFlow(const PortalGraph& g, const PvsOptions& options, Pvs
   sh.slack = 1000.0 * g.tolerance();
   sh.maxSteps = options.maxFlowStepsPerPortal;
   sh.clipSource = options.clipSourceBySeparators;
+  sh.mergeAfter = options.method == PvsMethod::PortalFlow ? options.mergeAfterSteps : 0;
   Box all;
   for (const auto& p : gp)
   {
@@ -437,6 +682,29 @@ PortalPvs computePortalFlow(const PortalGraph& g, const PvsOptions& options, Pvs
   }
   stats.averageMightSee = D ? double(mightTotal) / double(D) : 0.0;
 
+  // 1b. Passages: what a line through each pair of consecutive portals may see next.
+  if (flow && options.passages && !cancelled)
+  {
+    const auto passageStart = Clock::now();
+    flow::PassageGraph pg;
+    pg.portals = &sh.portals;
+    pg.outStart = &sh.outStart;
+    pg.outList = &sh.outList;
+    pg.succStart = &sh.succStart;
+    pg.edgeOk = &sh.edgeOk;
+    pg.mightSee = &sh.mightSee;
+    pg.words = sh.words;
+    pg.on = sh.on;
+    pg.slack = sh.slack;
+    sh.passages = Passages::compute(pg, threads, sh.stop);
+    sh.usePassages = true;
+    stats.passages = sh.passages.count();
+    stats.averagePassage = sh.passages.averageSize();
+    stats.passageBytes = sh.passages.bytes();
+    stats.passageSeconds = std::chrono::duration<double>(Clock::now() - passageStart).count();
+    cancelled = cancelled || !report(floodShare);
+  }
+
   // 2. Flows, fewest might-see first; unusable sources keep their might-see set.
   const auto flowStart = Clock::now();
   if (flow && !cancelled)
@@ -492,7 +760,34 @@ PortalPvs computePortalFlow(const PortalGraph& g, const PvsOptions& options, Pvs
         overBudget();
         bool closed = false;
         const std::size_t limit = stepLimit(order.size() - i);
-        if (sh.stop.load(std::memory_order_relaxed) || !sh.flow(s, levels, scratch, limit, closed))
+        thread_local MergedScratch merged;
+        bool aborted = false;
+        // Sources come in order of might-see count, and past some count nearly every walk
+        // gives way to the merged flow: once 24 of the last 32 walks did, the walk is skipped
+        // (every 8th source still walks, to notice when that stops).
+        const bool skipWalk = sh.mergeAfter && i % 8 != 0 &&
+          __builtin_popcount(sh.recentAborts.load(std::memory_order_relaxed)) >= 24;
+        bool ok = !sh.stop.load(std::memory_order_relaxed);
+        if (ok && skipWalk)
+        {
+          aborted = true;
+        }
+        else if (ok)
+        {
+          ok = sh.flow(s, levels, scratch, limit, closed, sh.mergeAfter, aborted);
+          std::uint32_t h = sh.recentAborts.load(std::memory_order_relaxed);
+          while (!sh.recentAborts.compare_exchange_weak(
+            h, (h << 1) | (aborted ? 1u : 0u), std::memory_order_relaxed))
+          {
+          }
+        }
+        if (ok && aborted)
+        {
+          // Too many paths: the merged flow finishes the source (the walk's finds are kept).
+          sh.merged.fetch_add(1, std::memory_order_relaxed);
+          ok = sh.mergedFlow(s, merged, scratch, closed);
+        }
+        if (!ok)
         {
           std::copy(sh.mightOf(s), sh.mightOf(s) + sh.words, sh.visOf(s));
           closed = true;
@@ -507,6 +802,7 @@ PortalPvs computePortalFlow(const PortalGraph& g, const PvsOptions& options, Pvs
         report(floodShare + (1.0 - floodShare) * double(weight.load()) / total);
       });
     stats.budgetExceeded = sh.budgetHit.load();
+    sh.passages = Passages(); // free them before the node sets
   }
   else if (!cancelled)
   {
@@ -520,6 +816,8 @@ PortalPvs computePortalFlow(const PortalGraph& g, const PvsOptions& options, Pvs
   }
   stats.flowSteps = sh.totalSteps.load();
   stats.degradedPortals = sh.degraded.load();
+  stats.mergedPortals = sh.merged.load();
+  stats.mergedSteps = sh.mergedSteps.load();
   std::size_t visTotal = 0;
   for (std::size_t p = 0; p < D; ++p)
   {

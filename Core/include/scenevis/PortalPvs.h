@@ -29,20 +29,25 @@
  *     (clipSourceBySeparators). An empty polygon ends the branch. The bits the walk may still
  *     reach are the intersection of the might-see sets (or, once computed, the final sets) of
  *     the portals passed, so work done for one portal bounds the others: portals are processed
- *     in order of increasing might-see count, on PvsOptions::threads threads.
+ *     in order of increasing might-see count, on PvsOptions::threads threads. With
+ *     PvsOptions::passages (off by default), each step from the portal q passed into a node through
+ *     its portal r also keeps only the passage of (q, r): the portals a line crossing q then r
+ *     may still cross (see PvsOptions::passages), computed once per pair before the flows.
  *  3. PVS(X) = X, its neighbours, and the node behind every portal the flows of X's portals
  *     reached. Coordinates are taken relative to the centre of the portals; clipping keeps a
  *     slack of 1e3 graph tolerances (conservative: polygons only grow).
- *  After maxFlowStepsPerPortal steps for one portal, or once PvsOptions::budgetSeconds has run
- *  out, a flow closes instead of descending: each portal still passing the clipping is taken
- *  with everything its branch might see (the intersection of the might-see or final sets along
- *  the path: conservative, and tighter than the source's might-see set). With a budget, every
- *  flow gets an even share of the time left (in steps, at the rate measured so far), so the
- *  budget narrows all portals rather than leaving the last, most expensive ones un-narrowed.
- *  PvsStats::degradedPortals counts the flows that closed.
- *  With several threads a portal may be bounded by another's final set or by its might-see set
- *  depending on timing, so two runs may differ in a few extra nodes (both supersets of the exact
- *  PVS); threads = 1 is deterministic.
+ *  After mergeAfterSteps steps the walk over paths of one source gives way to the merged flow
+ *  (PvsOptions::mergeAfterSteps): one merged polygon and bit set per portal reached, a worklist
+ *  that ends whatever the number of paths. After maxFlowStepsPerPortal steps for one portal, or
+ * once PvsOptions::budgetSeconds has run out, a flow closes instead of descending: each portal
+ * still passing the clipping is taken with everything its branch might see (the intersection of the
+ * might-see or final sets along the path: conservative, and tighter than the source's might-see
+ * set). With a budget, every flow gets an even share of the time left (in steps, at the rate
+ * measured so far), so the budget narrows all portals rather than leaving the last, most expensive
+ * ones un-narrowed. PvsStats::degradedPortals counts the flows that closed. With several threads a
+ * portal may be bounded by another's final set or by its might-see set depending on timing, so two
+ * runs may differ in a few extra nodes (both supersets of the exact PVS); threads = 1 is
+ * deterministic.
  *
  * MightSee: step 1 alone (the loosest a closed flow can be).
  *
@@ -100,6 +105,29 @@ struct PvsOptions
   /// Off as in Quake's vis: on a 588-room maze it made the flow 1.6x slower for sets 0.4 %
   /// smaller.
   bool clipSourceBySeparators = false;
+  /// PortalFlow: passage might-see (the idea of q3map2's passage vis). Before the flows, for
+  /// every pair of consecutive directed portals (q, r) -- r leaving the node q leads into -- the
+  /// portals a line crossing q then r may cross later: the might-see flood from r within the
+  /// might-see sets of q and r, passing only portals with a point in front of every separating
+  /// plane of q and r. A flow stepping from q through r then keeps only those bits beyond r, so
+  /// every consecutive pair of its path bounds what lies beyond it (not only the source and the
+  /// last pass, as the clipping does). Memory: one bit set of the directed portals per pair
+  /// (Freedoom MAP12: 130,262 pairs, 189 MB, freed after the flows). Off by default: with the
+  /// merged flow (mergeAfterSteps) finishing long flows, their 3-5 s and memory do not pay
+  /// (MAP12: 27.6 s CPU with them, 24.3 s without; BENCHMARKS.md); without the merged flow
+  /// they halve the flows a step cap closes.
+  bool passages = false;
+  /// PortalFlow: flow steps for one source portal after which its walk over paths stops and
+  /// the merged flow finishes it instead (0 = never): one polygon per portal reached (the
+  /// convex hull of what every path let through) and one set of bits, processed again while
+  /// they grow. Complete and conservative, looser than the walk where paths meet, and its cost
+  /// does not grow with the number of paths (long chains of small rooms). The step cap and the
+  /// budget still close flows (merged ones too) when they run out. Freedoom MAP12 (1,692
+  /// rooms): half of its flows pass 2,000 steps and none of them would finish otherwise. Once
+  /// 24 of the last 32 walks gave way, sources skip the walk (every 8th still walks): sources
+  /// come in order of might-see count, and the walks that would be thrown away cost half the
+  /// time.
+  std::size_t mergeAfterSteps = 2000;
   /// Called with the fraction done in [0, 1], on the calling thread only (after each source node;
   /// PortalFlow: about every 50 ms and once at the end); return false to cancel.
   std::function<bool(double)> progress;
@@ -122,9 +150,15 @@ struct PvsStats
   std::size_t unknownPortals = 0;   ///< Graph portals without a usable side (no narrowing).
   /// Directed portals whose flow closed early (time or step budget): conservative, looser.
   std::size_t degradedPortals = 0;
+  std::size_t mergedPortals = 0;    ///< Directed portals finished by the merged flow.
+  std::size_t mergedSteps = 0;      ///< Portals processed by merged flows (one per edge try).
   bool budgetExceeded = false;      ///< budgetSeconds ran out before every flow finished.
   int threads = 1;                  ///< Threads the flow ran on.
+  std::size_t passages = 0;         ///< PortalFlow with passages: portal pairs with a passage.
+  double averagePassage = 0.0;      ///< Mean portals per passage.
+  std::size_t passageBytes = 0;     ///< Memory of the passages' bit sets (freed after the flow).
   double mightSeeSeconds = 0.0;
+  double passageSeconds = 0.0; ///< Time of the passages (between might-see and flow).
   double flowSeconds = 0.0;
 };
 
