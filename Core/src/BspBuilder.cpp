@@ -1,5 +1,6 @@
 #include "scenevis/BspBuilder.h"
 
+#include "BspLeafBuilder.h"
 #include "PolygonPieces.h"
 
 #include <glm/common.hpp>
@@ -104,21 +105,13 @@ struct Rng
   }
 };
 
-enum Side : std::uint8_t
-{
-  On = 0,
-  Front = 1,
-  Back = 2,
-  Straddle = 3
-};
-
-/// A convex planar piece of a normalised input polygon; vertex ids live in Builder::Verts.
-struct Frag
-{
-  std::uint32_t piece;
-  std::uint32_t first;
-  std::uint32_t count;
-};
+using detail::Back;
+using detail::BuildGeometry;
+using detail::Frag;
+using detail::Front;
+using detail::On;
+using detail::Side;
+using detail::Straddle;
 
 struct Task
 {
@@ -251,12 +244,6 @@ private:
   /// Makes `task`'s list an ordered leaf (BspTree.h) when every pair is coplanar or separable;
   /// pushes the fallback subtree's task when the leaf needs one. False: nothing was changed.
   bool makeLeaf(const Task& task, std::vector<Task>& tasks);
-  /// A plane with `a` behind and `b` in front (each within Tol), from the axes between their
-  /// edges and normals; false when none of them separates the pair.
-  bool separatingPlane(const Frag& a, const Frag& b, glm::dvec4& plane) const;
-  /// Appends to Generators every plane through an edge of one of `a`, `b` and a vertex of the
-  /// other that separates them, oriented with `a` behind.
-  void separatingGenerators(const Frag& a, const Frag& b);
   /// Points `task`'s parent (a node, a leaf's fallback, or the root) at `reference`.
   void link(const Task& task, std::uint32_t reference);
   /// Builds the subtree of `task` (a list in this builder's Arena) in a worker builder.
@@ -270,18 +257,15 @@ private:
     return plane.x * p.x + plane.y * p.y + plane.z * p.z + plane.w;
   }
 
+  /// The current points, vertices and planes (valid until the next split adds to them).
+  BuildGeometry geometry() const
+  {
+    return BuildGeometry{ Local.data(), Verts.data(), Planes, Tol };
+  }
+
   Side classify(const glm::dvec4& plane, const Frag& f) const
   {
-    bool front = false;
-    bool back = false;
-    const std::uint32_t* ids = Verts.data() + f.first;
-    for (std::uint32_t k = 0; k < f.count; ++k)
-    {
-      const double s = signedDistance(plane, ids[k]);
-      front |= s > Tol;
-      back |= s < -Tol;
-    }
-    return static_cast<Side>((front ? Front : On) | (back ? Back : On));
+    return geometry().classify(plane, f);
   }
 
 
@@ -339,10 +323,7 @@ private:
   std::vector<double> SweepFlat;
   std::vector<double> SweepCost;
   std::vector<double> CostTable;
-  std::vector<LeafPair> LeafPairScratch;
-  std::vector<glm::dvec4> LeafPlaneScratch;
-  std::vector<std::uint32_t> LeafRoots;
-  std::vector<glm::dvec4> Generators;
+  detail::LeafBuilder Leaf;
   std::size_t FallbackFragments = 0;
   std::vector<std::uint32_t> SamplePiece;
   std::vector<std::uint32_t> SampleEnd;
@@ -823,9 +804,9 @@ Tree Builder::run()
   }
 
   {
-    detail::PolygonPieces input;
-    detail::PieceCounts counts;
-    detail::splitIntoPieces(Mesh, Local, Tol, input, counts);
+    scenevis::detail::PolygonPieces input;
+    scenevis::detail::PieceCounts counts;
+    scenevis::detail::splitIntoPieces(Mesh, Local, Tol, input, counts);
     st.invalidPolygons += counts.invalid;
     st.degeneratePolygons += counts.degenerate;
     st.triangulatedPolygons += counts.triangulated;
@@ -1117,235 +1098,26 @@ void Builder::link(const Task& task, std::uint32_t reference)
   }
 }
 
-bool Builder::separatingPlane(const Frag& a, const Frag& b, glm::dvec4& plane) const
-{
-  const std::uint32_t* ia = Verts.data() + a.first;
-  const std::uint32_t* ib = Verts.data() + b.first;
-  auto edge = [this](const std::uint32_t* ids, std::uint32_t count, std::uint32_t k)
-  { return Local[ids[k + 1 == count ? 0 : k + 1]] - Local[ids[k]]; };
-  auto tryAxis = [&](glm::dvec3 d) -> bool
-  {
-    const double length = glm::length(d);
-    if (!(length > 0.0) || !std::isfinite(length))
-    {
-      return false;
-    }
-    d /= length;
-    double loA = std::numeric_limits<double>::infinity();
-    double hiA = -loA;
-    double loB = loA;
-    double hiB = -loA;
-    for (std::uint32_t k = 0; k < a.count; ++k)
-    {
-      const double s = glm::dot(d, Local[ia[k]]);
-      loA = std::min(loA, s);
-      hiA = std::max(hiA, s);
-    }
-    for (std::uint32_t k = 0; k < b.count; ++k)
-    {
-      const double s = glm::dot(d, Local[ib[k]]);
-      loB = std::min(loB, s);
-      hiB = std::max(hiB, s);
-    }
-    glm::dvec4 candidate;
-    if (hiA - loB <= Tol)
-    {
-      candidate = glm::dvec4(d, -0.5 * (hiA + loB));
-    }
-    else if (hiB - loA <= Tol)
-    {
-      candidate = glm::dvec4(-d, 0.5 * (hiB + loA));
-    }
-    else
-    {
-      return false;
-    }
-    // The verdict is the classification the partition planes get, so the leaf's order is exact
-    // in the same sense as the tree's.
-    const Side sa = classify(candidate, a);
-    const Side sb = classify(candidate, b);
-    if ((sa & Front) || (sb & Back) || (sa == On && sb == On))
-    {
-      return false;
-    }
-    plane = candidate;
-    return true;
-  };
-  const glm::dvec3 na(Planes[a.piece]);
-  const glm::dvec3 nb(Planes[b.piece]);
-  for (std::uint32_t i = 0; i < a.count; ++i)
-  {
-    const glm::dvec3 ea = edge(ia, a.count, i);
-    for (std::uint32_t j = 0; j < b.count; ++j)
-    {
-      if (tryAxis(glm::cross(ea, edge(ib, b.count, j))))
-      {
-        return true;
-      }
-    }
-    if (tryAxis(glm::cross(na, ea)))
-    {
-      return true;
-    }
-  }
-  for (std::uint32_t j = 0; j < b.count; ++j)
-  {
-    if (tryAxis(glm::cross(nb, edge(ib, b.count, j))))
-    {
-      return true;
-    }
-  }
-  return false;
-}
-
-void Builder::separatingGenerators(const Frag& a, const Frag& b)
-{
-  auto add = [this, &a, &b](const glm::dvec3& p, const glm::dvec3& q, const glm::dvec3& r)
-  {
-    glm::dvec3 n = glm::cross(q - p, r - p);
-    const double length = glm::length(n);
-    if (!(length > 0.0) || !std::isfinite(length))
-    {
-      return;
-    }
-    n /= length;
-    glm::dvec4 plane(n, -glm::dot(n, p));
-    Side sa = classify(plane, a);
-    Side sb = classify(plane, b);
-    if (sa == Straddle || sb == Straddle || (sa & sb) != 0 || (sa | sb) == On)
-    {
-      return;
-    }
-    if ((sa & Front) || (sb & Back))
-    {
-      plane = -plane;
-    }
-    Generators.push_back(plane);
-  };
-  for (int pass = 0; pass < 2; ++pass)
-  {
-    const Frag& e = pass == 0 ? a : b;
-    const Frag& v = pass == 0 ? b : a;
-    for (std::uint32_t i = 0; i < e.count; ++i)
-    {
-      const glm::dvec3& p = Local[Verts[e.first + i]];
-      const glm::dvec3& q = Local[Verts[e.first + (i + 1 == e.count ? 0 : i + 1)]];
-      for (std::uint32_t j = 0; j < v.count; ++j)
-      {
-        add(p, q, Local[Verts[v.first + j]]);
-      }
-    }
-  }
-}
-
 bool Builder::makeLeaf(const Task& task, std::vector<Task>& tasks)
 {
   const std::uint32_t n = task.end - task.begin;
   const Frag* list = Arena.data() + task.begin;
-  LeafPlaneScratch.clear();
-  LeafPairScratch.clear();
-  for (std::uint32_t i = 0; i < n; ++i)
+  if (!Leaf.analyse(geometry(), list, n))
   {
-    LeafPlaneScratch.push_back(Planes[list[i].piece]);
+    return false;
   }
-  // Union-find over the stored pairs: a cycle of precedences needs a cycle of pairs.
-  LeafRoots.resize(n);
-  for (std::uint32_t i = 0; i < n; ++i)
-  {
-    LeafRoots[i] = i;
-  }
-  auto findRoot = [this](std::uint32_t i)
-  {
-    while (LeafRoots[i] != i)
-    {
-      i = LeafRoots[i] = LeafRoots[LeafRoots[i]];
-    }
-    return i;
-  };
-  bool mayCycle = false;
-  for (std::uint32_t i = 0; i < n; ++i)
-  {
-    for (std::uint32_t j = i + 1; j < n; ++j)
-    {
-      const Side sj = classify(LeafPlaneScratch[i], list[j]);
-      const Side si = classify(LeafPlaneScratch[j], list[i]);
-      if (sj == On || si == On)
-      {
-        continue; // coplanar: any order is exact (as for a node's own fragments)
-      }
-      // Plane i: fragment i lies on it; the verdict "i before j" holds from the front when j is
-      // in front. Plane j likewise with the roles swapped. Normals are kept oriented as
-      // "i behind, j in front" to pick the other planes.
-      LeafPair pair{ static_cast<std::uint8_t>(i), static_cast<std::uint8_t>(j), {} };
-      std::fill(std::begin(pair.planes), std::end(pair.planes), kNoPlane);
-      std::uint32_t used = 0;
-      glm::dvec3 chosen[kPairPlanes];
-      if (sj != Straddle)
-      {
-        pair.planes[used] = static_cast<std::uint16_t>(i | (sj == Back ? kFlipPlane : 0));
-        chosen[used++] = glm::dvec3(LeafPlaneScratch[i]) * (sj == Back ? -1.0 : 1.0);
-      }
-      if (si != Straddle)
-      {
-        pair.planes[used] = static_cast<std::uint16_t>(j | (si == Front ? kFlipPlane : 0));
-        chosen[used++] = glm::dvec3(LeafPlaneScratch[j]) * (si == Front ? -1.0 : 1.0);
-      }
-      // More separating planes, each as far in direction from those chosen as possible: the more
-      // different they are, the more eyes see two of them disagree (and the pair unordered).
-      Generators.clear();
-      separatingGenerators(list[i], list[j]);
-      if (used == 0 && Generators.empty())
-      {
-        glm::dvec4 plane;
-        if (!separatingPlane(list[i], list[j], plane))
-        {
-          return false; // they intersect (or touch too closely to tell): split this list
-        }
-        Generators.push_back(plane);
-      }
-      while (used < kPairPlanes && !Generators.empty())
-      {
-        std::size_t best = 0;
-        double bestDot = std::numeric_limits<double>::infinity();
-        for (std::size_t g = 0; g < Generators.size(); ++g)
-        {
-          double worst = -1.0;
-          for (std::uint32_t m = 0; m < used; ++m)
-          {
-            worst = std::max(worst, glm::dot(glm::dvec3(Generators[g]), chosen[m]));
-          }
-          if (worst < bestDot)
-          {
-            bestDot = worst;
-            best = g;
-          }
-        }
-        if (bestDot > 0.9999)
-        {
-          break; // nothing new in direction
-        }
-        pair.planes[used] = static_cast<std::uint16_t>(LeafPlaneScratch.size());
-        chosen[used++] = glm::dvec3(Generators[best]);
-        LeafPlaneScratch.push_back(Generators[best]);
-        Generators[best] = Generators.back();
-        Generators.pop_back();
-      }
-      LeafPairScratch.push_back(pair);
-      const std::uint32_t ri = findRoot(i);
-      const std::uint32_t rj = findRoot(j);
-      mayCycle |= ri == rj;
-      LeafRoots[ri] = rj;
-    }
-  }
+  const std::vector<glm::dvec4>& leafPlanes = Leaf.planes;
+  const std::vector<LeafPair>& leafPairs = Leaf.pairs;
+  const bool mayCycle = Leaf.mayCycle;
 
   const auto leafIndex = static_cast<std::uint32_t>(Out.leaves.size());
   OrderedLeaf leaf;
   leaf.firstFragment = static_cast<std::uint32_t>(Out.fragments.size());
   leaf.fragmentCount = n;
   leaf.firstPlane = static_cast<std::uint32_t>(Out.leafPlanes.size());
-  leaf.planeCount = static_cast<std::uint32_t>(LeafPlaneScratch.size());
+  leaf.planeCount = static_cast<std::uint32_t>(leafPlanes.size());
   leaf.firstPair = static_cast<std::uint32_t>(Out.leafPairs.size());
-  leaf.pairCount = static_cast<std::uint32_t>(LeafPairScratch.size());
+  leaf.pairCount = static_cast<std::uint32_t>(leafPairs.size());
   Out.leaves.push_back(leaf);
   link(task, kLeafBit | leafIndex);
   for (std::uint32_t i = 0; i < n; ++i)
@@ -1356,8 +1128,8 @@ bool Builder::makeLeaf(const Task& task, std::vector<Task>& tasks)
     Out.fragmentVertices.insert(
       Out.fragmentVertices.end(), Verts.begin() + f.first, Verts.begin() + f.first + f.count);
   }
-  Out.leafPlanes.insert(Out.leafPlanes.end(), LeafPlaneScratch.begin(), LeafPlaneScratch.end());
-  Out.leafPairs.insert(Out.leafPairs.end(), LeafPairScratch.begin(), LeafPairScratch.end());
+  Out.leafPlanes.insert(Out.leafPlanes.end(), leafPlanes.begin(), leafPlanes.end());
+  Out.leafPairs.insert(Out.leafPairs.end(), leafPairs.begin(), leafPairs.end());
   BuildStatistics& st = Out.statistics;
   st.leafFragments += n;
   st.depth = std::max<std::size_t>(st.depth, task.depth);
