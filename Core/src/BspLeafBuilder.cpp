@@ -199,7 +199,7 @@ bool LeafBuilder::analyse(const BuildGeometry& geometry, const Frag* list, std::
         }
         Generators.push_back(plane);
       }
-      while (used < kPairPlanes && !Generators.empty())
+      while (used < kPairPlanes && !Generators.empty() && planes.size() < kMaxLeafPlanes)
       {
         std::size_t best = 0;
         double bestDot = std::numeric_limits<double>::infinity();
@@ -225,6 +225,10 @@ bool LeafBuilder::analyse(const BuildGeometry& geometry, const Frag* list, std::
         planes.push_back(Generators[best]);
         Generators[best] = Generators.back();
         Generators.pop_back();
+      }
+      if (used == 0)
+      {
+        return false; // a separating plane exists but the leaf has no room left for it
       }
       pairs.push_back(pair);
       const std::uint32_t ri = findRoot(i);

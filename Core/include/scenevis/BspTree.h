@@ -113,8 +113,15 @@ struct LeafPair
 constexpr std::uint16_t kFlipPlane = 0x8000u;
 constexpr std::uint16_t kNoPlane = 0xffffu;
 
-/// At most this many polygons in an OrderedLeaf (a precedence row fits one 64-bit word).
-constexpr std::uint32_t kMaxLeafPolygons = 64;
+/// At most this many polygons in an OrderedLeaf (LeafPair's indices are 8 bits; a traversal
+/// sorts a leaf on precedence rows of 1, 2 or 4 64-bit words, as few as its size needs).
+constexpr std::uint32_t kMaxLeafPolygons = 256;
+
+/// At most this many planes in an OrderedLeaf (plane indices are 15 bits, and 0x7fff with
+/// kFlipPlane would read as kNoPlane). A leaf of more than 181 polygons can have more pairs than
+/// that allows for; its pairs beyond it keep their own planes only, or if they have none usable,
+/// the list is split.
+constexpr std::uint32_t kMaxLeafPlanes = 0x7fff;
 
 /**
  * Unsplit convex polygons ordered per view (see the file comment). Fragments [firstFragment,
