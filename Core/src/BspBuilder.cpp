@@ -79,6 +79,11 @@ double subtreeCost(double m)
 /// hands its back side to a worker thread (one worker at a time; the front side stays here).
 constexpr std::uint32_t kMinParallelList = 16384;
 
+/// A list that would become an ordered leaf needing a fallback first tries at most this many of
+/// its pairs' separating planes as a partition that splits nothing (each costs a pass over the
+/// list).
+constexpr std::uint32_t kSeparatingTries = 64;
+
 std::uint64_t splitmix64(std::uint64_t& state)
 {
   std::uint64_t z = (state += 0x9e3779b97f4a7c15ull);
@@ -241,9 +246,22 @@ public:
 private:
   /// Processes one task (one node): picks its plane, splits its list, pushes its children.
   void step(const Task& task, std::vector<Task>& tasks);
-  /// Makes `task`'s list an ordered leaf (BspTree.h) when every pair is coplanar or separable;
-  /// pushes the fallback subtree's task when the leaf needs one. False: nothing was changed.
-  bool makeLeaf(const Task& task, std::vector<Task>& tasks);
+  enum class LeafResult
+  {
+    Made,    ///< The list is an ordered leaf now.
+    Split,   ///< Some pair intersects: nothing was changed, split the list as usual.
+    Separate ///< `separating` splits none of the list: partition by it (nothing was changed).
+  };
+  /// Makes `task`'s list an ordered leaf (BspTree.h) when every pair is coplanar or separable,
+  /// and pushes the fallback subtree's task when the leaf needs one, unless one of its pairs'
+  /// separating planes (up to kSeparatingTries of them) splits none of the list.
+  LeafResult makeLeaf(const Task& task, std::vector<Task>& tasks, glm::dvec4& separating);
+  /// The first piece in `task`'s list whose plane splits none of the list's fragments (kNone
+  /// when every one splits some).
+  std::uint32_t splitFreePiece(const Task& task) const;
+  /// An axis-aligned plane through the most balanced gap between the extents of `list`'s
+  /// fragments (fragments on both sides, none split); false when no axis has a gap.
+  bool gapPlane(const Frag* list, std::uint32_t n, glm::dvec4& plane);
   /// Points `task`'s parent (a node, a leaf's fallback, or the root) at `reference`.
   void link(const Task& task, std::uint32_t reference);
   /// Builds the subtree of `task` (a list in this builder's Arena) in a worker builder.
@@ -324,6 +342,7 @@ private:
   std::vector<double> SweepCost;
   std::vector<double> CostTable;
   detail::LeafBuilder Leaf;
+  std::vector<std::pair<double, double>> GapScratch;
   std::size_t FallbackFragments = 0;
   std::vector<std::uint32_t> SamplePiece;
   std::vector<std::uint32_t> SampleEnd;
@@ -925,16 +944,41 @@ void Builder::step(const Task& task, std::vector<Task>& tasks)
 {
   BuildStatistics& st = Out.statistics;
   const std::uint32_t n = task.end - task.begin;
-  if (!task.noLeaf && n <= std::min(Config.orderedLeafSize, kMaxLeafPolygons) &&
-    makeLeaf(task, tasks))
+  // At leaf size, a plane that splits none of the list comes first: a polygon's, else (for a
+  // list that could be a leaf needing a fallback) one of the pairs' separating planes. Such a
+  // node orders its sides exactly with no sort and needs no fallback; only what cannot be
+  // partitioned that way becomes an ordered leaf (and only such a leaf can need a fallback).
+  std::uint32_t peel = kNone;
+  bool separate = false;
+  glm::dvec4 separating;
+  if (n <= std::min(Config.orderedLeafSize, kMaxLeafPolygons))
   {
-    return;
+    peel = splitFreePiece(task);
+    if (peel == kNone && !task.noLeaf)
+    {
+      const LeafResult result = makeLeaf(task, tasks, separating);
+      if (result == LeafResult::Made)
+      {
+        return;
+      }
+      separate = result == LeafResult::Separate;
+    }
   }
 
   glm::dvec4 plane;
   std::uint32_t piece;
   Choice choice;
-  if (!Scored || (task.oneSidedRun && n <= kMinFreePlaneList))
+  if (peel != kNone)
+  {
+    piece = peel;
+    plane = Planes[piece];
+  }
+  else if (separate)
+  {
+    piece = kNone;
+    plane = separating;
+  }
+  else if (!Scored || (task.oneSidedRun && n <= kMinFreePlaneList))
   {
     piece = Arena[task.begin].piece;
     plane = Planes[piece];
@@ -1098,13 +1142,121 @@ void Builder::link(const Task& task, std::uint32_t reference)
   }
 }
 
-bool Builder::makeLeaf(const Task& task, std::vector<Task>& tasks)
+std::uint32_t Builder::splitFreePiece(const Task& task) const
+{
+  const Frag* list = Arena.data() + task.begin;
+  const std::uint32_t n = task.end - task.begin;
+  for (std::uint32_t i = 0; i < n; ++i)
+  {
+    const std::uint32_t piece = list[i].piece;
+    const glm::dvec4& plane = Planes[piece];
+    bool splits = false;
+    for (std::uint32_t j = 0; j < n && !splits; ++j)
+    {
+      splits = list[j].piece != piece && classify(plane, list[j]) == Straddle;
+    }
+    if (!splits)
+    {
+      return piece;
+    }
+  }
+  return kNone;
+}
+
+bool Builder::gapPlane(const Frag* list, std::uint32_t n, glm::dvec4& plane)
+{
+  std::uint32_t bestBalance = 0;
+  for (int axis = 0; axis < 3; ++axis)
+  {
+    GapScratch.clear();
+    for (std::uint32_t i = 0; i < n; ++i)
+    {
+      double lo = std::numeric_limits<double>::infinity();
+      double hi = -lo;
+      for (std::uint32_t k = 0; k < list[i].count; ++k)
+      {
+        const double x = Local[Verts[list[i].first + k]][axis];
+        lo = std::min(lo, x);
+        hi = std::max(hi, x);
+      }
+      GapScratch.emplace_back(lo, hi);
+    }
+    std::sort(GapScratch.begin(), GapScratch.end());
+    double reach = GapScratch[0].second; // the highest extent so far
+    for (std::uint32_t k = 1; k < n; ++k)
+    {
+      const double next = GapScratch[k].first;
+      const std::uint32_t balance = std::min(k, n - k);
+      if (next >= reach - Tol && balance > bestBalance)
+      {
+        // Everything before k reaches at most `reach`, everything after starts at `next` or
+        // later: the plane between them has each within Tol/2 of its side.
+        glm::dvec4 candidate(0.0);
+        candidate[axis] = 1.0;
+        candidate.w = -0.5 * (reach + next);
+        bestBalance = balance;
+        plane = candidate;
+      }
+      reach = std::max(reach, GapScratch[k].second);
+    }
+  }
+  if (bestBalance == 0)
+  {
+    return false;
+  }
+  // Checked as the partition will classify it (the sweep's reasoning is only within Tol).
+  std::uint32_t front = 0;
+  for (std::uint32_t i = 0; i < n; ++i)
+  {
+    const Side side = classify(plane, list[i]);
+    if (side == Straddle)
+    {
+      return false;
+    }
+    front += side == Front;
+  }
+  return front > 0 && front < n;
+}
+
+Builder::LeafResult Builder::makeLeaf(
+  const Task& task, std::vector<Task>& tasks, glm::dvec4& separating)
 {
   const std::uint32_t n = task.end - task.begin;
   const Frag* list = Arena.data() + task.begin;
   if (!Leaf.analyse(geometry(), list, n))
   {
-    return false;
+    return LeafResult::Split;
+  }
+  if (Leaf.mayCycle && gapPlane(list, n, separating))
+  {
+    return LeafResult::Separate;
+  }
+  if (Leaf.mayCycle)
+  {
+    // A fallback would be needed: first try a gap between the fragments along an axis (above),
+    // then the pairs' other separating planes (evenly sampled) as a partition with fragments on
+    // both sides and none split.
+    const auto extra = static_cast<std::uint32_t>(Leaf.planes.size()) - n;
+    const std::uint32_t stride = std::max(1u, extra / kSeparatingTries);
+    for (std::uint32_t p = n; p < Leaf.planes.size(); p += stride)
+    {
+      const glm::dvec4& plane = Leaf.planes[p];
+      std::uint32_t front = 0;
+      std::uint32_t back = 0;
+      bool splits = false;
+      for (std::uint32_t j = 0; j < n && !splits; ++j)
+      {
+        const Side side = classify(plane, list[j]);
+        splits = side == Straddle;
+        front += side == Front;
+        back += side != Front;
+      }
+      if (!splits && front > 0 && back > 0)
+      {
+        separating = plane;
+        return LeafResult::Separate;
+      }
+    }
   }
   const std::vector<glm::dvec4>& leafPlanes = Leaf.planes;
   const std::vector<LeafPair>& leafPairs = Leaf.pairs;
@@ -1148,7 +1300,7 @@ bool Builder::makeLeaf(const Task& task, std::vector<Task>& tasks)
   {
     Arena.resize(task.begin);
   }
-  return true;
+  return LeafResult::Made;
 }
 
 void Builder::fork(const Task& task)
