@@ -16,15 +16,16 @@
  * (point, plane), so a vertex shared by neighbouring polygons always gets the same verdict, and a
  * split edge shared by two polygons yields one shared split point (no cracks, no T-junctions).
  *
- * Ordered leaves (optional, BuildConfig::orderedLeafSize): a short list can be kept unsplit in an
- * OrderedLeaf instead of a subtree. A child reference (Node::front / back, Tree::root) with
- * kLeafBit set names `leaves[ref & ~kLeafBit]`, not a node. The leaf stores, for every pair of its
- * polygons that are not coplanar, one or two separating planes; a traversal evaluates them for the
- * eye and sorts the leaf's polygons topologically (BspTraversal.h). Polygons of 3 or more can
- * overlap cyclically for some eyes: the leaf then falls back, for that eye only, to `fallback`, the
- * ordinary split subtree of the same polygons (stored too). So a tree with leaves stores more
- * fragments than it draws: an order lists each leaf's unsplit fragments or its fallback's, never
- * both, and is not a permutation of all fragment ids.
+ * Ordered leaves (optional, BuildConfig::orderedLeafSize): a short list that none of the planes
+ * the builder tries partitions without a split can be kept unsplit in an OrderedLeaf instead of a
+ * subtree. A child reference
+ * (Node::front / back, Tree::root) with kLeafBit set names `leaves[ref & ~kLeafBit]`, not a node.
+ * The leaf stores, for every pair of its polygons that are not coplanar, one or two separating
+ * planes; a traversal evaluates them for the eye and sorts the leaf's polygons topologically
+ * (BspTraversal.h). Polygons of 3 or more can overlap cyclically for some eyes: the leaf then falls
+ * back, for that eye only, to `fallback`, the ordinary split subtree of the same polygons (stored
+ * too). So a tree with leaves stores more fragments than it draws: an order lists each leaf's
+ * unsplit fragments or its fallback's, never both, and is not a permutation of all fragment ids.
  *
  * Point ids: ids below `inputPointCount` are the input mesh's own points (unchanged); split points
  * follow in creation order and are described by `splitPoints`, so a caller can interpolate any
