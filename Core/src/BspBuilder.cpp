@@ -253,8 +253,9 @@ private:
     Separate ///< `separating` splits none of the list: partition by it (nothing was changed).
   };
   /// Makes `task`'s list an ordered leaf (BspTree.h) when every pair is coplanar or separable,
-  /// and pushes the fallback subtree's task when the leaf needs one, unless one of its pairs'
-  /// separating planes (up to kSeparatingTries of them) splits none of the list.
+  /// and pushes the fallback subtree's task when the leaf needs one, unless the leaf would need
+  /// one and a gap plane (gapPlane) or one of its pairs' separating planes (up to
+  /// kSeparatingTries of them) splits none of the list.
   LeafResult makeLeaf(const Task& task, std::vector<Task>& tasks, glm::dvec4& separating);
   /// The first piece in `task`'s list whose plane splits none of the list's fragments (kNone
   /// when every one splits some).
@@ -945,9 +946,9 @@ void Builder::step(const Task& task, std::vector<Task>& tasks)
   BuildStatistics& st = Out.statistics;
   const std::uint32_t n = task.end - task.begin;
   // At leaf size, a plane that splits none of the list comes first: a polygon's, else (for a
-  // list that could be a leaf needing a fallback) one of the pairs' separating planes. Such a
-  // node orders its sides exactly with no sort and needs no fallback; only what cannot be
-  // partitioned that way becomes an ordered leaf (and only such a leaf can need a fallback).
+  // list that could be a leaf needing a fallback) an axis-aligned plane through a gap or one of
+  // the pairs' separating planes (makeLeaf). Such a node orders its sides exactly with no sort
+  // and needs no fallback; only what cannot be partitioned that way becomes an ordered leaf.
   std::uint32_t peel = kNone;
   bool separate = false;
   glm::dvec4 separating;
