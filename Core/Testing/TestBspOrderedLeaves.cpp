@@ -555,6 +555,35 @@ TEST(BspOrderedLeaves, AListWhosePairsNeedMorePlanesThanIndicesIsSplit)
   expectCorrectOrders(strips, views, 256);
 }
 
+TEST(BspOrderedLeaves, FragmentsWithManyVerticesNeedNoFallbackWithoutACycle)
+{
+  // Long strips stacked 0.08 apart: from above a ray meets the higher strip first, so no cycle
+  // exists there and no leaf may fall back. Their fragments carry the split points of their
+  // neighbours (conforming fragments), more than 64 vertices on some, which the exact check of a
+  // stalled sort must still handle.
+  const std::vector<Polygon> strips = turned(verticalStrips(60, 5));
+  const Tree tree = scenevis::bsp::build(meshOf(strips), withLeaves(256));
+  ASSERT_FALSE(tree.leaves.empty());
+  std::uint32_t mostVertices = 0;
+  for (const auto& fragment : tree.fragments)
+  {
+    mostVertices = std::max(mostVertices, fragment.count);
+  }
+  EXPECT_GT(mostVertices, 64u);
+  const std::vector<Polygon> fragments = scenevis::oracle::fragmentPolygons(tree);
+  std::vector<double> inputArea;
+  for (const Polygon& p : strips)
+  {
+    inputArea.push_back(area(p));
+  }
+  const glm::dvec3 above = turned({ { glm::dvec3(0.0, 0.0, 40.0) } })[0][0];
+  OrderStatistics statistics;
+  EXPECT_TRUE(
+    drawnOrderIsCorrect(tree, fragments, inputArea, View::perspective(above), &statistics));
+  EXPECT_EQ(statistics.leavesFallenBack, 0u);
+  EXPECT_GT(statistics.leavesSorted, 0u);
+}
+
 TEST(BspOrderedLeaves, BumpySurfaceFromOutsideInsideAndOnPlanes)
 {
   // A closed scanned-like surface: its leaves are patches of neighbours, the case the option is

@@ -42,22 +42,51 @@ inline std::uint32_t lowestBit(std::uint64_t x)
  */
 bool mayOverlap(const Tree& tree, const Fragment& a, const Fragment& b, const glm::dvec4& eye)
 {
-  constexpr std::uint32_t kMaxVertices = 64;
-  if (a.count > kMaxVertices || b.count > kMaxVertices)
-  {
-    return true;
-  }
-  glm::dvec3 pa[kMaxVertices];
-  glm::dvec3 pb[kMaxVertices];
-  for (std::uint32_t k = 0; k < a.count; ++k)
-  {
-    pa[k] = tree.points[tree.fragmentVertices[a.first + k]] - tree.origin;
-  }
-  for (std::uint32_t k = 0; k < b.count; ++k)
-  {
-    pb[k] = tree.points[tree.fragmentVertices[b.first + k]] - tree.origin;
-  }
   const double tol = tree.tolerance;
+  // Corners only: conforming fragments (makeConforming) carry the split points of their
+  // neighbours on their edges, so a long thin fragment can have dozens of vertices in a line.
+  // Those add no separating plane and no side, and refusing such fragments (as counting them
+  // against a fixed buffer did) confirms precedences no ray realises, so the leaf falls back for
+  // nothing. A vertex is dropped when it repeats the last kept one or continues its direction to
+  // the next vertex (within 1e-12 rad): it then lies on a segment between two others, never at a
+  // corner, so the polygon keeps its shape.
+  constexpr std::uint32_t kMaxCorners = 64;
+  auto corners = [&tree](const Fragment& f, glm::dvec3* out) -> std::uint32_t
+  {
+    const std::uint32_t* ids = tree.fragmentVertices.data() + f.first;
+    std::uint32_t m = 0;
+    glm::dvec3 last = tree.points[ids[f.count - 1]] - tree.origin;
+    for (std::uint32_t k = 0; k < f.count; ++k)
+    {
+      const glm::dvec3 point = tree.points[ids[k]] - tree.origin;
+      const glm::dvec3 next = tree.points[ids[k + 1 == f.count ? 0 : k + 1]] - tree.origin;
+      const glm::dvec3 u = point - last;
+      const glm::dvec3 v = next - point;
+      const double lu = glm::length(u);
+      const double lv = glm::length(v);
+      const bool straight =
+        lv > 0.0 && glm::dot(u, v) > 0.0 && glm::length(glm::cross(u, v)) <= 1e-12 * lu * lv;
+      if (!(lu > 0.0) || straight)
+      {
+        continue;
+      }
+      if (m == kMaxCorners)
+      {
+        return kMaxCorners + 1;
+      }
+      out[m++] = point;
+      last = point;
+    }
+    return m;
+  };
+  glm::dvec3 pa[kMaxCorners];
+  glm::dvec3 pb[kMaxCorners];
+  const std::uint32_t ca = corners(a, pa);
+  const std::uint32_t cb = corners(b, pb);
+  if (ca < 3 || cb < 3 || ca > kMaxCorners || cb > kMaxCorners)
+  {
+    return true; // degenerate, or too many corners: assume the worst
+  }
   bool seen[2] = { false, false };
   // Plane through p, q, r; returns true once both verdicts have been seen.
   auto generator = [&](const glm::dvec3& p, const glm::dvec3& q, const glm::dvec3& r) -> bool
@@ -80,8 +109,8 @@ bool mayOverlap(const Tree& tree, const Fragment& a, const Fragment& b, const gl
       }
       return sides;
     };
-    const int sa = classify(pa, a.count);
-    const int sb = classify(pb, b.count);
+    const int sa = classify(pa, ca);
+    const int sb = classify(pb, cb);
     // Separating: neither straddles, they are not on one side, and not both on the plane.
     if (sa == 3 || sb == 3 || (sa & sb) != 0 || (sa | sb) == 0)
     {
@@ -93,11 +122,11 @@ bool mayOverlap(const Tree& tree, const Fragment& a, const Fragment& b, const gl
     seen[eyeFront != flip] = true;
     return seen[0] && seen[1];
   };
-  for (std::uint32_t i = 0; i < a.count; ++i)
+  for (std::uint32_t i = 0; i < ca; ++i)
   {
     const glm::dvec3& p = pa[i];
-    const glm::dvec3& q = pa[i + 1 == a.count ? 0 : i + 1];
-    for (std::uint32_t j = 0; j < b.count; ++j)
+    const glm::dvec3& q = pa[i + 1 == ca ? 0 : i + 1];
+    for (std::uint32_t j = 0; j < cb; ++j)
     {
       if (generator(p, q, pb[j]))
       {
@@ -105,11 +134,11 @@ bool mayOverlap(const Tree& tree, const Fragment& a, const Fragment& b, const gl
       }
     }
   }
-  for (std::uint32_t j = 0; j < b.count; ++j)
+  for (std::uint32_t j = 0; j < cb; ++j)
   {
     const glm::dvec3& p = pb[j];
-    const glm::dvec3& q = pb[j + 1 == b.count ? 0 : j + 1];
-    for (std::uint32_t i = 0; i < a.count; ++i)
+    const glm::dvec3& q = pb[j + 1 == cb ? 0 : j + 1];
+    for (std::uint32_t i = 0; i < ca; ++i)
     {
       if (generator(p, q, pa[i]))
       {
