@@ -398,7 +398,7 @@ int registerAll()
   for (const char* model : { "bunny", "engine" })
   {
     const std::string key = model == std::string("bunny") ? "bunny-stl" : "env:SCENEVIS_ENGINE_STL";
-    for (std::uint32_t leafSize : { 0u, 8u, 16u, 32u, 64u })
+    for (std::uint32_t leafSize : { 0u, 8u, 16u, 32u, 64u, 128u, 256u })
     {
       benchmark::RegisterBenchmark(
         (std::string("BM_BspLeafOrder/") + model + "/leaf:" + std::to_string(leafSize)).c_str(),

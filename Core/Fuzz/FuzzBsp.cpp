@@ -13,7 +13,7 @@
 //  4. the brute-force OrderOracle finds no violation in the back-to-front order, for the first
 //     view and the last one; each reported violation is re-cast in long double
 //     (confirmViolation) and only a confirmed one fails;
-//  5. ordered leaves (BuildConfig::orderedLeafSize 8 / 16 / 64, from the top bits of the seed
+//  5. ordered leaves (BuildConfig::orderedLeafSize 8 / 16 / 256, from the top bits of the seed
 //     byte; 0 skips): a second tree built with them draws no fragment twice, FrontToBack is the
 //     reverse of BackToFront, every input polygon's drawn area equals its area in the first tree,
 //     and the oracle (as in 4, for the first view) finds no confirmed violation in what is drawn;
@@ -781,7 +781,9 @@ std::vector<double> areaBySource(
 void checkOrderedLeaves(const PolygonMesh& mesh, const BuildConfig& base, const Tree& plain,
   const View& view, bool areaApplies, bool oracleApplies, double tolerance)
 {
-  static const std::uint32_t sizes[] = { 0, 8, 16, 64 };
+  // 256 (rows of up to 4 words) stands for 64 as well: inputs of at most 24 polygons rarely make
+  // lists longer than 64 fragments, where the two differ.
+  static const std::uint32_t sizes[] = { 0, 8, 16, 256 };
   BuildConfig config = base;
   config.orderedLeafSize = sizes[(base.seed >> 6) & 3];
   if (config.orderedLeafSize == 0)

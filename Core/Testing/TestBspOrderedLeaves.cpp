@@ -6,7 +6,6 @@
 #include "scenevis/BspBuilder.h"
 #include "scenevis/BspTraversal.h"
 #include "scenevis/OrderOracle.h"
-#include "scenevis/Scenes.h"
 
 #include "PolygonSoups.h"
 
@@ -179,6 +178,98 @@ std::vector<Polygon> bumpySphere(std::size_t triangles, double amplitude, std::u
   return scenevis::oracle::polygonsOf(mesh);
 }
 
+/**
+ * Polygons in the cells of a lattice (spacing 1, `nx` x `ny` x `nz` cells), each inside the ball
+ * of radius 0.4 around its cell's centre, so no two intersect and one list of all of them can be
+ * a leaf: in every `tripleEvery`-th cell a turned copy of the cyclic sticks (a true cycle from
+ * some eyes), elsewhere a random triangle.
+ */
+std::vector<Polygon> latticeOfSeparatedPolygons(
+  int nx, int ny, int nz, int tripleEvery, std::uint64_t seed)
+{
+  std::mt19937_64 rng(seed);
+  std::normal_distribution<double> gauss;
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  auto inBall = [&]
+  {
+    glm::dvec3 p;
+    do
+    {
+      p = glm::dvec3(unit(rng), unit(rng), unit(rng));
+    } while (glm::dot(p, p) > 1.0);
+    return p * 0.4;
+  };
+  std::vector<Polygon> polygons;
+  int cell = 0;
+  for (int x = 0; x < nx; ++x)
+  {
+    for (int y = 0; y < ny; ++y)
+    {
+      for (int z = 0; z < nz; ++z, ++cell)
+      {
+        const glm::dvec3 centre(x + 0.5, y + 0.5, z + 0.5);
+        if (cell % tripleEvery != 0)
+        {
+          polygons.push_back({ centre + inBall(), centre + inBall(), centre + inBall() });
+          continue;
+        }
+        const glm::dvec3 axis = glm::normalize(glm::dvec3(gauss(rng), gauss(rng), gauss(rng)));
+        const double angle = 3.0 * unit(rng);
+        for (Polygon stick : cyclicSticks())
+        {
+          for (glm::dvec3& p : stick)
+          {
+            // Centred, scaled into the ball (the sticks reach 1.2 from their axis), turned.
+            p = (p - glm::dvec3(0.0, 0.0, 0.5)) * 0.3;
+            p = p * std::cos(angle) + glm::cross(axis, p) * std::sin(angle) +
+              axis * glm::dot(axis, p) * (1.0 - std::cos(angle)) + centre;
+          }
+          polygons.push_back(stick);
+        }
+      }
+    }
+  }
+  return polygons;
+}
+
+/**
+ * `count` long thin vertical rectangles (20 x 0.06) stacked 0.08 apart, each along a random
+ * horizontal direction and moved up to 1 sideways: no two touch, but every one's plane cuts
+ * nearly all the others, so nearly every pair needs two planes besides their own.
+ */
+std::vector<Polygon> verticalStrips(int count, std::uint64_t seed)
+{
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  std::vector<Polygon> strips;
+  for (int k = 0; k < count; ++k)
+  {
+    const double direction = 3.14159265358979 * unit(rng);
+    const glm::dvec3 along(std::cos(direction), std::sin(direction), 0.0);
+    const glm::dvec3 up(0.0, 0.0, 0.03);
+    const glm::dvec3 centre(unit(rng), unit(rng), 0.08 * k);
+    strips.push_back({ centre - along * 10.0 - up, centre + along * 10.0 - up,
+      centre + along * 10.0 + up, centre - along * 10.0 + up });
+  }
+  return strips;
+}
+
+/// `polygons` turned by a generic rotation, so that no gap between them is axis-aligned.
+std::vector<Polygon> turned(std::vector<Polygon> polygons)
+{
+  const glm::dvec3 axis = glm::normalize(glm::dvec3(1.0, 2.0, 3.0));
+  const double angle = 0.7;
+  for (Polygon& polygon : polygons)
+  {
+    for (glm::dvec3& p : polygon)
+    {
+      p = p * std::cos(angle) + glm::cross(axis, p) * std::sin(angle) +
+        axis * glm::dot(axis, p) * (1.0 - std::cos(angle));
+    }
+  }
+  return polygons;
+}
+
 } // namespace
 
 TEST(BspOrderedLeaves, OffByDefaultAndTheTreeIsUnchanged)
@@ -219,12 +310,12 @@ TEST(BspOrderedLeaves, SeparatedPolygonsStayWholeAndAreSortedForEveryEye)
 
 TEST(BspOrderedLeaves, TheOracleRejectsAReversedLeafOrder)
 {
-  // The check above has teeth: the same leaf's order reversed is caught.
-  std::vector<Polygon> stack;
-  for (int k = 0; k < 6; ++k)
-  {
-    stack.push_back(rectZ(0.2 * k, 0.1 * k, 1.0 + 0.1 * k, 0.0, 1.0));
-  }
+  // The check above has teeth: a leaf's order reversed is caught. Two long strips crossing one
+  // above the other, each tilted about its length so that its plane cuts the other: no polygon
+  // plane partitions them, so they form a leaf.
+  const std::vector<Polygon> stack = { { { -5.0, -0.2, -0.06 }, { 5.0, -0.2, -0.06 },
+                                         { 5.0, 0.2, 0.06 }, { -5.0, 0.2, 0.06 } },
+    { { -0.2, -5.0, 1.06 }, { 0.2, -5.0, 0.94 }, { 0.2, 5.0, 0.94 }, { -0.2, 5.0, 1.06 } } };
   const Tree tree = scenevis::bsp::build(meshOf(stack), withLeaves(8));
   ASSERT_EQ(tree.leaves.size(), 1u);
   const View view = View::perspective({ 0.5, 0.5, 10.0 });
@@ -273,6 +364,48 @@ TEST(BspOrderedLeaves, CyclicOverlapFallsBackToTheSplitSubtree)
 
   std::vector<View> views = randomViews(boundsOf(sticks), 11, 32, 16);
   const Totals totals = expectCorrectOrders(sticks, views, 8);
+  EXPECT_GT(totals.fallenBack, 0u);
+  EXPECT_GT(totals.sorted, 0u);
+}
+
+TEST(BspOrderedLeaves, ListsThatPartitionWithoutSplitsAreNotLeaves)
+{
+  // A leaf needs a sort per view and, when its pairs could form a cycle, a stored fallback; a
+  // list that a plane partitions without splitting anything needs neither. Stacked rectangles:
+  // their own planes do it (no leaf at all). Four copies of the cyclic sticks side by side: no
+  // own plane does, but gaps along x do, so each copy is its own leaf with its own fallback
+  // instead of one leaf of 12 with a fallback of all 12.
+  std::vector<Polygon> stack;
+  for (int k = 0; k < 6; ++k)
+  {
+    stack.push_back(rectZ(0.2 * k, 0.1 * k, 1.0 + 0.1 * k, 0.0, 1.0));
+  }
+  const Tree stacked = scenevis::bsp::build(meshOf(stack), withLeaves(8));
+  EXPECT_TRUE(stacked.leaves.empty());
+  EXPECT_EQ(stacked.fragments.size(), stack.size());
+
+  std::vector<Polygon> copies;
+  for (int c = 0; c < 4; ++c)
+  {
+    for (Polygon stick : cyclicSticks())
+    {
+      for (glm::dvec3& p : stick)
+      {
+        p += glm::dvec3(3.0 * c, 0.7 * c, 0.0);
+      }
+      copies.push_back(stick);
+    }
+  }
+  const Tree tree = scenevis::bsp::build(meshOf(copies), withLeaves(16));
+  ASSERT_EQ(tree.leaves.size(), 4u);
+  for (const auto& leaf : tree.leaves)
+  {
+    EXPECT_EQ(leaf.fragmentCount, 3u);
+    EXPECT_NE(leaf.fallback, scenevis::bsp::kNone); // each copy is a true cycle from above
+  }
+  std::vector<View> views = randomViews(boundsOf(copies), 21, 16, 6);
+  views.push_back(View::perspective({ 4.5, 1.0, 6.0 }));
+  const Totals totals = expectCorrectOrders(copies, views, 16);
   EXPECT_GT(totals.fallenBack, 0u);
   EXPECT_GT(totals.sorted, 0u);
 }
@@ -357,6 +490,100 @@ TEST(BspOrderedLeaves, ScatteredCyclicTriplesFromManyEyes)
   EXPECT_GT(all.fallenBack, 0u); // the fallback is exercised, not only the sort
 }
 
+TEST(BspOrderedLeaves, LeavesOfMoreThan64PolygonsFromManyEyes)
+{
+  // Up to 256 polygons per leaf: precedence rows of 2 and 4 words, cycles through polygons past
+  // the first word, and (above 181 polygons) more pairs than 15-bit plane indices can give two
+  // planes each. Lattices of separated polygons keep whole lists of 65-220 unsplit.
+  Totals all;
+  struct Case
+  {
+    int nx, ny, nz;
+    std::uint32_t leafSize;
+  };
+  for (const Case c : { Case{ 4, 4, 6, 128 }, Case{ 5, 6, 6, 256 }, Case{ 4, 5, 6, 256 } })
+  {
+    for (std::uint64_t seed = 4000; seed < 4003; ++seed)
+    {
+      SCOPED_TRACE(::testing::Message() << "leaf size " << c.leafSize << ", seed " << seed);
+      const std::vector<Polygon> soup =
+        turned(latticeOfSeparatedPolygons(c.nx, c.ny, c.nz, 7, seed));
+      const Tree tree = scenevis::bsp::build(meshOf(soup), withLeaves(c.leafSize));
+      std::uint32_t largest = 0;
+      for (const auto& leaf : tree.leaves)
+      {
+        largest = std::max(largest, leaf.fragmentCount);
+        EXPECT_LE(leaf.planeCount, scenevis::bsp::kMaxLeafPlanes);
+      }
+      EXPECT_GT(largest, c.leafSize / 2); // the wide rows are used
+      std::vector<View> views = randomViews(boundsOf(soup), seed, 10, 4);
+      for (const View& v : eyesOnPlanes(soup, 4))
+      {
+        views.push_back(v);
+      }
+      const Totals totals = expectCorrectOrders(soup, views, c.leafSize);
+      all.sorted += totals.sorted;
+      all.fallenBack += totals.fallenBack;
+      if (HasFailure())
+      {
+        return;
+      }
+    }
+  }
+  EXPECT_GT(all.sorted, 0u);
+  EXPECT_GT(all.fallenBack, 0u); // cycles inside the wide leaves are seen and fall back
+}
+
+TEST(BspOrderedLeaves, AListWhosePairsNeedMorePlanesThanIndicesIsSplit)
+{
+  // 190 vertical strips (turned, so no axis gap separates them) would need about 2 planes per
+  // pair besides their own: 36k, more than 15-bit plane indices name (kMaxLeafPlanes; without
+  // that cap this list becomes one leaf of 33k planes). It is split instead, and what is drawn
+  // stays exact.
+  const std::vector<Polygon> strips = turned(verticalStrips(190, 5));
+  const Tree tree = scenevis::bsp::build(meshOf(strips), withLeaves(256));
+  EXPECT_GT(tree.leaves.size(), 1u);
+  for (const auto& leaf : tree.leaves)
+  {
+    EXPECT_LE(leaf.planeCount, scenevis::bsp::kMaxLeafPlanes);
+  }
+  std::vector<View> views = randomViews(boundsOf(strips), 6, 12, 4);
+  for (const View& v : eyesOnPlanes(strips, 4))
+  {
+    views.push_back(v);
+  }
+  expectCorrectOrders(strips, views, 256);
+}
+
+TEST(BspOrderedLeaves, FragmentsWithManyVerticesNeedNoFallbackWithoutACycle)
+{
+  // Long strips stacked 0.08 apart: from above a ray meets the higher strip first, so no cycle
+  // exists there and no leaf may fall back. Their fragments carry the split points of their
+  // neighbours (conforming fragments), more than 64 vertices on some, which the exact check of a
+  // stalled sort must still handle.
+  const std::vector<Polygon> strips = turned(verticalStrips(60, 5));
+  const Tree tree = scenevis::bsp::build(meshOf(strips), withLeaves(256));
+  ASSERT_FALSE(tree.leaves.empty());
+  std::uint32_t mostVertices = 0;
+  for (const auto& fragment : tree.fragments)
+  {
+    mostVertices = std::max(mostVertices, fragment.count);
+  }
+  EXPECT_GT(mostVertices, 64u);
+  const std::vector<Polygon> fragments = scenevis::oracle::fragmentPolygons(tree);
+  std::vector<double> inputArea;
+  for (const Polygon& p : strips)
+  {
+    inputArea.push_back(area(p));
+  }
+  const glm::dvec3 above = turned({ { glm::dvec3(0.0, 0.0, 40.0) } })[0][0];
+  OrderStatistics statistics;
+  EXPECT_TRUE(
+    drawnOrderIsCorrect(tree, fragments, inputArea, View::perspective(above), &statistics));
+  EXPECT_EQ(statistics.leavesFallenBack, 0u);
+  EXPECT_GT(statistics.leavesSorted, 0u);
+}
+
 TEST(BspOrderedLeaves, BumpySurfaceFromOutsideInsideAndOnPlanes)
 {
   // A closed scanned-like surface: its leaves are patches of neighbours, the case the option is
@@ -369,7 +596,7 @@ TEST(BspOrderedLeaves, BumpySurfaceFromOutsideInsideAndOnPlanes)
   }
   views.push_back(View::perspective({ 0.0, 0.0, 0.0 }));
   views.push_back(View::perspective({ 0.3, -0.2, 0.1 }));
-  for (std::uint32_t leafSize : { 16u, 64u })
+  for (std::uint32_t leafSize : { 16u, 64u, 256u })
   {
     SCOPED_TRACE(leafSize);
     const Totals totals = expectCorrectOrders(surface, views, leafSize);
@@ -400,11 +627,10 @@ TEST(BspOrderedLeaves, ThreadsGiveTheIdenticalTree)
 {
   // Both sides of the top nodes are large, so a worker builds one of them, leaves included; its
   // leaves, planes, pairs and fallback nodes are renumbered on merge to the serial ids.
-  const PolygonMesh grid =
-    scenevis::scenes::sphereGrid(4, 0.8, 1.0, scenevis::scenes::trianglesPerSphereFor(60000)).mesh;
-  BuildConfig serial = withLeaves(16);
+  const PolygonMesh grid = meshOf(bumpySphere(60000, 0.05, 3));
+  BuildConfig serial = withLeaves(32);
   serial.threads = 1;
-  BuildConfig parallel = withLeaves(16);
+  BuildConfig parallel = withLeaves(32);
   parallel.threads = 2;
   const Tree a = scenevis::bsp::build(grid, serial);
   const Tree b = scenevis::bsp::build(grid, parallel);

@@ -1,5 +1,6 @@
 #include "scenevis/BspBuilder.h"
 
+#include "BspLeafBuilder.h"
 #include "PolygonPieces.h"
 
 #include <glm/common.hpp>
@@ -78,6 +79,11 @@ double subtreeCost(double m)
 /// hands its back side to a worker thread (one worker at a time; the front side stays here).
 constexpr std::uint32_t kMinParallelList = 16384;
 
+/// A list that would become an ordered leaf needing a fallback first tries at most this many of
+/// its pairs' separating planes as a partition that splits nothing (each costs a pass over the
+/// list).
+constexpr std::uint32_t kSeparatingTries = 64;
+
 std::uint64_t splitmix64(std::uint64_t& state)
 {
   std::uint64_t z = (state += 0x9e3779b97f4a7c15ull);
@@ -104,21 +110,13 @@ struct Rng
   }
 };
 
-enum Side : std::uint8_t
-{
-  On = 0,
-  Front = 1,
-  Back = 2,
-  Straddle = 3
-};
-
-/// A convex planar piece of a normalised input polygon; vertex ids live in Builder::Verts.
-struct Frag
-{
-  std::uint32_t piece;
-  std::uint32_t first;
-  std::uint32_t count;
-};
+using detail::Back;
+using detail::BuildGeometry;
+using detail::Frag;
+using detail::Front;
+using detail::On;
+using detail::Side;
+using detail::Straddle;
 
 struct Task
 {
@@ -248,15 +246,23 @@ public:
 private:
   /// Processes one task (one node): picks its plane, splits its list, pushes its children.
   void step(const Task& task, std::vector<Task>& tasks);
-  /// Makes `task`'s list an ordered leaf (BspTree.h) when every pair is coplanar or separable;
-  /// pushes the fallback subtree's task when the leaf needs one. False: nothing was changed.
-  bool makeLeaf(const Task& task, std::vector<Task>& tasks);
-  /// A plane with `a` behind and `b` in front (each within Tol), from the axes between their
-  /// edges and normals; false when none of them separates the pair.
-  bool separatingPlane(const Frag& a, const Frag& b, glm::dvec4& plane) const;
-  /// Appends to Generators every plane through an edge of one of `a`, `b` and a vertex of the
-  /// other that separates them, oriented with `a` behind.
-  void separatingGenerators(const Frag& a, const Frag& b);
+  enum class LeafResult
+  {
+    Made,    ///< The list is an ordered leaf now.
+    Split,   ///< Some pair intersects: nothing was changed, split the list as usual.
+    Separate ///< `separating` splits none of the list: partition by it (nothing was changed).
+  };
+  /// Makes `task`'s list an ordered leaf (BspTree.h) when every pair is coplanar or separable,
+  /// and pushes the fallback subtree's task when the leaf needs one, unless the leaf would need
+  /// one and a gap plane (gapPlane) or one of its pairs' separating planes (up to
+  /// kSeparatingTries of them) splits none of the list.
+  LeafResult makeLeaf(const Task& task, std::vector<Task>& tasks, glm::dvec4& separating);
+  /// The first piece in `task`'s list whose plane splits none of the list's fragments (kNone
+  /// when every one splits some).
+  std::uint32_t splitFreePiece(const Task& task) const;
+  /// An axis-aligned plane through the most balanced gap between the extents of `list`'s
+  /// fragments (fragments on both sides, none split); false when no axis has a gap.
+  bool gapPlane(const Frag* list, std::uint32_t n, glm::dvec4& plane);
   /// Points `task`'s parent (a node, a leaf's fallback, or the root) at `reference`.
   void link(const Task& task, std::uint32_t reference);
   /// Builds the subtree of `task` (a list in this builder's Arena) in a worker builder.
@@ -270,18 +276,15 @@ private:
     return plane.x * p.x + plane.y * p.y + plane.z * p.z + plane.w;
   }
 
+  /// The current points, vertices and planes (valid until the next split adds to them).
+  BuildGeometry geometry() const
+  {
+    return BuildGeometry{ Local.data(), Verts.data(), Planes, Tol };
+  }
+
   Side classify(const glm::dvec4& plane, const Frag& f) const
   {
-    bool front = false;
-    bool back = false;
-    const std::uint32_t* ids = Verts.data() + f.first;
-    for (std::uint32_t k = 0; k < f.count; ++k)
-    {
-      const double s = signedDistance(plane, ids[k]);
-      front |= s > Tol;
-      back |= s < -Tol;
-    }
-    return static_cast<Side>((front ? Front : On) | (back ? Back : On));
+    return geometry().classify(plane, f);
   }
 
 
@@ -339,10 +342,8 @@ private:
   std::vector<double> SweepFlat;
   std::vector<double> SweepCost;
   std::vector<double> CostTable;
-  std::vector<LeafPair> LeafPairScratch;
-  std::vector<glm::dvec4> LeafPlaneScratch;
-  std::vector<std::uint32_t> LeafRoots;
-  std::vector<glm::dvec4> Generators;
+  detail::LeafBuilder Leaf;
+  std::vector<std::pair<double, double>> GapScratch;
   std::size_t FallbackFragments = 0;
   std::vector<std::uint32_t> SamplePiece;
   std::vector<std::uint32_t> SampleEnd;
@@ -823,9 +824,9 @@ Tree Builder::run()
   }
 
   {
-    detail::PolygonPieces input;
-    detail::PieceCounts counts;
-    detail::splitIntoPieces(Mesh, Local, Tol, input, counts);
+    scenevis::detail::PolygonPieces input;
+    scenevis::detail::PieceCounts counts;
+    scenevis::detail::splitIntoPieces(Mesh, Local, Tol, input, counts);
     st.invalidPolygons += counts.invalid;
     st.degeneratePolygons += counts.degenerate;
     st.triangulatedPolygons += counts.triangulated;
@@ -944,16 +945,41 @@ void Builder::step(const Task& task, std::vector<Task>& tasks)
 {
   BuildStatistics& st = Out.statistics;
   const std::uint32_t n = task.end - task.begin;
-  if (!task.noLeaf && n <= std::min(Config.orderedLeafSize, kMaxLeafPolygons) &&
-    makeLeaf(task, tasks))
+  // At leaf size, a plane that splits none of the list comes first: a polygon's, else (for a
+  // list that could be a leaf needing a fallback) an axis-aligned plane through a gap or one of
+  // the pairs' separating planes (makeLeaf). Such a node orders its sides exactly with no sort
+  // and needs no fallback; only what cannot be partitioned that way becomes an ordered leaf.
+  std::uint32_t peel = kNone;
+  bool separate = false;
+  glm::dvec4 separating;
+  if (n <= std::min(Config.orderedLeafSize, kMaxLeafPolygons))
   {
-    return;
+    peel = splitFreePiece(task);
+    if (peel == kNone && !task.noLeaf)
+    {
+      const LeafResult result = makeLeaf(task, tasks, separating);
+      if (result == LeafResult::Made)
+      {
+        return;
+      }
+      separate = result == LeafResult::Separate;
+    }
   }
 
   glm::dvec4 plane;
   std::uint32_t piece;
   Choice choice;
-  if (!Scored || (task.oneSidedRun && n <= kMinFreePlaneList))
+  if (peel != kNone)
+  {
+    piece = peel;
+    plane = Planes[piece];
+  }
+  else if (separate)
+  {
+    piece = kNone;
+    plane = separating;
+  }
+  else if (!Scored || (task.oneSidedRun && n <= kMinFreePlaneList))
   {
     piece = Arena[task.begin].piece;
     plane = Planes[piece];
@@ -1117,235 +1143,134 @@ void Builder::link(const Task& task, std::uint32_t reference)
   }
 }
 
-bool Builder::separatingPlane(const Frag& a, const Frag& b, glm::dvec4& plane) const
+std::uint32_t Builder::splitFreePiece(const Task& task) const
 {
-  const std::uint32_t* ia = Verts.data() + a.first;
-  const std::uint32_t* ib = Verts.data() + b.first;
-  auto edge = [this](const std::uint32_t* ids, std::uint32_t count, std::uint32_t k)
-  { return Local[ids[k + 1 == count ? 0 : k + 1]] - Local[ids[k]]; };
-  auto tryAxis = [&](glm::dvec3 d) -> bool
+  const Frag* list = Arena.data() + task.begin;
+  const std::uint32_t n = task.end - task.begin;
+  for (std::uint32_t i = 0; i < n; ++i)
   {
-    const double length = glm::length(d);
-    if (!(length > 0.0) || !std::isfinite(length))
+    const std::uint32_t piece = list[i].piece;
+    const glm::dvec4& plane = Planes[piece];
+    bool splits = false;
+    for (std::uint32_t j = 0; j < n && !splits; ++j)
     {
-      return false;
+      splits = list[j].piece != piece && classify(plane, list[j]) == Straddle;
     }
-    d /= length;
-    double loA = std::numeric_limits<double>::infinity();
-    double hiA = -loA;
-    double loB = loA;
-    double hiB = -loA;
-    for (std::uint32_t k = 0; k < a.count; ++k)
+    if (!splits)
     {
-      const double s = glm::dot(d, Local[ia[k]]);
-      loA = std::min(loA, s);
-      hiA = std::max(hiA, s);
-    }
-    for (std::uint32_t k = 0; k < b.count; ++k)
-    {
-      const double s = glm::dot(d, Local[ib[k]]);
-      loB = std::min(loB, s);
-      hiB = std::max(hiB, s);
-    }
-    glm::dvec4 candidate;
-    if (hiA - loB <= Tol)
-    {
-      candidate = glm::dvec4(d, -0.5 * (hiA + loB));
-    }
-    else if (hiB - loA <= Tol)
-    {
-      candidate = glm::dvec4(-d, 0.5 * (hiB + loA));
-    }
-    else
-    {
-      return false;
-    }
-    // The verdict is the classification the partition planes get, so the leaf's order is exact
-    // in the same sense as the tree's.
-    const Side sa = classify(candidate, a);
-    const Side sb = classify(candidate, b);
-    if ((sa & Front) || (sb & Back) || (sa == On && sb == On))
-    {
-      return false;
-    }
-    plane = candidate;
-    return true;
-  };
-  const glm::dvec3 na(Planes[a.piece]);
-  const glm::dvec3 nb(Planes[b.piece]);
-  for (std::uint32_t i = 0; i < a.count; ++i)
-  {
-    const glm::dvec3 ea = edge(ia, a.count, i);
-    for (std::uint32_t j = 0; j < b.count; ++j)
-    {
-      if (tryAxis(glm::cross(ea, edge(ib, b.count, j))))
-      {
-        return true;
-      }
-    }
-    if (tryAxis(glm::cross(na, ea)))
-    {
-      return true;
+      return piece;
     }
   }
-  for (std::uint32_t j = 0; j < b.count; ++j)
-  {
-    if (tryAxis(glm::cross(nb, edge(ib, b.count, j))))
-    {
-      return true;
-    }
-  }
-  return false;
+  return kNone;
 }
 
-void Builder::separatingGenerators(const Frag& a, const Frag& b)
+bool Builder::gapPlane(const Frag* list, std::uint32_t n, glm::dvec4& plane)
 {
-  auto add = [this, &a, &b](const glm::dvec3& p, const glm::dvec3& q, const glm::dvec3& r)
+  std::uint32_t bestBalance = 0;
+  for (int axis = 0; axis < 3; ++axis)
   {
-    glm::dvec3 n = glm::cross(q - p, r - p);
-    const double length = glm::length(n);
-    if (!(length > 0.0) || !std::isfinite(length))
+    GapScratch.clear();
+    for (std::uint32_t i = 0; i < n; ++i)
     {
-      return;
-    }
-    n /= length;
-    glm::dvec4 plane(n, -glm::dot(n, p));
-    Side sa = classify(plane, a);
-    Side sb = classify(plane, b);
-    if (sa == Straddle || sb == Straddle || (sa & sb) != 0 || (sa | sb) == On)
-    {
-      return;
-    }
-    if ((sa & Front) || (sb & Back))
-    {
-      plane = -plane;
-    }
-    Generators.push_back(plane);
-  };
-  for (int pass = 0; pass < 2; ++pass)
-  {
-    const Frag& e = pass == 0 ? a : b;
-    const Frag& v = pass == 0 ? b : a;
-    for (std::uint32_t i = 0; i < e.count; ++i)
-    {
-      const glm::dvec3& p = Local[Verts[e.first + i]];
-      const glm::dvec3& q = Local[Verts[e.first + (i + 1 == e.count ? 0 : i + 1)]];
-      for (std::uint32_t j = 0; j < v.count; ++j)
+      double lo = std::numeric_limits<double>::infinity();
+      double hi = -lo;
+      for (std::uint32_t k = 0; k < list[i].count; ++k)
       {
-        add(p, q, Local[Verts[v.first + j]]);
+        const double x = Local[Verts[list[i].first + k]][axis];
+        lo = std::min(lo, x);
+        hi = std::max(hi, x);
       }
+      GapScratch.emplace_back(lo, hi);
+    }
+    std::sort(GapScratch.begin(), GapScratch.end());
+    double reach = GapScratch[0].second; // the highest extent so far
+    for (std::uint32_t k = 1; k < n; ++k)
+    {
+      const double next = GapScratch[k].first;
+      const std::uint32_t balance = std::min(k, n - k);
+      if (next >= reach - Tol && balance > bestBalance)
+      {
+        // Everything before k reaches at most `reach`, everything after starts at `next` or
+        // later: the plane between them has each within Tol/2 of its side.
+        glm::dvec4 candidate(0.0);
+        candidate[axis] = 1.0;
+        candidate.w = -0.5 * (reach + next);
+        bestBalance = balance;
+        plane = candidate;
+      }
+      reach = std::max(reach, GapScratch[k].second);
     }
   }
+  if (bestBalance == 0)
+  {
+    return false;
+  }
+  // Checked as the partition will classify it (the sweep's reasoning is only within Tol).
+  std::uint32_t front = 0;
+  for (std::uint32_t i = 0; i < n; ++i)
+  {
+    const Side side = classify(plane, list[i]);
+    if (side == Straddle)
+    {
+      return false;
+    }
+    front += side == Front;
+  }
+  return front > 0 && front < n;
 }
 
-bool Builder::makeLeaf(const Task& task, std::vector<Task>& tasks)
+Builder::LeafResult Builder::makeLeaf(
+  const Task& task, std::vector<Task>& tasks, glm::dvec4& separating)
 {
   const std::uint32_t n = task.end - task.begin;
   const Frag* list = Arena.data() + task.begin;
-  LeafPlaneScratch.clear();
-  LeafPairScratch.clear();
-  for (std::uint32_t i = 0; i < n; ++i)
+  if (!Leaf.analyse(geometry(), list, n))
   {
-    LeafPlaneScratch.push_back(Planes[list[i].piece]);
+    return LeafResult::Split;
   }
-  // Union-find over the stored pairs: a cycle of precedences needs a cycle of pairs.
-  LeafRoots.resize(n);
-  for (std::uint32_t i = 0; i < n; ++i)
+  if (Leaf.mayCycle && gapPlane(list, n, separating))
   {
-    LeafRoots[i] = i;
+    return LeafResult::Separate;
   }
-  auto findRoot = [this](std::uint32_t i)
+  if (Leaf.mayCycle)
   {
-    while (LeafRoots[i] != i)
+    // A fallback would be needed: first try a gap between the fragments along an axis (above),
+    // then the pairs' other separating planes (evenly sampled) as a partition with fragments on
+    // both sides and none split.
+    const auto extra = static_cast<std::uint32_t>(Leaf.planes.size()) - n;
+    const std::uint32_t stride = std::max(1u, extra / kSeparatingTries);
+    for (std::uint32_t p = n; p < Leaf.planes.size(); p += stride)
     {
-      i = LeafRoots[i] = LeafRoots[LeafRoots[i]];
-    }
-    return i;
-  };
-  bool mayCycle = false;
-  for (std::uint32_t i = 0; i < n; ++i)
-  {
-    for (std::uint32_t j = i + 1; j < n; ++j)
-    {
-      const Side sj = classify(LeafPlaneScratch[i], list[j]);
-      const Side si = classify(LeafPlaneScratch[j], list[i]);
-      if (sj == On || si == On)
+      const glm::dvec4& plane = Leaf.planes[p];
+      std::uint32_t front = 0;
+      std::uint32_t back = 0;
+      bool splits = false;
+      for (std::uint32_t j = 0; j < n && !splits; ++j)
       {
-        continue; // coplanar: any order is exact (as for a node's own fragments)
+        const Side side = classify(plane, list[j]);
+        splits = side == Straddle;
+        front += side == Front;
+        back += side != Front;
       }
-      // Plane i: fragment i lies on it; the verdict "i before j" holds from the front when j is
-      // in front. Plane j likewise with the roles swapped. Normals are kept oriented as
-      // "i behind, j in front" to pick the other planes.
-      LeafPair pair{ static_cast<std::uint8_t>(i), static_cast<std::uint8_t>(j), {} };
-      std::fill(std::begin(pair.planes), std::end(pair.planes), kNoPlane);
-      std::uint32_t used = 0;
-      glm::dvec3 chosen[kPairPlanes];
-      if (sj != Straddle)
+      if (!splits && front > 0 && back > 0)
       {
-        pair.planes[used] = static_cast<std::uint16_t>(i | (sj == Back ? kFlipPlane : 0));
-        chosen[used++] = glm::dvec3(LeafPlaneScratch[i]) * (sj == Back ? -1.0 : 1.0);
+        separating = plane;
+        return LeafResult::Separate;
       }
-      if (si != Straddle)
-      {
-        pair.planes[used] = static_cast<std::uint16_t>(j | (si == Front ? kFlipPlane : 0));
-        chosen[used++] = glm::dvec3(LeafPlaneScratch[j]) * (si == Front ? -1.0 : 1.0);
-      }
-      // More separating planes, each as far in direction from those chosen as possible: the more
-      // different they are, the more eyes see two of them disagree (and the pair unordered).
-      Generators.clear();
-      separatingGenerators(list[i], list[j]);
-      if (used == 0 && Generators.empty())
-      {
-        glm::dvec4 plane;
-        if (!separatingPlane(list[i], list[j], plane))
-        {
-          return false; // they intersect (or touch too closely to tell): split this list
-        }
-        Generators.push_back(plane);
-      }
-      while (used < kPairPlanes && !Generators.empty())
-      {
-        std::size_t best = 0;
-        double bestDot = std::numeric_limits<double>::infinity();
-        for (std::size_t g = 0; g < Generators.size(); ++g)
-        {
-          double worst = -1.0;
-          for (std::uint32_t m = 0; m < used; ++m)
-          {
-            worst = std::max(worst, glm::dot(glm::dvec3(Generators[g]), chosen[m]));
-          }
-          if (worst < bestDot)
-          {
-            bestDot = worst;
-            best = g;
-          }
-        }
-        if (bestDot > 0.9999)
-        {
-          break; // nothing new in direction
-        }
-        pair.planes[used] = static_cast<std::uint16_t>(LeafPlaneScratch.size());
-        chosen[used++] = glm::dvec3(Generators[best]);
-        LeafPlaneScratch.push_back(Generators[best]);
-        Generators[best] = Generators.back();
-        Generators.pop_back();
-      }
-      LeafPairScratch.push_back(pair);
-      const std::uint32_t ri = findRoot(i);
-      const std::uint32_t rj = findRoot(j);
-      mayCycle |= ri == rj;
-      LeafRoots[ri] = rj;
     }
   }
+  const std::vector<glm::dvec4>& leafPlanes = Leaf.planes;
+  const std::vector<LeafPair>& leafPairs = Leaf.pairs;
+  const bool mayCycle = Leaf.mayCycle;
 
   const auto leafIndex = static_cast<std::uint32_t>(Out.leaves.size());
   OrderedLeaf leaf;
   leaf.firstFragment = static_cast<std::uint32_t>(Out.fragments.size());
   leaf.fragmentCount = n;
   leaf.firstPlane = static_cast<std::uint32_t>(Out.leafPlanes.size());
-  leaf.planeCount = static_cast<std::uint32_t>(LeafPlaneScratch.size());
+  leaf.planeCount = static_cast<std::uint32_t>(leafPlanes.size());
   leaf.firstPair = static_cast<std::uint32_t>(Out.leafPairs.size());
-  leaf.pairCount = static_cast<std::uint32_t>(LeafPairScratch.size());
+  leaf.pairCount = static_cast<std::uint32_t>(leafPairs.size());
   Out.leaves.push_back(leaf);
   link(task, kLeafBit | leafIndex);
   for (std::uint32_t i = 0; i < n; ++i)
@@ -1356,8 +1281,8 @@ bool Builder::makeLeaf(const Task& task, std::vector<Task>& tasks)
     Out.fragmentVertices.insert(
       Out.fragmentVertices.end(), Verts.begin() + f.first, Verts.begin() + f.first + f.count);
   }
-  Out.leafPlanes.insert(Out.leafPlanes.end(), LeafPlaneScratch.begin(), LeafPlaneScratch.end());
-  Out.leafPairs.insert(Out.leafPairs.end(), LeafPairScratch.begin(), LeafPairScratch.end());
+  Out.leafPlanes.insert(Out.leafPlanes.end(), leafPlanes.begin(), leafPlanes.end());
+  Out.leafPairs.insert(Out.leafPairs.end(), leafPairs.begin(), leafPairs.end());
   BuildStatistics& st = Out.statistics;
   st.leafFragments += n;
   st.depth = std::max<std::size_t>(st.depth, task.depth);
@@ -1376,7 +1301,7 @@ bool Builder::makeLeaf(const Task& task, std::vector<Task>& tasks)
   {
     Arena.resize(task.begin);
   }
-  return true;
+  return LeafResult::Made;
 }
 
 void Builder::fork(const Task& task)

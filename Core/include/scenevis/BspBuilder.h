@@ -53,8 +53,9 @@
  * fragments the scores already chain them without splits), scoring short lists by such patches,
  * diagonal sweeps, two-level lookahead, a per-split weight in SubtreeCost, more candidates: none
  * gets the bunny below 1.98 fragments per triangle. Ordered leaves (Config::orderedLeafSize, off
- * by default) draw fewer: bunny 1.59, engine 2.02 per input polygon at 64, for 10x / 4.4x the
- * order time and 3.8x / 2.7x the tree memory (BENCHMARKS.md, "ordered leaves").
+ * by default) draw fewer: bunny 1.59 / 1.26, engine 2.01 / 1.82 per input polygon at 64 / 256,
+ * for several times the order time and tree memory (BENCHMARKS.md, "ordered leaves" and
+ * "longer ordered leaves").
  *
  * Tolerance: Tree::tolerance = max(relativeTolerance * bounds diagonal,
  * 16 * DBL_EPSILON * max |coordinate|): the second term is the coordinate resolution, which far
@@ -107,13 +108,18 @@ struct BuildConfig
   double relativeTolerance = 1e-10;
   /**
    * Ordered leaves (BspTree.h): a list of at most this many fragments (capped at
-   * kMaxLeafPolygons) is kept unsplit when every pair of its polygons is either coplanar or
-   * separated by a plane (the polygons' own planes, else an axis between their edges and normals):
-   * an order then sorts the leaf per view instead of drawing its split subtree. A list with an
-   * intersecting pair is split as usual (its shorter children try again). When the pairs of a leaf
-   * could form a cycle (its pair graph is not a forest), the split subtree is built as well, as the
-   * leaf's fallback for the eyes that see one. 0 (default) builds no leaves; the tree is then
-   * exactly the one built without this option.
+   * kMaxLeafPolygons = 256) is first partitioned by a plane that splits none of it, when there
+   * is one: a polygon's own plane, else (when the list would make a leaf that needs a fallback)
+   * an axis-aligned plane through a gap between the fragments' extents or one of 64 sampled
+   * separating planes of its pairs. What no such plane separates is kept unsplit when every pair
+   * of its polygons is either coplanar or separated by a plane (the polygons' own planes, else an
+   * axis between their edges and normals): an order then sorts the leaf per view instead of
+   * drawing a split subtree. A list with an intersecting pair is split as usual (its shorter
+   * children try again). When the pairs of a leaf could form a cycle (its pair graph is not a
+   * forest), the split subtree is built as well, as the leaf's fallback for the eyes that see
+   * one. 0 (default) builds no leaves; the tree is then exactly the one built without this
+   * option. Larger leaves draw fewer fragments and cost more order time and memory (bunny: 1.59
+   * per input polygon at 64, 1.26 at 256; BENCHMARKS.md, "ordered leaves").
    * IncrementalOrder does not take trees with leaves (yet).
    */
   std::uint32_t orderedLeafSize = 0;

@@ -11,13 +11,14 @@
  *
  * Ordered leaves (BspTree.h): each stored pair's planes are evaluated for the eye (the same side
  * rule) and give a precedence unless two planes disagree (then no ray passes through both); the
- * leaf's polygons are emitted in layers of a topological sort (Kahn's, on 64-bit rows), each layer
- * in ascending leaf index. When the sort stalls, it walks back to a cycle and checks each of its
- * precedences exactly (is there a plane through the eye that separates the pair? the pair's
- * separating planes through an edge of one and a vertex of the other decide it), drops those no
- * ray realises and goes on; a cycle of realised precedences makes the leaf's fallback subtree
- * walked instead, for this eye. So an order of a tree with leaves lists the fragments drawn for
- * that view: fewer than Tree::fragments.size().
+ * leaf's polygons are emitted in layers of a topological sort (Kahn's, on bit-set rows of 64, 128
+ * or 256 bits, the fewest the leaf fits), each layer in ascending leaf index. When the sort
+ * stalls, it walks back to a cycle and checks each of its precedences exactly (is there a plane
+ * through the eye that separates the pair? the pair's separating planes through an edge of one
+ * and a vertex of the other decide it), drops those no ray realises and goes on; a cycle of
+ * realised precedences makes the leaf's fallback subtree walked instead, for this eye. So an
+ * order of a tree with leaves lists the fragments drawn for that view: fewer than
+ * Tree::fragments.size().
  */
 
 #include "scenevis/BspTree.h"

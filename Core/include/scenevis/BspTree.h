@@ -16,15 +16,16 @@
  * (point, plane), so a vertex shared by neighbouring polygons always gets the same verdict, and a
  * split edge shared by two polygons yields one shared split point (no cracks, no T-junctions).
  *
- * Ordered leaves (optional, BuildConfig::orderedLeafSize): a short list can be kept unsplit in an
- * OrderedLeaf instead of a subtree. A child reference (Node::front / back, Tree::root) with
- * kLeafBit set names `leaves[ref & ~kLeafBit]`, not a node. The leaf stores, for every pair of its
- * polygons that are not coplanar, one or two separating planes; a traversal evaluates them for the
- * eye and sorts the leaf's polygons topologically (BspTraversal.h). Polygons of 3 or more can
- * overlap cyclically for some eyes: the leaf then falls back, for that eye only, to `fallback`, the
- * ordinary split subtree of the same polygons (stored too). So a tree with leaves stores more
- * fragments than it draws: an order lists each leaf's unsplit fragments or its fallback's, never
- * both, and is not a permutation of all fragment ids.
+ * Ordered leaves (optional, BuildConfig::orderedLeafSize): a short list that none of the planes
+ * the builder tries partitions without a split can be kept unsplit in an OrderedLeaf instead of a
+ * subtree. A child reference
+ * (Node::front / back, Tree::root) with kLeafBit set names `leaves[ref & ~kLeafBit]`, not a node.
+ * The leaf stores, for every pair of its polygons that are not coplanar, one or two separating
+ * planes; a traversal evaluates them for the eye and sorts the leaf's polygons topologically
+ * (BspTraversal.h). Polygons of 3 or more can overlap cyclically for some eyes: the leaf then falls
+ * back, for that eye only, to `fallback`, the ordinary split subtree of the same polygons (stored
+ * too). So a tree with leaves stores more fragments than it draws: an order lists each leaf's
+ * unsplit fragments or its fallback's, never both, and is not a permutation of all fragment ids.
  *
  * Point ids: ids below `inputPointCount` are the input mesh's own points (unchanged); split points
  * follow in creation order and are described by `splitPoints`, so a caller can interpolate any
@@ -113,8 +114,15 @@ struct LeafPair
 constexpr std::uint16_t kFlipPlane = 0x8000u;
 constexpr std::uint16_t kNoPlane = 0xffffu;
 
-/// At most this many polygons in an OrderedLeaf (a precedence row fits one 64-bit word).
-constexpr std::uint32_t kMaxLeafPolygons = 64;
+/// At most this many polygons in an OrderedLeaf (LeafPair's indices are 8 bits; a traversal
+/// sorts a leaf on precedence rows of 1, 2 or 4 64-bit words, as few as its size needs).
+constexpr std::uint32_t kMaxLeafPolygons = 256;
+
+/// At most this many planes in an OrderedLeaf (plane indices are 15 bits, and 0x7fff with
+/// kFlipPlane would read as kNoPlane). A leaf of more than 181 polygons can have more pairs than
+/// that allows for; its pairs beyond it keep their own planes only, or if they have none usable,
+/// the list is split.
+constexpr std::uint32_t kMaxLeafPlanes = 0x7fff;
 
 /**
  * Unsplit convex polygons ordered per view (see the file comment). Fragments [firstFragment,
