@@ -127,6 +127,17 @@ scenes::MazeConfig randomMaze(std::uint64_t seed)
   return c;
 }
 
+/// Two mazes with open halls and aligned openings (long sight lines through many portals), then
+/// randomMaze(seed) for seeds firstSeed ... lastSeed.
+std::vector<scenes::MazeConfig> hallsAndRandomMazes(std::uint64_t firstSeed, std::uint64_t lastSeed)
+{
+  std::vector<scenes::MazeConfig> configs = { mazeOf(7, 6, 2, 5, 1), mazeOf(8, 8, 2, 1, 2) };
+  for (std::uint64_t seed = firstSeed; seed <= lastSeed; ++seed)
+  {
+    configs.push_back(randomMaze(seed));
+  }
+  return configs;
+}
 } // namespace
 
 TEST(PortalPvsFlow, ContainsEverySampledSightLineInTheDemoBuilding)
@@ -354,11 +365,7 @@ TEST(PortalPvsFlow, PassagesKeepEverySampledSightLineAndOnlyNarrowTheFlow)
   // passages, and no pair a sampled segment proves visible is lost. Mazes with open halls and
   // aligned openings (long sight lines through many portals) and random mazes.
   std::size_t with = 0, without = 0, pairs = 0, passages = 0;
-  std::vector<scenes::MazeConfig> configs = { mazeOf(7, 6, 2, 5, 1), mazeOf(8, 8, 2, 1, 2) };
-  for (std::uint64_t seed = 41; seed <= 52; ++seed)
-  {
-    configs.push_back(randomMaze(seed));
-  }
+  const std::vector<scenes::MazeConfig> configs = hallsAndRandomMazes(41, 52);
   for (const scenes::MazeConfig& c : configs)
   {
     const auto m = scenes::maze(c);
@@ -418,11 +425,7 @@ TEST(PortalPvsFlow, MergedFlowKeepsEverySampledSightLineAndHoldsTheWalksSets)
   // the might-see sets, closes no flow, and loses no pair a sampled segment proves visible;
   // with and without passages (every other level).
   std::size_t merged = 0, walked = 0, might = 0, pairs = 0;
-  std::vector<scenes::MazeConfig> configs = { mazeOf(7, 6, 2, 5, 1), mazeOf(8, 8, 2, 1, 2) };
-  for (std::uint64_t seed = 61; seed <= 76; ++seed)
-  {
-    configs.push_back(randomMaze(seed));
-  }
+  const std::vector<scenes::MazeConfig> configs = hallsAndRandomMazes(61, 76);
   for (const scenes::MazeConfig& c : configs)
   {
     const auto m = scenes::maze(c);
