@@ -69,7 +69,7 @@ struct MergedScratch
   std::vector<std::uint64_t> might;                ///< Per row: words of bits.
   std::vector<std::uint32_t> queue;
   Winding clip, hull;
-  const Winding none;
+  const Winding none{};
   std::vector<glm::dvec3> work;
 };
 
