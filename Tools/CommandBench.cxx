@@ -101,8 +101,8 @@ std::string SceneLabel(const std::string& scene)
 }
 
 constexpr vtkIdType kPainterMaxTriangles = 20000;
-const char* const kBenchMethods[] = { "none", "oit", "depth-sort", "painter", "bsp", "bsp-mapper",
-  "multi-actor", "peel:4", "peel:100" };
+const char* const kBenchMethods[] = { "none", "oit", "depth-sort", "painter", "bsp",
+  "bsp-leaves:64", "bsp-mapper", "multi-actor", "peel:4", "peel:100" };
 const char* const kReferenceMethod = "peel:100";
 
 /// Runs one method on a loaded scene; `reference` holds peel:100's frames (filled when `method`
@@ -196,6 +196,9 @@ BenchRow BenchMethod(const Options& options, const std::string& method, const st
       row.note = "reference";
     else if (method == "bsp-mapper")
       row.note = "sort inside the render; fragments not exposed to the ID oracle";
+    else if (method.rfind("bsp-leaves:", 0) == 0)
+      row.note = "vtkBSPSortFilter with ordered leaves of up to " + method.substr(11) +
+        " polygons; fragments drawn per view";
     else if (method == "multi-actor")
       row.note = std::to_string(pipeline.Parts()) + " actors; sort inside the render";
     else if (method == "oit" || method.rfind("peel:", 0) == 0)

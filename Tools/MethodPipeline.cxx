@@ -25,14 +25,20 @@ namespace
 constexpr int kFastExitActors = 1000;
 } // namespace
 
-MethodPipeline::MethodPipeline(const std::string& method, vtkPolyData* pd, vtkRenderer* renderer,
+MethodPipeline::MethodPipeline(const std::string& requested, vtkPolyData* pd, vtkRenderer* renderer,
   bool showProgress, const std::vector<vtkSmartPointer<vtkPolyData>>* groups, bool chunked,
   const InstancedScene* instanced, bool instancedProps)
-  : Method(method)
+  // bsp-leaves:N is the BSP filter with ordered leaves of up to N polygons.
+  : Method(requested.rfind("bsp-leaves:", 0) == 0 ? "bsp" : requested)
   , Input(pd)
   , InputPolygons(pd ? pd->GetNumberOfPolys() : 0)
   , Renderer(renderer)
 {
+  const std::string& method = this->Method;
+  if (requested.rfind("bsp-leaves:", 0) == 0)
+  {
+    this->Bsp->SetOrderedLeafSize(std::stoi(requested.substr(11)));
+  }
   if (chunked)
   {
     this->Chunked = vtkSmartPointer<vtkChunkedPolyDataMapper>::New();
@@ -239,8 +245,8 @@ double MethodPipeline::BuildMs() const
 
 vtkIdType MethodPipeline::Fragments() const
 {
-  if (this->Method == "bsp")
-    return this->Bsp->GetNumberOfFragments();
+  if (this->Method == "bsp") // what the last order drew (fewer than stored with ordered leaves)
+    return this->Bsp->GetLastNumberOfOrderedFragments();
   if (this->Method == "painter")
     return this->Painter->GetNumberOfFragments();
   if (this->Method == "bsp-mapper")
@@ -274,6 +280,8 @@ void MethodPipeline::Describe(std::ostream& json, std::ostream& text) const
   if (this->Method == "bsp")
   {
     json << ",\n  \"bsp\": {\"fragments\": " << this->Bsp->GetNumberOfFragments()
+         << ", \"ordered_leaf_size\": " << this->Bsp->GetOrderedLeafSize()
+         << ", \"fragments_drawn\": " << this->Bsp->GetLastNumberOfOrderedFragments()
          << ", \"splits\": " << this->Bsp->GetNumberOfSplits()
          << ", \"depth\": " << this->Bsp->GetTreeDepth()
          << ", \"removed_polygons\": " << this->Bsp->GetNumberOfRemovedPolygons() << "}";

@@ -121,7 +121,9 @@ render:
   --sort METHOD         auto (default), none (unsorted alpha), oit (VTK's default weighted
                         OIT), depth-sort (vtkDepthSortPolyData), painter (vtkPainterSortFilter:
                         Newell's painter's algorithm with splits, redone every frame),
-                        bsp (vtkBSPSortFilter), bsp-mapper (vtkBSPSortedPolyDataMapper: the BSP
+                        bsp (vtkBSPSortFilter), bsp-leaves:N (vtkBSPSortFilter with ordered
+                        leaves of up to N polygons, 1-256: fewer fragments, more order time),
+                        bsp-mapper (vtkBSPSortedPolyDataMapper: the BSP
                         order rewritten into the index buffer only), multi-actor (one actor per
                         part (--part-array), ordered across actors by vtkBSPTranslucentPass),
                         peel:N (dual depth peeling, at most N peels)
@@ -410,14 +412,19 @@ Options ParseOptions(int argc, char* argv[])
   }
   const std::string& s = options.sort;
   if (s != "auto" && s != "none" && s != "oit" && s != "depth-sort" && s != "painter" &&
-    s != "bsp" && s != "bsp-mapper" && s != "multi-actor" && s.rfind("peel:", 0) != 0)
+    s != "bsp" && s.rfind("bsp-leaves:", 0) != 0 && s != "bsp-mapper" && s != "multi-actor" &&
+    s.rfind("peel:", 0) != 0)
   {
-    throw UsageError("--sort expects auto, none, oit, depth-sort, painter, bsp, bsp-mapper, "
-                     "multi-actor or peel:N");
+    throw UsageError("--sort expects auto, none, oit, depth-sort, painter, bsp, bsp-leaves:N, "
+                     "bsp-mapper, multi-actor or peel:N");
   }
   if (s.rfind("peel:", 0) == 0)
   {
     ParseCount("--sort peel:N", s.substr(5), 1, 10000);
+  }
+  if (s.rfind("bsp-leaves:", 0) == 0)
+  {
+    ParseCount("--sort bsp-leaves:N", s.substr(11), 1, 256);
   }
   const std::string& c = options.cull;
   if (c != "auto" && c != "none" && c != "frustum" && c != "octree" && c != "normal-cones" &&

@@ -46,7 +46,8 @@ struct vtkBSPSortFilter::Internals
   int BuiltDirection = -1;
 
   std::unique_ptr<bsp::Tree> Tree;
-  std::unique_ptr<bsp::IncrementalOrder> Order;
+  std::unique_ptr<bsp::IncrementalOrder> Order; // trees without ordered leaves
+  std::vector<std::uint32_t> FullOrder;         // trees with them: a full order per update
   std::vector<vtkIdType> CellOfSource; // core polygon id -> input cell id
 
   // Output pieces that do not depend on the view: points + point data, verts, lines, and the cell
@@ -62,6 +63,8 @@ struct vtkBSPSortFilter::Internals
   double LastBuildTime = 0.0;
   double LastOrderTime = 0.0;
   vtkIdType LastNodesVisited = 0;
+  vtkIdType LastOrderedFragments = 0;
+  bsp::OrderStatistics LastLeaves;
 };
 
 //------------------------------------------------------------------------------
@@ -114,6 +117,21 @@ vtkIdType vtkBSPSortFilter::GetLastNodesVisited() const
   return this->Internal->LastNodesVisited;
 }
 
+vtkIdType vtkBSPSortFilter::GetLastNumberOfOrderedFragments() const
+{
+  return this->Internal->LastOrderedFragments;
+}
+
+vtkIdType vtkBSPSortFilter::GetLastLeavesSorted() const
+{
+  return static_cast<vtkIdType>(this->Internal->LastLeaves.leavesSorted);
+}
+
+vtkIdType vtkBSPSortFilter::GetLastLeavesFallenBack() const
+{
+  return static_cast<vtkIdType>(this->Internal->LastLeaves.leavesFallenBack);
+}
+
 //------------------------------------------------------------------------------
 int vtkBSPSortFilter::RequestData(vtkInformation* vtkNotUsed(request),
   vtkInformationVector** inputVector, vtkInformationVector* outputVector)
@@ -138,11 +156,13 @@ int vtkBSPSortFilter::RequestData(vtkInformation* vtkNotUsed(request),
   config.splitWeight = this->SplitWeight;
   config.seed = this->Seed;
   config.relativeTolerance = this->RelativeTolerance;
+  config.orderedLeafSize = static_cast<std::uint32_t>(this->OrderedLeafSize);
   config.threads = 0; // the tree is identical for any thread count; use every core
   const bool configChanged = !internal.Tree || config.partition != internal.Config.partition ||
     config.candidates != internal.Config.candidates ||
     config.splitWeight != internal.Config.splitWeight || config.seed != internal.Config.seed ||
-    config.relativeTolerance != internal.Config.relativeTolerance;
+    config.relativeTolerance != internal.Config.relativeTolerance ||
+    config.orderedLeafSize != internal.Config.orderedLeafSize;
   const bool inputChanged = internal.Input != input || input->GetMTime() != internal.InputMTime;
   const auto buildStart = std::chrono::steady_clock::now();
   if (configChanged || inputChanged)
@@ -202,19 +222,31 @@ int vtkBSPSortFilter::RequestData(vtkInformation* vtkNotUsed(request),
     ++internal.Builds;
   }
 
-  // Order: incremental when only the view changed.
+  // Order: incremental when only the view changed; a full traversal for a tree with ordered
+  // leaves (their fragments drawn depend on the view).
   const auto orderStart = std::chrono::steady_clock::now();
   const bsp::Direction dir = this->Direction == VTK_DIRECTION_FRONT_TO_BACK
     ? bsp::Direction::FrontToBack
     : bsp::Direction::BackToFront;
-  if (!internal.Order || internal.BuiltDirection != this->Direction)
+  internal.LastLeaves = bsp::OrderStatistics();
+  if (!internal.Tree->leaves.empty())
   {
-    internal.Order = std::make_unique<bsp::IncrementalOrder>(*internal.Tree, dir);
-    internal.BuiltDirection = this->Direction;
+    bsp::order(*internal.Tree, view, dir, internal.FullOrder, &internal.LastLeaves);
+    internal.LastNodesVisited = static_cast<vtkIdType>(internal.Tree->nodes.size());
   }
-  const auto& updateStats = internal.Order->update(view);
-  internal.LastNodesVisited = static_cast<vtkIdType>(updateStats.nodesVisited);
-  const std::vector<std::uint32_t>& order = internal.Order->order();
+  else
+  {
+    if (!internal.Order || internal.BuiltDirection != this->Direction)
+    {
+      internal.Order = std::make_unique<bsp::IncrementalOrder>(*internal.Tree, dir);
+      internal.BuiltDirection = this->Direction;
+    }
+    const auto& updateStats = internal.Order->update(view);
+    internal.LastNodesVisited = static_cast<vtkIdType>(updateStats.nodesVisited);
+  }
+  const std::vector<std::uint32_t>& order =
+    internal.Tree->leaves.empty() ? internal.Order->order() : internal.FullOrder;
+  internal.LastOrderedFragments = static_cast<vtkIdType>(order.size());
 
   // Emit the fragments in order. This runs on every camera change, so it works on raw arrays
   // (32-bit cell storage when the ids fit) and in parallel.
@@ -251,8 +283,11 @@ void vtkBSPSortFilter::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "SplitWeight: " << this->SplitWeight << "\n";
   os << indent << "Seed: " << this->Seed << "\n";
   os << indent << "RelativeTolerance: " << this->RelativeTolerance << "\n";
+  os << indent << "OrderedLeafSize: " << this->OrderedLeafSize << "\n";
   os << indent << "NumberOfFragments: " << this->GetNumberOfFragments() << "\n";
   os << indent << "NumberOfSplits: " << this->GetNumberOfSplits() << "\n";
   os << indent << "TreeDepth: " << this->GetTreeDepth() << "\n";
   os << indent << "NumberOfBuilds: " << this->GetNumberOfBuilds() << "\n";
+  os << indent << "LastNumberOfOrderedFragments: " << this->GetLastNumberOfOrderedFragments()
+     << "\n";
 }

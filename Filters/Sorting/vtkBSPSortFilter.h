@@ -75,6 +75,21 @@ public:
 
   ///@{
   /**
+   * Ordered leaves (scenevis/BspTree.h): lists of at most this many polygons that no partition
+   * plane separates without a split are kept whole, and sorted per view by the separating planes
+   * stored for their pairs, instead of being split. 0 (the default) turns them off; values are
+   * clamped to [0, 256]. Exact either way; leaves trade fewer output polygons for order time and
+   * memory (the bunny: 2.08 output polygons per input without leaves, 1.59 at 64 and 1.26 at 256,
+   * for about 5x and 30-40x the order time: BENCHMARKS.md, "ordered leaves"). With leaves the
+   * order is a full traversal on every camera change (the incremental update does not take them),
+   * and the number of output polygons depends on the view. Changing it rebuilds the tree.
+   */
+  vtkSetClampMacro(OrderedLeafSize, int, 0, 256);
+  vtkGetMacro(OrderedLeafSize, int);
+  ///@}
+
+  ///@{
+  /**
    * Statistics of the last build and update.
    */
   vtkIdType GetNumberOfFragments() const;
@@ -85,6 +100,13 @@ public:
   double GetLastOrderTime() const;     ///< Seconds.
   vtkIdType GetNumberOfBuilds() const; ///< Trees built since construction.
   vtkIdType GetLastNodesVisited() const;
+  /// Polygons in the last output (fragments drawn for that view; GetNumberOfFragments() with no
+  /// ordered leaves, fewer with them).
+  vtkIdType GetLastNumberOfOrderedFragments() const;
+  /// Ordered leaves kept whole, and leaves that drew their split subtree because their pairs
+  /// formed a cycle for the view, in the last update (0 without ordered leaves).
+  vtkIdType GetLastLeavesSorted() const;
+  vtkIdType GetLastLeavesFallenBack() const;
   ///@}
 
 protected:
@@ -98,6 +120,7 @@ protected:
   double SplitWeight = 4.0;
   unsigned int Seed = 1;
   double RelativeTolerance = 1e-10;
+  int OrderedLeafSize = 0;
 
 private:
   vtkBSPSortFilter(const vtkBSPSortFilter&) = delete;

@@ -90,9 +90,11 @@ struct vtkBSPSortedPolyDataMapper::Internals
 
   // Standalone tree and its order.
   std::unique_ptr<bsp::Tree> Tree;
-  std::unique_ptr<bsp::IncrementalOrder> Order;
-  vtkPolyData* TreeInput = nullptr; // compared only, never dereferenced
+  std::unique_ptr<bsp::IncrementalOrder> Order; // a tree without ordered leaves
+  std::vector<std::uint32_t> FullOrder;         // one with them: a full order per camera move
+  vtkPolyData* TreeInput = nullptr;             // compared only, never dereferenced
   vtkMTimeType TreeInputMTime = 0;
+  int TreeLeafSize = 0; // OrderedLeafSize the tree was built with
   bool HaveView = false;
   scenevis::View LastView;
 
@@ -600,7 +602,9 @@ void vtkBSPSortedPolyDataMapper::UpdateCameraShiftScale(vtkRenderer* ren, vtkAct
 
   // Standalone: (re)build the tree once the actor is drawn translucent, and when the input changes.
   if (!internal.External && (sortable || internal.Tree) &&
-    (!internal.Tree || internal.TreeInput != input || internal.TreeInputMTime != input->GetMTime()))
+    (!internal.Tree || internal.TreeInput != input ||
+      internal.TreeInputMTime != input->GetMTime() ||
+      internal.TreeLeafSize != this->OrderedLeafSize))
   {
     const auto start = std::chrono::steady_clock::now();
     internal.Order.reset();
@@ -609,7 +613,9 @@ void vtkBSPSortedPolyDataMapper::UpdateCameraShiftScale(vtkRenderer* ren, vtkAct
     scenevis::PolygonMesh mesh;
     std::vector<vtkIdType> cellOf;
     vtkBSPSortUtilities::AppendPolygons(input, nullptr, mesh, cellOf);
-    auto tree = std::make_unique<bsp::Tree>(bsp::build(mesh, vtkBSPFragmentSet::BuildConfig()));
+    bsp::BuildConfig config = vtkBSPFragmentSet::BuildConfig();
+    config.orderedLeafSize = static_cast<std::uint32_t>(this->OrderedLeafSize);
+    auto tree = std::make_unique<bsp::Tree>(bsp::build(mesh, config));
     auto fragments = std::make_shared<vtkBSPFragmentSet>();
     fragments->Input = input;
     fragments->Splits = tree->splitPoints;
@@ -636,6 +642,7 @@ void vtkBSPSortedPolyDataMapper::UpdateCameraShiftScale(vtkRenderer* ren, vtkAct
     internal.Fragments = std::move(fragments);
     internal.TreeInput = input;
     internal.TreeInputMTime = input->GetMTime();
+    internal.TreeLeafSize = this->OrderedLeafSize;
     internal.LastBuildTime = SecondsSince(start);
     ++internal.TreeBuilds;
   }
@@ -710,24 +717,42 @@ void vtkBSPSortedPolyDataMapper::RenderPieceStart(vtkRenderer* ren, vtkActor* ac
       {
         const auto start = std::chrono::steady_clock::now();
         bool changed = !internal.IBOHasOrder;
-        if (!internal.Order)
+        const bool leaves = !internal.Tree->leaves.empty();
+        if (leaves)
         {
-          internal.Order =
-            std::make_unique<bsp::IncrementalOrder>(*internal.Tree, bsp::Direction::BackToFront);
-          changed = true;
+          // Which fragments a view draws depends on the view: a full order, uploaded when it
+          // differs from the last one.
+          if (moved)
+          {
+            bsp::order(*internal.Tree, view, bsp::Direction::BackToFront, internal.FullOrder);
+            ++internal.OrderUpdates;
+            changed = changed || internal.FullOrder != internal.UploadedOrder;
+            internal.HaveView = true;
+            internal.LastView = view;
+          }
         }
-        if (moved)
+        else
         {
-          const auto& stats = internal.Order->update(view);
-          ++internal.OrderUpdates;
-          changed = changed || stats.nodesFlipped > 0 || stats.fragmentsMoved > 0 ||
-            internal.UploadedOrder.empty();
-          internal.HaveView = true;
-          internal.LastView = view;
+          if (!internal.Order)
+          {
+            internal.Order =
+              std::make_unique<bsp::IncrementalOrder>(*internal.Tree, bsp::Direction::BackToFront);
+            changed = true;
+          }
+          if (moved)
+          {
+            const auto& stats = internal.Order->update(view);
+            ++internal.OrderUpdates;
+            changed = changed || stats.nodesFlipped > 0 || stats.fragmentsMoved > 0 ||
+              internal.UploadedOrder.empty();
+            internal.HaveView = true;
+            internal.LastView = view;
+          }
         }
         if (changed)
         {
-          internal.Upload(ibo, internal.Order->order(), this->PartialIndexUploads);
+          internal.Upload(
+            ibo, leaves ? internal.FullOrder : internal.Order->order(), this->PartialIndexUploads);
         }
         internal.LastOrderTime = SecondsSince(start);
       }
@@ -774,6 +799,7 @@ void vtkBSPSortedPolyDataMapper::RenderPieceDraw(vtkRenderer* ren, vtkActor* act
 void vtkBSPSortedPolyDataMapper::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
+  os << indent << "OrderedLeafSize: " << this->OrderedLeafSize << "\n";
   os << indent << "NumberOfFragments: " << this->GetNumberOfFragments() << "\n";
   os << indent << "NumberOfIndexUploads: " << this->GetNumberOfIndexUploads() << "\n";
   os << indent << "PartialIndexUploads: " << this->PartialIndexUploads << "\n";

@@ -20,6 +20,9 @@
 #include <vtkSphereSource.h>
 #include <vtkTriangleFilter.h>
 
+#include <algorithm>
+#include <cmath>
+
 namespace scenevis
 {
 namespace testing
@@ -89,6 +92,28 @@ vtkSmartPointer<vtkPolyData> MakeQuad(double x0, double y0, double x1, double y1
   result->SetPoints(points);
   result->SetPolys(polys);
   return result;
+}
+
+vtkSmartPointer<vtkPolyData> MakeBumpySphere(double radius)
+{
+  vtkNew<vtkSphereSource> sphere;
+  sphere->SetRadius(radius);
+  sphere->SetThetaResolution(48);
+  sphere->SetPhiResolution(32);
+  sphere->Update();
+  auto bumpy = vtkSmartPointer<vtkPolyData>::New();
+  bumpy->DeepCopy(sphere->GetOutput());
+  vtkPoints* points = bumpy->GetPoints();
+  for (vtkIdType i = 0; i < points->GetNumberOfPoints(); ++i)
+  {
+    double p[3];
+    points->GetPoint(i, p);
+    const double theta = std::atan2(p[1], p[0]);
+    const double phi = std::acos(std::max(-1.0, std::min(1.0, p[2] / radius)));
+    const double scale = 1.0 + 0.15 * std::sin(7.0 * theta) * std::sin(5.0 * phi);
+    points->SetPoint(i, scale * p[0], scale * p[1], scale * p[2]);
+  }
+  return bumpy;
 }
 
 vtkSmartPointer<vtkPolyData> AppendPolygons(vtkPolyData* a, vtkPolyData* b)

@@ -1,5 +1,6 @@
 // Specification: the tree is built once per input; a camera move only re-orders (incrementally);
-// front-to-back is the reverse of back-to-front; a prop's matrix maps the camera into data space.
+// front-to-back is the reverse of back-to-front; a prop's matrix maps the camera into data space;
+// the ordered-leaf size is a build setting (changing it rebuilds, a camera move does not).
 #include "vtkBSPSortFilter.h"
 
 #include "vtkActor.h"
@@ -122,6 +123,28 @@ int TestBSPSortFilterUpdates(int, char*[])
   sorter->Update();
   EXPECT(sorter->GetNumberOfBuilds() == builds);
   EXPECT(Sequence(sorter->GetOutput()) != withProp);
+
+  // Ordered leaves: a rebuild when the size changes, none when the camera moves; the output
+  // lists the fragments the view draws, and front to back is still the exact reverse.
+  sorter->SetOrderedLeafSize(16);
+  sorter->Update();
+  EXPECT(sorter->GetNumberOfBuilds() == builds + 1);
+  EXPECT(sorter->GetLastNumberOfOrderedFragments() == sorter->GetOutput()->GetNumberOfPolys());
+  EXPECT(sorter->GetLastNumberOfOrderedFragments() <= sorter->GetNumberOfFragments());
+  const auto leafOrder = Sequence(sorter->GetOutput());
+  camera->Azimuth(45.0);
+  sorter->Update();
+  EXPECT(sorter->GetNumberOfBuilds() == builds + 1);
+  const auto leafMoved = Sequence(sorter->GetOutput());
+  EXPECT(leafMoved != leafOrder);
+  sorter->SetDirectionToFrontToBack();
+  sorter->Update();
+  auto leafReversed = Sequence(sorter->GetOutput());
+  std::reverse(leafReversed.begin(), leafReversed.end());
+  EXPECT(leafReversed == leafMoved);
+  EXPECT(sorter->GetNumberOfBuilds() == builds + 1);
+  sorter->SetOrderedLeafSize(1000); // clamped to 256
+  EXPECT(sorter->GetOrderedLeafSize() == 256);
 
   return failures == 0 ? EXIT_SUCCESS : EXIT_FAILURE;
 }

@@ -5,7 +5,10 @@
 //  (c) camera unchanged -> no re-sort, no index upload; camera moved -> no vertex buffer rebuild;
 //  (e) small camera steps send only the changed index ranges, and draw what a full upload draws;
 //  (d) an opaque actor builds no tree at all; one that turned translucent and then opaque again
-//      draws its input (not the split fragments) and keeps its tree.
+//      draws its input (not the split fragments) and keeps its tree;
+//  (f) with ordered leaves (a bumpy sphere): the order of vtkBSPSortFilter with the same leaf size,
+//  fewer
+//      fragments drawn than the tree without leaves has, and the 100-peel image.
 #include "vtkBSPSortFilter.h"
 #include "vtkBSPSortedPolyDataMapper.h"
 #include "vtkDemoSceneSource.h"
@@ -13,10 +16,13 @@
 
 #include "scenevis/testing/ImageCompare.h"
 #include "scenevis/testing/RenderWindow.h"
+#include "scenevis/testing/Scenes.h"
 #include "scenevis/testing/StrictVtkOutput.h"
 
 #include <vtkActor.h>
 #include <vtkCamera.h>
+#include <vtkCellData.h>
+#include <vtkIdTypeArray.h>
 #include <vtkImageData.h>
 #include <vtkNew.h>
 #include <vtkPolyDataMapper.h>
@@ -255,6 +261,101 @@ int TestBSPSortedPolyDataMapper(int, char*[])
   ok &=
     Check(opaqueMapper->GetLastRenderDrewFragments() && opaqueMapper->GetNumberOfTreeBuilds() == 1,
       "translucent again: fragments drawn, tree kept");
+
+  // (f) Ordered leaves.
+  vtkSmartPointer<vtkPolyData> bumpy = st::MakeBumpySphere();
+  vtkNew<vtkCamera> leafCamera;
+  leafCamera->SetPosition(2.8, 5.6, 4.9);
+  leafCamera->SetFocalPoint(0, 0, 0);
+  leafCamera->SetViewUp(0, 0, 1);
+  auto translucentRenderer = [&](vtkMapper* mapper, bool peel)
+  {
+    vtkNew<vtkActor> actor;
+    actor->SetMapper(mapper);
+    actor->GetProperty()->SetOpacity(0.4);
+    actor->GetProperty()->SetColor(0.9, 0.5, 0.2);
+    vtkSmartPointer<vtkRenderer> renderer = vtkSmartPointer<vtkRenderer>::New();
+    renderer->AddActor(actor);
+    if (peel)
+    {
+      renderer->SetUseDepthPeeling(1);
+      renderer->SetMaximumNumberOfPeels(100);
+      renderer->SetOcclusionRatio(0.0);
+    }
+    else
+    {
+      vtkNew<vtkOrderedTranslucentPass> pass;
+      renderer->SetPass(pass);
+    }
+    renderer->SetActiveCamera(leafCamera);
+    renderer->ResetCameraClippingRange();
+    return renderer;
+  };
+  vtkNew<vtkBSPSortedPolyDataMapper> leafMapper;
+  leafMapper->SetInputData(bumpy);
+  leafMapper->SetOrderedLeafSize(64);
+  vtkNew<vtkBSPSortFilter> leafFilter;
+  leafFilter->SetInputData(bumpy);
+  leafFilter->SetOrderedLeafSize(64);
+  leafFilter->SetCamera(leafCamera);
+  vtkNew<vtkPolyDataMapper> leafFilterMapper;
+  leafFilterMapper->SetInputConnection(leafFilter->GetOutputPort());
+  vtkNew<vtkPolyDataMapper> leafPeelMapper;
+  leafPeelMapper->SetInputData(bumpy);
+  vtkNew<vtkBSPSortFilter> noLeaves;
+  noLeaves->SetInputData(bumpy);
+  noLeaves->SetCamera(leafCamera);
+  noLeaves->Update();
+  vtkSmartPointer<vtkRenderer> leafRenderers[3] = { translucentRenderer(leafMapper, false),
+    translucentRenderer(leafFilterMapper, false), translucentRenderer(leafPeelMapper, true) };
+  for (int step = 0; step < 3; ++step)
+  {
+    leafCamera->Azimuth(step * 50.0);
+    leafCamera->Elevation(step * 15.0);
+    leafCamera->OrthogonalizeViewUp();
+    for (vtkRenderer* renderer : leafRenderers)
+    {
+      renderer->ResetCameraClippingRange();
+    }
+    auto mapperImage = RenderWith(window, leafRenderers[0]);
+    auto filterImage = RenderWith(window, leafRenderers[1]);
+    auto peelImage = RenderWith(window, leafRenderers[2]);
+    const std::string tag = "ordered leaves, view " + std::to_string(step);
+    std::vector<vtkIdType> mapperOrder;
+    leafMapper->GetFragmentOrder(mapperOrder);
+    vtkIdTypeArray* filterCells =
+      vtkIdTypeArray::SafeDownCast(leafFilter->GetOutput()->GetCellData()->GetArray(
+        vtkBSPSortFilter::OriginalCellIdArrayName()));
+    const bool sameOrder = filterCells &&
+      static_cast<vtkIdType>(mapperOrder.size()) == filterCells->GetNumberOfTuples() &&
+      std::equal(mapperOrder.begin(), mapperOrder.end(), filterCells->GetPointer(0));
+    ok &= Check(sameOrder && leafFilter->GetLastLeavesSorted() > 0,
+      tag + ": the mapper draws the filter's order (" + std::to_string(mapperOrder.size()) +
+        " fragments drawn, " + std::to_string(leafFilter->GetLastLeavesSorted()) +
+        " leaves sorted)");
+    ok &= Check(static_cast<vtkIdType>(mapperOrder.size()) < noLeaves->GetNumberOfFragments(),
+      tag + ": fewer fragments drawn than without leaves (" +
+        std::to_string(noLeaves->GetNumberOfFragments()) + ")");
+    st::ImageThresholds same;
+    same.maxMeanAbsError = 0.1;
+    same.maxCoveredBadFraction = 0.001;
+    st::ImageThresholds peel;
+    peel.maxMeanAbsError = 0.5;
+    peel.maxCoveredBadFraction = 0.01;
+    std::string why;
+    const auto vsFilter = st::CompareImages(mapperImage, filterImage);
+    ok &= Check(st::WithinThresholds(vsFilter, same, &why),
+      tag + " mapper vs filter: " + vsFilter.Summary() + " " + why);
+    const auto vsPeel = st::CompareImages(mapperImage, peelImage);
+    ok &= Check(st::WithinThresholds(vsPeel, peel, &why) && st::CoveredFraction(mapperImage) > 0.05,
+      tag + " mapper vs 100-peel DDP: " + vsPeel.Summary() + " " + why);
+    st::WritePng(mapperImage,
+      st::TemporaryDirectory() + "/TestBSPSortedPolyDataMapper_leaves_" + std::to_string(step) +
+        ".png");
+  }
+  ok &= Check(
+    leafMapper->GetNumberOfTreeBuilds() == 1 && leafMapper->GetNumberOfVertexBufferBuilds() == 1,
+    "ordered leaves: one tree and one vertex buffer for every view");
 
   window->GetRenderers()->RemoveAllItems();
   return vtkOutput.ExitCode(ok ? EXIT_SUCCESS : EXIT_FAILURE);

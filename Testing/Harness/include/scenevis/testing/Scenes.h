@@ -59,6 +59,14 @@ vtkSmartPointer<vtkRenderer> MakeSphereGridRenderer(
 /// An axis-aligned square quad (one 4-point polygon) at depth @p z, from (x0,y0) to (x1,y1).
 vtkSmartPointer<vtkPolyData> MakeQuad(double x0, double y0, double x1, double y1, double z);
 
+/**
+ * A closed, non-convex surface centred at the origin: a vtkSphereSource of radius @p radius
+ * (48 x 32) whose points are moved along their radius by a factor 1 + 0.15 sin(7 theta) sin(5 phi).
+ * Seen from outside its polygons hide each other, so a BSP tree splits it (ordered leaves keep
+ * many of them whole).
+ */
+vtkSmartPointer<vtkPolyData> MakeBumpySphere(double radius = 1.5);
+
 /// The polygons of @p a followed by those of @p b (cell order preserved), in one polydata.
 vtkSmartPointer<vtkPolyData> AppendPolygons(vtkPolyData* a, vtkPolyData* b);
 
