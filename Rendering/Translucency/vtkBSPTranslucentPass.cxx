@@ -146,10 +146,47 @@ std::vector<double> MapperSettings(vtkPolyDataMapper* mapper)
   return s;
 }
 
+/**
+ * Whether @p mapper colours @p input by cell scalars that are the same in every cell (a part of
+ * one material, as model readers and part splitting make them): such an actor can be batched
+ * with its colour baked into its points. O(cells); the pass calls it when the input or the
+ * mapper's settings change.
+ */
+bool UniformCellScalars(vtkPolyDataMapper* mapper, vtkPolyData* input)
+{
+  if (!mapper->GetScalarVisibility())
+  {
+    return false;
+  }
+  int cellFlag = 0;
+  vtkDataArray* scalars =
+    vtkDataArray::SafeDownCast(vtkAbstractMapper::GetAbstractScalars(input, mapper->GetScalarMode(),
+      mapper->GetArrayAccessMode(), mapper->GetArrayId(), mapper->GetArrayName(), cellFlag));
+  if (!scalars || cellFlag != 1 || scalars->GetNumberOfTuples() < 1)
+  {
+    return false;
+  }
+  const int components = scalars->GetNumberOfComponents();
+  std::vector<double> first(static_cast<std::size_t>(components));
+  std::vector<double> tuple(first.size());
+  scalars->GetTuple(0, first.data());
+  for (vtkIdType i = 1; i < scalars->GetNumberOfTuples(); ++i)
+  {
+    scalars->GetTuple(i, tuple.data());
+    if (tuple != first)
+    {
+      return false;
+    }
+  }
+  return true;
+}
+
 /// The settings that must be equal for actors to share one helper mapper: everything of their
 /// look except colour and opacity, which are baked per point. Empty when the actor cannot share
-/// one (texture, shader code, cell colours, ...).
-std::vector<double> BatchKey(vtkActor* actor, vtkPolyDataMapper* mapper, vtkPolyData* input)
+/// one (texture, shader code, cell colours that vary, ...). @p uniformCellScalars: what
+/// UniformCellScalars() says of the actor.
+std::vector<double> BatchKey(
+  vtkActor* actor, vtkPolyDataMapper* mapper, vtkPolyData* input, bool uniformCellScalars)
 {
   std::vector<double> key;
   vtkProperty* property = actor->GetProperty();
@@ -180,9 +217,12 @@ std::vector<double> BatchKey(vtkActor* actor, vtkPolyDataMapper* mapper, vtkPoly
     vtkAbstractArray* scalars =
       vtkAbstractMapper::GetAbstractScalars(input, mapper->GetScalarMode(),
         mapper->GetArrayAccessMode(), mapper->GetArrayId(), mapper->GetArrayName(), cellFlag);
-    // Cell colours would need per-fragment vertices; scalars interpolated before mapping are
-    // coloured by texture lookup per pixel, which per-point colours cannot reproduce.
-    if (scalars && (cellFlag != 0 || mapper->GetInterpolateScalarsBeforeMapping()))
+    // Cell colours that vary would need per-fragment vertices (one colour per cell is baked
+    // into the points); scalars interpolated before mapping are coloured by texture lookup per
+    // pixel, which per-point colours cannot reproduce.
+    if (scalars &&
+      ((cellFlag != 0 && !(cellFlag == 1 && uniformCellScalars)) ||
+        mapper->GetInterpolateScalarsBeforeMapping()))
     {
       return key;
     }
@@ -254,6 +294,7 @@ struct vtkBSPTranslucentPass::Internals
     vtkMTimeType InputMTime = 0;
     std::array<double, 16> Matrix{};
     std::vector<double> BatchKey; // empty: cannot be batched
+    bool UniformCellScalars = false; // see UniformCellScalars(), for Input and MapperSettings
     std::vector<double> ColorKey; // batched actors only
     std::size_t Group = 0;
     vtkIdType PointOffset = 0; // first point in its group's polydata
@@ -408,13 +449,17 @@ void vtkBSPTranslucentPass::Internals::BakeColors(Group& group)
     const vtkIdType count = entry.Input->GetNumberOfPoints();
     unsigned char* first = out + 4 * entry.PointOffset;
     vtkUnsignedCharArray* mapped = nullptr;
+    bool uniform = false;
     if (entry.Helper->GetScalarVisibility())
     {
       // The helper is a copy of the actor's mapper (settings and lookup table): the colours the
       // actor would show, with its opacity multiplied in as VTK's opacity uniform would.
+      // Cell colours reach here only when every cell has the same one (the batch key): that
+      // colour goes to every point.
       int cellFlag = 0;
       mapped = entry.Helper->MapScalars(entry.Input, opacity, cellFlag);
-      if (mapped && (cellFlag != 0 || mapped->GetNumberOfTuples() != count))
+      uniform = mapped && cellFlag == 1 && mapped->GetNumberOfTuples() > 0;
+      if (mapped && !uniform && (cellFlag != 0 || mapped->GetNumberOfTuples() != count))
       {
         mapped = nullptr;
       }
@@ -424,7 +469,8 @@ void vtkBSPTranslucentPass::Internals::BakeColors(Group& group)
       const int components = mapped->GetNumberOfComponents();
       const unsigned char* in = mapped->GetPointer(0);
       const auto scaledAlpha = static_cast<unsigned char>(std::lround(255.0 * opacity));
-      for (vtkIdType i = 0; i < count; ++i, in += components)
+      const int step = uniform ? 0 : components;
+      for (vtkIdType i = 0; i < count; ++i, in += step)
       {
         unsigned char* rgba = first + 4 * i;
         switch (components)
@@ -799,6 +845,7 @@ void vtkBSPTranslucentPass::Render(const vtkRenderState* s)
       entry.Input = inputs[k];
       entry.InputMTime = inputs[k]->GetMTime();
       rebuild = true;
+      mapperChanged[k] = true; // the uniformity of its cell colours is found again below
     }
     if (entry.Helper->GetInputDataObject(0, 0) != inputs[k])
     {
@@ -812,8 +859,13 @@ void vtkBSPTranslucentPass::Render(const vtkRenderState* s)
       std::copy(m, m + 16, entry.Matrix.begin());
       rebuild = true;
     }
-    entry.BatchKey =
-      internal.Batching ? BatchKey(sorted[k], mappers[k], inputs[k]) : std::vector<double>();
+    if (mapperChanged[k])
+    {
+      entry.UniformCellScalars = UniformCellScalars(mappers[k], inputs[k]);
+    }
+    entry.BatchKey = internal.Batching
+      ? BatchKey(sorted[k], mappers[k], inputs[k], entry.UniformCellScalars)
+      : std::vector<double>();
     entries.push_back(std::move(entry));
   }
   for (const Internals::Entry& old : internal.Entries)

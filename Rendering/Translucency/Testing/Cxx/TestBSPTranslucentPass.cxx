@@ -11,6 +11,9 @@
 //     actor is drawn with its own property (batching off) and as 100-peel peeling; a colour or
 //     opacity change re-bakes colours without a tree rebuild; actors with different specular
 //     or lighting settings are not batched together and keep their own look.
+//  4b. Parts coloured by cell scalars (as model readers and the tool's part splitting colour
+//     them): actors whose cells all have one colour are batched (1 draw call) and look as per
+//     actor and as peeling; an actor whose cell colours vary stays on its own.
 //  5. Two-level order: instances of one input far apart and an interpenetrating trio, images vs
 //     peeling and vs one tree, the order oracle, eyes outside, inside and parallel; trees built
 //     when an instance moves (none), a trio member moves (one), an instance is added (none);
@@ -34,6 +37,7 @@
 #include <vtkActorCollection.h>
 #include <vtkAppendPolyData.h>
 #include <vtkCamera.h>
+#include <vtkCellData.h>
 #include <vtkCompositeDataDisplayAttributes.h>
 #include <vtkCompositePolyDataMapper2.h>
 #include <vtkCubeSource.h>
@@ -50,6 +54,7 @@
 #include <vtkRendererCollection.h>
 #include <vtkSphereSource.h>
 #include <vtkTriangleFilter.h>
+#include <vtkUnsignedCharArray.h>
 
 #include <cstdlib>
 #include <iostream>
@@ -380,6 +385,108 @@ int TestBSPTranslucentPass(int, char*[])
     ok &= Check(
       batchedPass->GetNumberOfSortedActors() == 2 && batchedPass->GetNumberOfBatchGroups() == 0,
       "opacity 1: dropped out: " + describe(batchedPass));
+  }
+
+  // --- 4b. Uniform cell colours ---------------------------------------------------------------
+  {
+    // A copy of @p source's output with an RGBA cell array "Colors"; with @p vary, half of the
+    // cells get another colour.
+    auto cellColoured = [](vtkAlgorithm* source, const unsigned char rgba[4], bool vary)
+    {
+      source->Update();
+      auto pd = vtkSmartPointer<vtkPolyData>::New();
+      pd->DeepCopy(vtkPolyData::SafeDownCast(source->GetOutputDataObject(0)));
+      vtkNew<vtkUnsignedCharArray> colors;
+      colors->SetName("Colors");
+      colors->SetNumberOfComponents(4);
+      colors->SetNumberOfTuples(pd->GetNumberOfCells());
+      for (vtkIdType c = 0; c < pd->GetNumberOfCells(); ++c)
+      {
+        const unsigned char other[4] = { 40, 40, 230, rgba[3] };
+        colors->SetTypedTuple(c, vary && c % 2 == 1 ? other : rgba);
+      }
+      pd->GetCellData()->SetScalars(colors);
+      return pd;
+    };
+    auto cellActor = [](vtkPolyData* pd)
+    {
+      vtkNew<vtkPolyDataMapper> mapper;
+      mapper->SetInputData(pd);
+      mapper->SetScalarModeToUseCellData();
+      mapper->SetColorModeToDirectScalars();
+      auto actor = vtkSmartPointer<vtkActor>::New();
+      actor->SetMapper(mapper);
+      actor->GetProperty()->SetSpecular(0.0);
+      return actor;
+    };
+    const unsigned char red[4] = { 230, 50, 25, 115 };
+    const unsigned char green[4] = { 50, 230, 80, 100 };
+    const unsigned char yellow[4] = { 230, 220, 40, 128 };
+    auto a = cellActor(cellColoured(sphereA, red, false));
+    auto b = cellActor(cellColoured(sphereB, green, false));
+    vtkSmartPointer<vtkPolyData> slabUniform = cellColoured(slabTriangles, yellow, false);
+    vtkSmartPointer<vtkPolyData> slabVarying = cellColoured(slabTriangles, yellow, true);
+    auto c = cellActor(slabUniform);
+    c->SetOrientation(0, 0, -25);
+    c->SetPosition(0, 0.2, 0);
+
+    vtkNew<vtkRenderer> batched, unbatched, peeled;
+    for (vtkActor* actor : { a.Get(), b.Get(), c.Get() })
+    {
+      batched->AddActor(actor);
+      unbatched->AddActor(actor);
+      peeled->AddActor(actor);
+    }
+    vtkNew<vtkOrderedTranslucentPass> batchedSteps, unbatchedSteps;
+    vtkNew<vtkBSPTranslucentPass> batchedPass, unbatchedPass;
+    unbatchedPass->BatchingOff();
+    batchedSteps->SetTranslucentPass(batchedPass);
+    unbatchedSteps->SetTranslucentPass(unbatchedPass);
+    batched->SetPass(batchedSteps);
+    unbatched->SetPass(unbatchedSteps);
+    peeled->SetUseDepthPeeling(1);
+    peeled->SetMaximumNumberOfPeels(100);
+    peeled->SetOcclusionRatio(0.0);
+    unbatched->SetActiveCamera(batched->GetActiveCamera());
+    peeled->SetActiveCamera(batched->GetActiveCamera());
+    st::ImageThresholds thresholds;
+    thresholds.maxMeanAbsError = 0.5;
+    thresholds.maxCoveredBadFraction = 0.01;
+    auto check = [&](const std::string& tag, int groups, int batchedActors)
+    {
+      auto withBatches = RenderWith(window, batched);
+      auto perActor = RenderWith(window, unbatched);
+      auto reference = RenderWith(window, peeled);
+      st::WritePng(withBatches,
+        st::TemporaryDirectory() + "/TestBSPTranslucentPass_cells_" + tag + "_batched.png");
+      std::string why;
+      const auto vsPerActor = st::CompareImages(withBatches, perActor);
+      const auto vsPeel = st::CompareImages(withBatches, reference);
+      bool good = Check(st::WithinThresholds(vsPerActor, thresholds, &why),
+        tag + ": batched vs per-actor: " + vsPerActor.Summary() + " " + why);
+      good &= Check(st::WithinThresholds(vsPeel, thresholds, &why),
+        tag + ": batched vs 100-peel DDP: " + vsPeel.Summary() + " " + why);
+      good &= Check(st::CoveredFraction(withBatches) > 0.1 &&
+          batchedPass->GetNumberOfBatchGroups() == groups &&
+          batchedPass->GetNumberOfBatchedActors() == batchedActors,
+        tag + ": " + std::to_string(batchedPass->GetNumberOfBatchGroups()) + " batch group(s) of " +
+          std::to_string(batchedPass->GetNumberOfBatchedActors()) + " actors, " +
+          std::to_string(batchedPass->GetNumberOfDrawCalls()) +
+          " draw calls (per actor: " + std::to_string(unbatchedPass->GetNumberOfDrawCalls()) + ")");
+      return good;
+    };
+    const ViewSpec cellViews[] = { { 30, 20, false }, { 160, -30, true } };
+    v = 0;
+    for (const ViewSpec& spec : cellViews)
+    {
+      SetView(batched, spec.azimuth, spec.elevation, spec.parallel);
+      const std::string tag = "uniform_" + std::to_string(v++);
+      ok &= check(tag, 1, 3);
+      ok &= Check(batchedPass->GetNumberOfDrawCalls() == 1, tag + ": one draw call");
+    }
+    // The slab's cells in two colours: it leaves the batch, which keeps the two spheres.
+    vtkPolyDataMapper::SafeDownCast(c->GetMapper())->SetInputData(slabVarying);
+    ok &= check("varying", 1, 2);
   }
 
   // --- 5. Two-level order -----------------------------------------------------------------
