@@ -42,6 +42,9 @@
 #include <cmath>
 #include <map>
 #include <string>
+#include <unordered_map>
+#include <unordered_set>
+#include <vector>
 
 vtkStandardNewMacro(vtkBSPTranslucentPass);
 
@@ -813,12 +816,29 @@ void vtkBSPTranslucentPass::Render(const vtkRenderState* s)
   std::vector<bool> mapperChanged(sorted.size(), false);
   std::vector<Internals::Entry> entries;
   entries.reserve(sorted.size());
+  // Last frame's entry of each actor: at the same index when the actors did not change (the
+  // usual frame), else looked up by actor (a map made only then: no scan per actor).
+  std::unordered_map<vtkActor*, std::size_t> previous;
+  auto previousEntry = [&](std::size_t k) -> const Internals::Entry*
+  {
+    if (k < internal.Entries.size() && internal.Entries[k].Actor == sorted[k])
+    {
+      return &internal.Entries[k];
+    }
+    if (previous.empty())
+    {
+      for (std::size_t e = 0; e < internal.Entries.size(); ++e)
+      {
+        previous.emplace(internal.Entries[e].Actor.Get(), e);
+      }
+    }
+    const auto found = previous.find(sorted[k]);
+    return found == previous.end() ? nullptr : &internal.Entries[found->second];
+  };
   for (std::size_t k = 0; k < sorted.size(); ++k)
   {
     Internals::Entry entry;
-    auto same = std::find_if(internal.Entries.begin(), internal.Entries.end(),
-      [&](const Internals::Entry& e) { return e.Actor == sorted[k]; });
-    if (same != internal.Entries.end())
+    if (const Internals::Entry* same = previousEntry(k))
     {
       entry = *same;
     }
@@ -868,12 +888,25 @@ void vtkBSPTranslucentPass::Render(const vtkRenderState* s)
       : std::vector<double>();
     entries.push_back(std::move(entry));
   }
-  for (const Internals::Entry& old : internal.Entries)
+  // Helpers of actors that left: their uploads still count (a set made only when some left).
+  bool sameHelpers = entries.size() == internal.Entries.size();
+  for (std::size_t k = 0; sameHelpers && k < entries.size(); ++k)
   {
-    if (std::none_of(entries.begin(), entries.end(),
-          [&](const Internals::Entry& e) { return e.Helper == old.Helper; }))
+    sameHelpers = entries[k].Helper == internal.Entries[k].Helper;
+  }
+  if (!sameHelpers)
+  {
+    std::unordered_set<vtkBSPSortedPolyDataMapper*> kept;
+    for (const Internals::Entry& entry : entries)
     {
-      internal.UploadsOfReleasedHelpers += old.Helper->GetNumberOfIndexUploads();
+      kept.insert(entry.Helper.Get());
+    }
+    for (const Internals::Entry& old : internal.Entries)
+    {
+      if (kept.count(old.Helper.Get()) == 0)
+      {
+        internal.UploadsOfReleasedHelpers += old.Helper->GetNumberOfIndexUploads();
+      }
     }
   }
   internal.Entries = std::move(entries);
