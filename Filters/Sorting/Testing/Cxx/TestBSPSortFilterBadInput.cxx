@@ -1,5 +1,6 @@
 // Specification: the bad-input catalogue of the sorting filters (issue 8). Every case runs on
-// vtkBSPSortFilter AND vtkPainterSortFilter (same interface, same contract):
+// vtkBSPSortFilter (without and with ordered leaves) AND vtkPainterSortFilter (same interface,
+// same contract):
 // - no camera, or a camera with a NaN/Inf position: an error, the input passes through unsorted;
 // - a camera with a zero view angle, or whose eye is its focal point: a correct order (the order
 //   of a perspective camera depends on its eye only);
@@ -57,6 +58,20 @@ std::string currentCase;
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr double kInf = std::numeric_limits<double>::infinity();
+
+/// vtkBSPSortFilter with ordered leaves of up to 64 polygons: the same contract on bad input.
+class vtkBSPSortFilterWithLeaves : public vtkBSPSortFilter
+{
+public:
+  static vtkBSPSortFilterWithLeaves* New()
+  {
+    auto* filter = new vtkBSPSortFilterWithLeaves;
+    filter->InitializeObjectBase();
+    filter->SetOrderedLeafSize(64);
+    return filter;
+  }
+  vtkTypeMacro(vtkBSPSortFilterWithLeaves, vtkBSPSortFilter);
+};
 
 /// One filter run with its errors and warnings captured.
 template <class Filter>
@@ -477,6 +492,7 @@ void RunCatalogue(const char* filterName)
 int TestBSPSortFilterBadInput(int, char*[])
 {
   RunCatalogue<vtkBSPSortFilter>("vtkBSPSortFilter");
+  RunCatalogue<vtkBSPSortFilterWithLeaves>("vtkBSPSortFilter, ordered leaves of 64");
   RunCatalogue<vtkPainterSortFilter>("vtkPainterSortFilter");
   return failures == 0 ? EXIT_SUCCESS : EXIT_FAILURE;
 }
