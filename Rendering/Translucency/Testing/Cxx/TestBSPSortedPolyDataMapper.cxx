@@ -336,12 +336,8 @@ int TestBSPSortedPolyDataMapper(int, char*[])
     ok &= Check(static_cast<vtkIdType>(mapperOrder.size()) < noLeaves->GetNumberOfFragments(),
       tag + ": fewer fragments drawn than without leaves (" +
         std::to_string(noLeaves->GetNumberOfFragments()) + ")");
-    st::ImageThresholds same;
-    same.maxMeanAbsError = 0.1;
-    same.maxCoveredBadFraction = 0.001;
-    st::ImageThresholds peel;
-    peel.maxMeanAbsError = 0.5;
-    peel.maxCoveredBadFraction = 0.01;
+    const st::ImageThresholds same = st::Thresholds(0.1, 0.001);
+    const st::ImageThresholds peel = st::Thresholds(0.5, 0.01);
     std::string why;
     const auto vsFilter = st::CompareImages(mapperImage, filterImage);
     ok &= Check(st::WithinThresholds(vsFilter, same, &why),

@@ -57,6 +57,7 @@
 #include <vtkUnsignedCharArray.h>
 
 #include <cstdlib>
+#include <initializer_list>
 #include <iostream>
 #include <string>
 #include <vector>
@@ -92,6 +93,35 @@ void SetView(vtkRenderer* renderer, double azimuth, double elevation, bool paral
   camera->OrthogonalizeViewUp();
   renderer->ResetCamera();
 }
+
+/// The same actors and camera in three renderers: the pass with batching, the pass without, and
+/// 100-peel dual depth peeling (the reference).
+struct BatchingRenderers
+{
+  vtkNew<vtkRenderer> batched, unbatched, peeled;
+  vtkNew<vtkOrderedTranslucentPass> batchedSteps, unbatchedSteps;
+  vtkNew<vtkBSPTranslucentPass> batchedPass, unbatchedPass;
+
+  explicit BatchingRenderers(std::initializer_list<vtkActor*> actors)
+  {
+    for (vtkActor* actor : actors)
+    {
+      this->batched->AddActor(actor);
+      this->unbatched->AddActor(actor);
+      this->peeled->AddActor(actor);
+    }
+    this->unbatchedPass->BatchingOff();
+    this->batchedSteps->SetTranslucentPass(this->batchedPass);
+    this->unbatchedSteps->SetTranslucentPass(this->unbatchedPass);
+    this->batched->SetPass(this->batchedSteps);
+    this->unbatched->SetPass(this->unbatchedSteps);
+    this->peeled->SetUseDepthPeeling(1);
+    this->peeled->SetMaximumNumberOfPeels(100);
+    this->peeled->SetOcclusionRatio(0.0);
+    this->unbatched->SetActiveCamera(this->batched->GetActiveCamera());
+    this->peeled->SetActiveCamera(this->batched->GetActiveCamera());
+  }
+};
 
 } // namespace
 
@@ -266,29 +296,12 @@ int TestBSPTranslucentPass(int, char*[])
     slabActor->SetOrientation(0, 0, -25);
     slabActor->SetPosition(0, 0.2, 0);
 
-    vtkNew<vtkRenderer> batched;
-    vtkNew<vtkRenderer> unbatched;
-    vtkNew<vtkRenderer> peeled;
-    for (vtkActor* actor : { plain.Get(), scalars.Get(), slabActor.Get() })
-    {
-      batched->AddActor(actor);
-      unbatched->AddActor(actor);
-      peeled->AddActor(actor);
-    }
-    vtkNew<vtkOrderedTranslucentPass> batchedSteps;
-    vtkNew<vtkBSPTranslucentPass> batchedPass;
-    batchedSteps->SetTranslucentPass(batchedPass);
-    batched->SetPass(batchedSteps);
-    vtkNew<vtkOrderedTranslucentPass> unbatchedSteps;
-    vtkNew<vtkBSPTranslucentPass> unbatchedPass;
-    unbatchedPass->BatchingOff();
-    unbatchedSteps->SetTranslucentPass(unbatchedPass);
-    unbatched->SetPass(unbatchedSteps);
-    peeled->SetUseDepthPeeling(1);
-    peeled->SetMaximumNumberOfPeels(100);
-    peeled->SetOcclusionRatio(0.0);
-    unbatched->SetActiveCamera(batched->GetActiveCamera());
-    peeled->SetActiveCamera(batched->GetActiveCamera());
+    BatchingRenderers renderers({ plain.Get(), scalars.Get(), slabActor.Get() });
+    vtkRenderer* batched = renderers.batched;
+    vtkRenderer* unbatched = renderers.unbatched;
+    vtkRenderer* peeled = renderers.peeled;
+    vtkBSPTranslucentPass* batchedPass = renderers.batchedPass;
+    vtkBSPTranslucentPass* unbatchedPass = renderers.unbatchedPass;
 
     // Batched image == per-actor image (== peeling reference while nothing is specular: VTK's
     // peeling blends specular highlights differently from alpha blending, measured here at
@@ -430,33 +443,13 @@ int TestBSPTranslucentPass(int, char*[])
     c->SetOrientation(0, 0, -25);
     c->SetPosition(0, 0.2, 0);
 
-    vtkNew<vtkRenderer> batched, unbatched, peeled;
-    for (vtkActor* actor : { a.Get(), b.Get(), c.Get() })
-    {
-      batched->AddActor(actor);
-      unbatched->AddActor(actor);
-      peeled->AddActor(actor);
-    }
-    vtkNew<vtkOrderedTranslucentPass> batchedSteps, unbatchedSteps;
-    vtkNew<vtkBSPTranslucentPass> batchedPass, unbatchedPass;
-    unbatchedPass->BatchingOff();
-    batchedSteps->SetTranslucentPass(batchedPass);
-    unbatchedSteps->SetTranslucentPass(unbatchedPass);
-    batched->SetPass(batchedSteps);
-    unbatched->SetPass(unbatchedSteps);
-    peeled->SetUseDepthPeeling(1);
-    peeled->SetMaximumNumberOfPeels(100);
-    peeled->SetOcclusionRatio(0.0);
-    unbatched->SetActiveCamera(batched->GetActiveCamera());
-    peeled->SetActiveCamera(batched->GetActiveCamera());
-    st::ImageThresholds thresholds;
-    thresholds.maxMeanAbsError = 0.5;
-    thresholds.maxCoveredBadFraction = 0.01;
+    BatchingRenderers renderers({ a.Get(), b.Get(), c.Get() });
+    const st::ImageThresholds thresholds = st::Thresholds(0.5, 0.01);
     auto check = [&](const std::string& tag, int groups, int batchedActors)
     {
-      auto withBatches = RenderWith(window, batched);
-      auto perActor = RenderWith(window, unbatched);
-      auto reference = RenderWith(window, peeled);
+      auto withBatches = RenderWith(window, renderers.batched);
+      auto perActor = RenderWith(window, renderers.unbatched);
+      auto reference = RenderWith(window, renderers.peeled);
       st::WritePng(withBatches,
         st::TemporaryDirectory() + "/TestBSPTranslucentPass_cells_" + tag + "_batched.png");
       std::string why;
@@ -467,22 +460,24 @@ int TestBSPTranslucentPass(int, char*[])
       good &= Check(st::WithinThresholds(vsPeel, thresholds, &why),
         tag + ": batched vs 100-peel DDP: " + vsPeel.Summary() + " " + why);
       good &= Check(st::CoveredFraction(withBatches) > 0.1 &&
-          batchedPass->GetNumberOfBatchGroups() == groups &&
-          batchedPass->GetNumberOfBatchedActors() == batchedActors,
-        tag + ": " + std::to_string(batchedPass->GetNumberOfBatchGroups()) + " batch group(s) of " +
-          std::to_string(batchedPass->GetNumberOfBatchedActors()) + " actors, " +
-          std::to_string(batchedPass->GetNumberOfDrawCalls()) +
-          " draw calls (per actor: " + std::to_string(unbatchedPass->GetNumberOfDrawCalls()) + ")");
+          renderers.batchedPass->GetNumberOfBatchGroups() == groups &&
+          renderers.batchedPass->GetNumberOfBatchedActors() == batchedActors,
+        tag + ": " + std::to_string(renderers.batchedPass->GetNumberOfBatchGroups()) +
+          " batch group(s) of " +
+          std::to_string(renderers.batchedPass->GetNumberOfBatchedActors()) + " actors, " +
+          std::to_string(renderers.batchedPass->GetNumberOfDrawCalls()) +
+          " draw calls (per actor: " +
+          std::to_string(renderers.unbatchedPass->GetNumberOfDrawCalls()) + ")");
       return good;
     };
     const ViewSpec cellViews[] = { { 30, 20, false }, { 160, -30, true } };
     v = 0;
     for (const ViewSpec& spec : cellViews)
     {
-      SetView(batched, spec.azimuth, spec.elevation, spec.parallel);
+      SetView(renderers.batched, spec.azimuth, spec.elevation, spec.parallel);
       const std::string tag = "uniform_" + std::to_string(v++);
       ok &= check(tag, 1, 3);
-      ok &= Check(batchedPass->GetNumberOfDrawCalls() == 1, tag + ": one draw call");
+      ok &= Check(renderers.batchedPass->GetNumberOfDrawCalls() == 1, tag + ": one draw call");
     }
     // The slab's cells in two colours: it leaves the batch, which keeps the two spheres.
     vtkPolyDataMapper::SafeDownCast(c->GetMapper())->SetInputData(slabVarying);

@@ -62,6 +62,15 @@ struct ImageThresholds
   double minCoveredFraction = 0.001;
 };
 
+/// The thresholds of a mean error and a fraction of bad covered pixels; the rest as defaulted.
+inline ImageThresholds Thresholds(double maxMeanAbsError, double maxCoveredBadFraction)
+{
+  ImageThresholds thresholds;
+  thresholds.maxMeanAbsError = maxMeanAbsError;
+  thresholds.maxCoveredBadFraction = maxCoveredBadFraction;
+  return thresholds;
+}
+
 /// An RGB colour in 0..255.
 using Rgb = std::array<unsigned char, 3>;
 
