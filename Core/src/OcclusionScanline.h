@@ -12,11 +12,14 @@
 // (increasing or decreasing by dy's sign) and the difference from the fixed row term, and the
 // sign flips it exactly. So each edge's inside centres on a scanline form a half-line of columns
 // (all or none where dy = 0), and the centres inside all three edges an interval. Its ends are
-// found by evaluating that same test: an estimate of the crossing (in double, any rounding)
-// picks a column, the test there and at its neighbour confirms the boundary (almost always),
-// else a bisection over the columns left finds it with the same test. The estimate only decides
-// which tests are made, never their outcome: every centre claimed passed the test of all three
-// edges. Hence, as for the per-tile edge evaluation it replaces:
+// that test's: from the edge's crossing of the scanline (v = threshold, computed in double),
+// where it lies farther from a column than a bound on the rounding of both the crossing and v
+// (delta_, 1e-9 of the coordinates: about a million times the true bound), the columns on
+// either side have |v - threshold| above v's rounding, so the test's outcome is known without
+// evaluating it (almost always); nearer, or for nearly horizontal edges, the test is evaluated
+// at the column and its neighbour, and if the boundary is not there, a bisection over the
+// columns left finds it with the same test. Either way the interval is exactly the centres that
+// pass the test of all three edges. Hence, as for the per-tile edge evaluation it replaces:
 // - outline edges: every centre claimed has v >= margin * length, i.e. it is at least the
 //   coverage margin inside the double triangle (up to the rounding of one evaluation, about
 //   1e-16 of the coordinates, far below the 1/64-pixel margin);
