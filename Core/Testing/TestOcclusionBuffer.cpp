@@ -976,3 +976,197 @@ TEST_P(OcclusionBuffer, PolygonOffsetPushesOccludersBack)
   EXPECT_FALSE(hidden(40.0, 0.0, 0.05)); // 40 x 0.05 / 67 = 0.03 window depth
   EXPECT_TRUE(hidden(40.0, 0.0, 0.15));
 }
+
+namespace
+{
+/// A mesh in window coordinates of @p cam (clip space = world space): the grid of points
+/// (x0 + i sx, y0 + j sy), i <= nx, j <= ny, each cell split along a diagonal (alternating), at
+/// clip depth @p z, counter-clockwise.
+std::vector<Triangle> windowGrid(
+  const Camera& cam, double x0, double y0, double sx, double sy, int nx, int ny, double z)
+{
+  std::vector<Triangle> out;
+  for (int j = 0; j < ny; ++j)
+  {
+    for (int i = 0; i < nx; ++i)
+    {
+      const glm::dvec3 a = windowPoint(cam, x0 + i * sx, y0 + j * sy, z);
+      const glm::dvec3 b = windowPoint(cam, x0 + (i + 1) * sx, y0 + j * sy, z);
+      const glm::dvec3 c = windowPoint(cam, x0 + (i + 1) * sx, y0 + (j + 1) * sy, z);
+      const glm::dvec3 d = windowPoint(cam, x0 + i * sx, y0 + (j + 1) * sy, z);
+      if ((i + j) % 2 == 0)
+      {
+        out.push_back({ a, b, c });
+        out.push_back({ a, c, d });
+      }
+      else
+      {
+        out.push_back({ a, b, d });
+        out.push_back({ b, c, d });
+      }
+    }
+  }
+  return out;
+}
+} // namespace
+
+// Interior edges (shared by two triangles of the same facing) give every pixel centre on them
+// to exactly one of the two (OcclusionBuffer.h): meshes whose vertices, and so whose horizontal,
+// vertical and diagonal edges, lie on pixel centres (exact in window coordinates: a 64 x 32
+// viewport) fill every tile inside their outline, which only the outline's margin leaves open,
+// and hide a box behind them.
+TEST_P(OcclusionBuffer, InteriorEdgesThroughPixelCentresAreWatertight)
+{
+  Camera cam;
+  cam.width = 64;
+  cam.height = 32;
+  struct Mesh
+  {
+    double sx, sy;
+    int nx, ny;
+  };
+  // Cells of 4 x 4 (diagonals through every centre they cross), 6 x 3 (slope 1/2), 10 x 1 and
+  // 2 x 9 (long slivers), 60 x 28 (two big triangles).
+  const Mesh meshes[] = { { 4, 4, 15, 7 }, { 6, 3, 10, 9 }, { 10, 1, 6, 28 }, { 2, 9, 30, 3 },
+    { 60, 28, 1, 1 } };
+  for (const Mesh& m : meshes)
+  {
+    const std::vector<Triangle> mesh = windowGrid(cam, 1.5, 1.5, m.sx, m.sy, m.nx, m.ny, 0.2);
+    // A fan around a centre, its rim on centres 14 to 20 pixels away (edges of many slopes
+    // through centres).
+    std::vector<Triangle> fan;
+    const int rim[][2] = { { 10, 0 }, { 7, 5 }, { 3, 9 }, { 0, 10 }, { -4, 7 }, { -9, 2 },
+      { -10, 0 }, { -6, -7 }, { -1, -10 }, { 5, -8 }, { 9, -3 } };
+    const int n = static_cast<int>(sizeof rim / sizeof rim[0]);
+    for (int k = 0; k < n; ++k)
+    {
+      const int* p = rim[k];
+      const int* q = rim[(k + 1) % n];
+      fan.push_back({ windowPoint(cam, 32.5, 16.5, 0.1),
+        windowPoint(cam, 32.5 + 2 * p[0], 16.5 + 2 * p[1], 0.1),
+        windowPoint(cam, 32.5 + 2 * q[0], 16.5 + 2 * q[1], 0.1) });
+    }
+    const std::vector<Triangle>* soups[] = { &mesh, &fan };
+    for (const std::vector<Triangle>* soup : soups)
+    {
+      MaskedDepthBuffer buffer = bufferFor(cam);
+      draw(buffer, cam, *soup);
+      if (soup == &mesh)
+      {
+        // The mesh covers the centres x in (1.5, 61.5), y in (1.5, 29.5): tiles 1..6 x 1..6.
+        for (int ty = 1; ty <= 6; ++ty)
+        {
+          for (int tx = 1; tx <= 6; ++tx)
+          {
+            const MaskedDepthBuffer::Tile& tile = buffer.tiles()[ty * buffer.tilesX() + tx];
+            EXPECT_LT(tile.z0, 1.0f) << "cells " << m.sx << " x " << m.sy << ": tile " << tx << ", "
+                                     << ty << " not full (mask " << std::hex << tile.mask << ")";
+          }
+        }
+        // A box over those tiles (the test looks one pixel further).
+        EXPECT_TRUE(
+          buffer.boxOccluded(windowPoint(cam, 9.5, 5.5, 0.5), windowPoint(cam, 54, 26, 0.6)));
+      }
+      else
+      {
+        // Tiles 3 and 4 of rows 3 and 4 (x 24..39, y 12..19) are well inside the fan.
+        for (int ty = 3; ty <= 4; ++ty)
+        {
+          for (int tx = 3; tx <= 4; ++tx)
+          {
+            const MaskedDepthBuffer::Tile& tile = buffer.tiles()[ty * buffer.tilesX() + tx];
+            EXPECT_LT(tile.z0, 1.0f) << "fan: tile " << tx << ", " << ty << " not full (mask "
+                                     << std::hex << tile.mask << ")";
+          }
+        }
+        EXPECT_TRUE(
+          buffer.boxOccluded(windowPoint(cam, 25.5, 13.5, 0.5), windowPoint(cam, 38, 18, 0.6)));
+      }
+    }
+  }
+}
+
+// Outline edges keep every claimed pixel centre at least `coverageMargin` inside
+// (OcclusionBuffer.h): triangles whose edges pass at 0, 1/2, 0.999 and 1.001 margins and two
+// margins from rows of pixel centres, at many slopes, drawn without neighbours; every pixel the
+// buffer claims (whole tiles and working layers) must be covered, by the ray oracle, by the
+// triangles shrunk by the margin (less a millionth of it against the shrinking's own rounding).
+TEST_P(OcclusionBuffer, OutlineEdgesKeepTheCoverageMarginAtEveryPixel)
+{
+  Camera cam;
+  cam.width = 64;
+  cam.height = 32;
+  std::mt19937_64 rng(64);
+  auto uniform = [&](double a, double b)
+  { return std::uniform_real_distribution<double>(a, b)(rng); };
+  const double margin = MaskedDepthBuffer().coverageMargin;
+  std::size_t claimed = 0;
+  for (int scene = 0; scene < 60; ++scene)
+  {
+    std::vector<Triangle> soup, shrunk;
+    for (int t = 0; t < 6; ++t)
+    {
+      // One edge through (or just beside) a pixel centre, at a slope from a list or random.
+      static const double angles[] = { 0.0, 90.0, 45.0, 135.0, 26.56505117707799, 180.0, 270.0 };
+      const double angle = glm::radians(t % 2 == 0 ? angles[rng() % 7] : uniform(0.0, 360.0));
+      const glm::dvec2 dir(std::cos(angle), std::sin(angle)), normal(-dir.y, dir.x);
+      static const double offsets[] = { 0.0, 0.5, 0.999, 1.001, 2.0, -0.5 };
+      const glm::dvec2 centre(std::floor(uniform(4, 60)) + 0.5, std::floor(uniform(4, 28)) + 0.5);
+      const glm::dvec2 on = centre - normal * (offsets[rng() % 6] * margin);
+      const glm::dvec2 a = on - dir * uniform(3, 40), b = on + dir * uniform(3, 40);
+      const glm::dvec2 c = on + normal * uniform(2, 20) + dir * uniform(-10, 10); // inner side
+      const double z = uniform(-0.5, 0.5);
+      // The triangle shrunk by the margin: its vertices moved along the bisectors so that each
+      // edge moves inward by (1 - 1e-6) margin.
+      const glm::dvec2 v[3] = { a, b, c };
+      glm::dvec2 w[3];
+      const double area2 = (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x);
+      for (int k = 0; k < 3; ++k)
+      {
+        const glm::dvec2 p = v[k], prev = v[(k + 2) % 3], next = v[(k + 1) % 3];
+        auto inward = [&](const glm::dvec2& from, const glm::dvec2& to)
+        {
+          const glm::dvec2 d = glm::normalize(to - from);
+          return area2 > 0.0 ? glm::dvec2(-d.y, d.x) : glm::dvec2(d.y, -d.x);
+        };
+        const glm::dvec2 n1 = inward(prev, p), n2 = inward(p, next);
+        // p + s: s . n1 = s . n2 = d.
+        const double d = margin * (1.0 - 1e-6);
+        const double det = n1.x * n2.y - n1.y * n2.x;
+        w[k] = p + glm::dvec2(d * (n2.y - n1.y), d * (n1.x - n2.x)) / det;
+      }
+      const bool flip = rng() % 2 == 0; // both windings
+      const glm::dvec3 pa = windowPoint(cam, a.x, a.y, z), pb = windowPoint(cam, b.x, b.y, z),
+                       pc = windowPoint(cam, c.x, c.y, z);
+      soup.push_back(flip ? Triangle{ pa, pc, pb } : Triangle{ pa, pb, pc });
+      shrunk.push_back({ windowPoint(cam, w[0].x, w[0].y, z), windowPoint(cam, w[1].x, w[1].y, z),
+        windowPoint(cam, w[2].x, w[2].y, z) });
+    }
+    MaskedDepthBuffer buffer = bufferFor(cam);
+    draw(buffer, cam, soup, FaceCulling::None, false);
+    for (int ty = 0; ty < buffer.tilesY(); ++ty)
+    {
+      for (int tx = 0; tx < buffer.tilesX(); ++tx)
+      {
+        const MaskedDepthBuffer::Tile& tile = buffer.tiles()[ty * buffer.tilesX() + tx];
+        for (int bit = 0; bit < 32; ++bit)
+        {
+          const int i = tx * 8 + bit % 8, j = ty * 4 + bit / 8;
+          const bool whole = tile.z0 < 1.0f, layer = tile.mask & (1u << bit);
+          if (!whole && !layer)
+          {
+            continue;
+          }
+          const double z = 2.0 * (whole ? tile.z0 : tile.z1) - 1.0;
+          ++claimed;
+          const glm::dvec3 lo = windowPoint(cam, i + 0.49, j + 0.49, z + 1e-6);
+          const glm::dvec3 hi = windowPoint(cam, i + 0.51, j + 0.51, z + 2e-6);
+          ASSERT_EQ(visiblePixels(cam, shrunk, lo, hi), 0)
+            << "scene " << scene << ": pixel " << i << ", " << j << " claimed"
+            << (whole ? " (whole tile)" : " (working layer)") << " within the margin";
+        }
+      }
+    }
+  }
+  EXPECT_GT(claimed, 5000u); // not kept by claiming nothing
+}

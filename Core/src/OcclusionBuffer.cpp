@@ -1,6 +1,7 @@
 #include "scenevis/OcclusionBuffer.h"
 
 #include "OcclusionEdge.h"
+#include "OcclusionScanline.h"
 #include "OcclusionTileUpdate.h"
 
 #include <glm/common.hpp>
@@ -542,97 +543,60 @@ void MaskedDepthBuffer::drawFrontTriangle(const glm::dvec3& a, const glm::dvec3&
     return;
   }
   const double orientation = area2 > 0.0 ? 1.0 : -1.0;
-  const double xmin = std::min({ a.x, b.x, c.x }), xmax = std::max({ a.x, b.x, c.x });
-  const double ymin = std::min({ a.y, b.y, c.y }), ymax = std::max({ a.y, b.y, c.y });
   const int tx0 = span.x0 / kTileWidth, tx1 = span.x1 / kTileWidth;
   const int ty0 = span.y0 / kTileHeight, ty1 = span.y1 / kTileHeight;
   const double zNearVertex = std::min({ a.z, b.z, c.z }) + depthMargin;
-  const double extent = std::max({ std::abs(xmin), std::abs(xmax), std::abs(ymin),
-    std::abs(ymax), static_cast<double>(width_ + height_) });
-  const EdgeTest edges[3] = {
-    EdgeTest(a, b, orientation, outline & 1u, coverageMargin, extent),
-    EdgeTest(b, c, orientation, outline & 2u, coverageMargin, extent),
-    EdgeTest(c, a, orientation, outline & 4u, coverageMargin, extent)
-  };
-
+  const double extent = std::max({ std::abs(a.x), std::abs(a.y), std::abs(b.x), std::abs(b.y),
+    std::abs(c.x), std::abs(c.y), static_cast<double>(width_ + height_) });
+  const EdgeTest edges[3] = { EdgeTest(a, b, orientation, outline & 1u, coverageMargin),
+    EdgeTest(b, c, orientation, outline & 2u, coverageMargin),
+    EdgeTest(c, a, orientation, outline & 4u, coverageMargin) };
+  const ScanlineCoverage coverage(edges, extent, span.x0, span.x1);
   const DepthPlane plane(a, b, c, area2, polygonOffsetFactor, polygonOffsetDepth, width_, height_);
 
-  // Per edge, over a tile's 8 x 4 pixel centres: value = value at the first centre + i gx + j gy;
-  // its extremes are at corners (offsets below). Decisions within `slack` of the threshold are
-  // made by the exact (canonical) evaluation.
-  double loOffset[3], hiOffset[3], emptyBelow[3], fullAbove[3];
-  for (int k = 0; k < 3; ++k)
-  {
-    const EdgeTest& e = edges[k];
-    loOffset[k] = std::min(0.0, (kTileWidth - 1) * e.gx) + std::min(0.0, (kTileHeight - 1) * e.gy);
-    hiOffset[k] = std::max(0.0, (kTileWidth - 1) * e.gx) + std::max(0.0, (kTileHeight - 1) * e.gy);
-    emptyBelow[k] = e.threshold - e.slack;
-    fullAbove[k] = e.threshold + e.slack;
-  }
   bool touched = false;
   for (int ty = ty0; ty <= ty1; ++ty)
   {
-    const double y0 = ty * kTileHeight + 0.5;
-    const double rowTerm[3] = { edges[0].dx * (y0 - edges[0].py), edges[1].dx * (y0 - edges[1].py),
-      edges[2].dx * (y0 - edges[2].py) };
-    // The tiles a convex triangle touches in a row are contiguous: stop after the last one.
-    bool inRow = false;
-    for (int tx = tx0; tx <= tx1; ++tx)
+    Tile* row = tiles_.data() + static_cast<std::size_t>(ty) * tilesX_;
+    // Tiles entirely behind what they already have get nothing (updateTile would return at
+    // once): the scanlines are needed only between the first and the last other one.
+    int txFirst = tx0, txLast = tx1;
+    while (txFirst <= txLast && zNearVertex >= static_cast<double>(row[txFirst].z0))
     {
-      const double x0 = tx * kTileWidth + 0.5;
-      Tile& tile = tiles_[static_cast<std::size_t>(ty) * tilesX_ + tx];
+      ++txFirst;
+    }
+    while (txLast > txFirst && zNearVertex >= static_cast<double>(row[txLast].z0))
+    {
+      --txLast;
+    }
+    if (txFirst > txLast)
+    {
+      continue;
+    }
+    const int x0 = std::max(span.x0, txFirst * kTileWidth);
+    const int x1 = std::min(span.x1, txLast * kTileWidth + kTileWidth - 1);
+    int first[kTileHeight], last[kTileHeight];
+    coverage.rowIntervals(ty * kTileHeight, span.y0, span.y1, x0, x1, first, last);
+    const int rowFirst = std::min({ first[0], first[1], first[2], first[3] });
+    const int rowLast = std::max({ last[0], last[1], last[2], last[3] });
+    const double y0 = ty * kTileHeight + 0.5;
+    const int txEnd = rowLast / kTileWidth;
+    for (int tx = rowFirst / kTileWidth; tx <= txEnd; ++tx)
+    {
+      Tile& tile = row[tx];
       if (zNearVertex >= static_cast<double>(tile.z0))
       {
-        // Entirely behind what the whole tile already has: nothing to add (updateTile would
-        // return at once). Not counted as inside the row: the scan goes on.
         continue;
       }
-      double v[3];
-      bool empty = false, full = true;
-      unsigned partial = 0;
-      for (int k = 0; k < 3; ++k)
+      const std::uint32_t mask = ScanlineCoverage::tileMask(first, last, tx * kTileWidth);
+      if (mask == 0)
       {
-        const EdgeTest& e = edges[k];
-        v[k] = e.sign * (rowTerm[k] - e.dy * (x0 - e.px)); // e.value(x0, y0), same operations
-        if (v[k] + hiOffset[k] < emptyBelow[k])
-        {
-          empty = true;
-          break;
-        }
-        if (!(v[k] + loOffset[k] > fullAbove[k]))
-        {
-          full = false;
-          partial |= 1u << k;
-        }
+        continue; // between the scanlines' intervals of a slanted sliver
       }
-      if (empty)
-      {
-        if (inRow)
-        {
-          break;
-        }
-        continue;
-      }
-      inRow = true;
-      std::uint32_t mask = kFullMask;
-      if (!full)
-      {
-        for (int k = 0; k < 3 && mask; ++k)
-        {
-          if (!(partial & (1u << k)))
-          {
-            continue;
-          }
-          mask &= edges[k].tileMask(x0, y0);
-        }
-        if (mask == 0)
-        {
-          continue;
-        }
-      }
+      const double xc = tx * kTileWidth + 0.5;
       const float oldZ0 = tile.z0;
       updateTile(
-        tile, mask, roundUp(plane.tileBound(x0, y0) + depthMargin), outsideX_[tx] | outsideY_[ty]);
+        tile, mask, roundUp(plane.tileBound(xc, y0) + depthMargin), outsideX_[tx] | outsideY_[ty]);
       ++revision_;
       if (tile.z0 != oldZ0)
       {

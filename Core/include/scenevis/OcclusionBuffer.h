@@ -48,13 +48,26 @@
  * min / max of those spans (most triangles of a detailed mesh cover no pixel centre), its facing,
  * and a test against the depth every tile of its span already has (a second level, one bound
  * per 4 x 4 tiles, answers most of them): a triangle hidden there is dropped before its set-up.
- * The others get a coverage mask of 32 pixels per tile they touch (four rows at once with SSE2).
+ * The others get per row of tiles their four scanlines' intervals of covered centres, and a
+ * coverage mask of 32 pixels per tile between those intervals' ends (byte compares with SSE2).
  * Per occludee box, 8 corner projections and one comparison per tile. Memory: 12 bytes per tile
  * and 4 per 4 x 4 tiles (0.38 bytes per pixel): 183,800 bytes at 800x600, 882 kB at 1920x1200.
  *
  * Two rasterizers (member `rasterizer`; both obey the contract above, the tests run both):
- * - Exact (the default): per tile, each edge function in double at the tile's first pixel centre,
- *   its range over the tile from its gradients; the coverage mask of partial tiles row by row.
+ * - Exact (the default): per row of tiles, the interval of pixel centres inside the triangle on
+ *   each of the row's four scanlines, exact: a centre is inside an edge when the edge function in
+ *   double (canonical end-point order, as above) passes the margin or tie test, and along a
+ *   scanline that evaluated function is monotone (each IEEE operation is), so each edge's inside
+ *   centres are a half-line of columns. Its end comes from the edge's crossing of the scanline,
+ *   taken as is where the crossing is farther from a pixel column than a bound on the rounding
+ *   of both the crossing and the edge function (1e-9 of the coordinates, millions of times the
+ *   true bound), else found by evaluating the edge function at the columns around it (rare:
+ *   crossings within that bound of a centre, nearly horizontal edges). So every centre claimed
+ *   is one the edge function in double puts inside by the margin on outline edges, and on an
+ *   interior edge the two triangles, which evaluate the same canonical function with opposite
+ *   signs, give every centre to exactly one of them (the tie rule). A tile's 32-bit mask is a
+ *   few byte compares of its four intervals (SSE2; elsewhere a loop with the same bits), and
+ *   only the tiles between the intervals' ends are visited (src/OcclusionScanline.h).
  * - Float (opt-in; SSE2, the x86-64 baseline, elsewhere the exact one draws): per row of
  *   tiles, each edge's crossings of the row's four scanlines, x = px + (y - py) dx / dy, in one
  *   float register, turned into each scanline's first and last covered pixel; a tile's 32-bit
@@ -189,7 +202,7 @@ public:
   /// Which arithmetic rasterizes triangles (see "Two rasterizers" in the file comment).
   enum class Rasterizer
   {
-    Exact, ///< double edge functions per tile
+    Exact, ///< double edge functions, exact intervals of pixel centres per scanline
     Float  ///< float scanline crossings, a row of tiles at a time (SSE2; elsewhere Exact)
   };
   /// Exact by default: Float runs about 11 % fewer instructions in drawTriangles, but its wider
