@@ -32,7 +32,6 @@ MethodPipeline::MethodPipeline(const std::string& requested, vtkPolyData* pd, vt
   : Method(requested.rfind("bsp-leaves:", 0) == 0 ? "bsp" : requested)
   , Input(pd)
   , InputPolygons(pd ? pd->GetNumberOfPolys() : 0)
-  , Renderer(renderer)
 {
   const std::string& method = this->Method;
   if (requested.rfind("bsp-leaves:", 0) == 0)

@@ -102,7 +102,6 @@ private:
   std::string Method;
   vtkSmartPointer<vtkPolyData> Input;
   vtkIdType InputPolygons = 0;
-  vtkRenderer* Renderer;
   std::vector<vtkSmartPointer<vtkActor>> Actors;
   vtkSmartPointer<vtkPolyDataMapper> Mapper;
   vtkSmartPointer<vtkChunkedPolyDataMapper> Chunked;

@@ -19,7 +19,6 @@ namespace occlusion
 
 namespace
 {
-constexpr std::uint32_t kFullMask = 0xFFFFFFFFu;
 constexpr float kNoOccluder = std::numeric_limits<float>::infinity();
 
 bool finite(const glm::dvec4& v)
