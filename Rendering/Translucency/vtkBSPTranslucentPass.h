@@ -29,7 +29,9 @@
  * except for colour and opacity ("compatible": same lighting on/off, interpolation, ambient,
  * diffuse and specular coefficients, specular colour and power, face culling; no texture, no
  * backface property, no PBR, no shader code or replacements, no clipping planes, no cell
- * scalars, no scalar interpolation before mapping, and either point normals on all or on none)
+ * scalars that differ between cells (one colour in every cell, as model readers and part
+ * splitting give a part, is baked like a point colour), no scalar interpolation before mapping,
+ * and either point normals on all or on none)
  * form a BATCH GROUP: their polygons are copied into one world-space polydata whose per-point
  * RGBA colours are baked from each actor's own colouring (vtkMapper::MapScalars with the
  * actor's opacity, or the property colour and opacity when it shows no scalars), and one
