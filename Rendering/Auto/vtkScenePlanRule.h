@@ -155,10 +155,11 @@ public:
    * translucent parts as wholes and merges into one tree only parts that no plane separates,
    * whose fragments then interleave into many draw calls. Measured (BENCHMARKS.md, "Auto
    * splits a translucent mesh whose translucent parts overlap little"; frame times interleaved,
-   * multi-actor / bsp-mapper): the cad demo at 1.1 % 0.6-0.9; the cad demo made all translucent
-   * at 36 % 0.9-1.1 (a tie); the 64 interpenetrating spheres at 100 % 0.9-1.0 and the
-   * 2CylinderEngine at opacity 0.4 at 100 % 1.5-3.2. No scene measured between 36 and 100 %:
-   * the threshold lies above the tie, short of where the engine loses.
+   * median of 7 rounds of multi-actor / bsp-mapper): the cad demo at 1.1 % 0.80; the cad demo
+   * made all translucent at 36 % 0.94 (a tie); the 2CylinderEngine at opacity 0.4 at 100 % 1.30
+   * (0.68-3.15). No scene measured between 36 and 100 %: the threshold lies above the tie, short
+   * of where the engine loses. Not told apart: the 64 interpenetrating spheres, also 100 %, draw
+   * 0.83 split.
    */
   static constexpr double MaxOverlapToSplit = 0.5;
   /// Translucent parts from which splitting a mesh into its parts is considered (one part has
