@@ -15,6 +15,7 @@ constexpr double vtkScenePlanRule::MinInViewForNoCulling;
 constexpr double vtkScenePlanRule::OcclusionDepthComplexity;
 constexpr double vtkScenePlanRule::MaxOverlapToSplit;
 constexpr std::size_t vtkScenePlanRule::MinPartsToSplit;
+constexpr std::size_t vtkScenePlanRule::MaxPartsToSplit;
 constexpr std::size_t vtkScenePlanRule::OverlapTestsPerPart;
 
 std::string vtkScenePlanFacts::Summary() const
@@ -35,7 +36,7 @@ std::string vtkScenePlanFacts::Summary() const
 
 bool vtkScenePlanRule::SplitsIntoParts(const vtkScenePlanFacts& facts)
 {
-  return !facts.fixedActors && facts.translucentFraction > 0.0 &&
+  return !facts.fixedActors && facts.translucentFraction > 0.0 && facts.parts <= MaxPartsToSplit &&
     facts.translucentParts >= MinPartsToSplit &&
     static_cast<double>(facts.triangles) >= SmallPartTriangles * static_cast<double>(facts.parts) &&
     facts.translucentOverlap >= 0.0 && facts.translucentOverlap < MaxOverlapToSplit;

@@ -165,6 +165,11 @@ public:
   /// Translucent parts from which splitting a mesh into its parts is considered (one part has
   /// nothing to order across).
   static constexpr std::size_t MinPartsToSplit = 2;
+  /// Parts up to which a mesh is split: the multi-actor pass's frame grows faster with the
+  /// actors than the mapper's with the triangles. The cad demo at 52 triangles a part, multi-actor
+  /// / bsp-mapper in interleaved rounds: 1,000 parts 0.41-0.64, 1,500 parts 0.89-0.96, 2,500
+  /// parts 1.55-3.98, 5,000 parts 1.67-3.10 (and at 400 triangles a part 1.27-2.70).
+  static constexpr std::size_t MaxPartsToSplit = 1500;
 
   /// The culling method for @p facts and why.
   static vtkScenePlanChoice ChooseCulling(const vtkScenePlanFacts& facts);
@@ -172,7 +177,8 @@ public:
   /**
    * Whether a translucent scene given as one mesh of parts is better drawn as one actor per
    * part (multi-actor) than as one mesh (bsp-mapper): parts that may be split (not
-   * facts.fixedActors), at least MinPartsToSplit translucent ones, of SmallPartTriangles or
+   * facts.fixedActors), no more than MaxPartsToSplit of them, at least MinPartsToSplit
+   * translucent ones, of SmallPartTriangles or
    * more triangles on average (an actor costs more than a few triangles: two game levels at
    * opacity 0.4, 3-4 triangles a surface, draw 2-9x slower split although their translucent
    * parts overlap as little as the cad demo's made all translucent), whose boxes overlap little

@@ -129,6 +129,10 @@ int TestScenePlanRule(int, char*[])
   ok &= ExpectSort(Translucent(vtkScenePlanRule::MinPartsToSplit - 1, 0.0), "bsp-mapper",
     "BSP tree", "one translucent part: nothing to order across");
   ok &= ExpectSort(Translucent(1000, -1.0), "bsp-mapper", "BSP tree", "overlap not measured");
+  const std::size_t most = vtkScenePlanRule::MaxPartsToSplit;
+  ok &= ExpectSort(Translucent(most, 0.0), "multi-actor", "split", "the most parts split");
+  ok &= ExpectSort(Translucent(most + 1, 0.0), "bsp-mapper", "BSP tree",
+    "one part more: the actors cost more than the mapper's sort");
   vtkScenePlanFacts tiny = Translucent(1000, 0.0);
   tiny.triangles = perPartLimit - 1;
   ok &= ExpectSort(tiny, "bsp-mapper", "BSP tree",
