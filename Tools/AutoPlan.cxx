@@ -84,10 +84,14 @@ SceneFacts InspectInstances(const InstancedScene& scene)
 
 using PartBox = vtkScenePlanPartBox;
 
-/// The bounding box and triangle count of each part (of @p partArray) of @p pd.
+/// The bounding box, triangle count and translucency (RGBA cell colours) of each part (of
+/// @p partArray) of @p pd.
 std::vector<PartBox> PartBoxes(vtkPolyData* pd, const std::string& partArray)
 {
   vtkDataArray* partIds = pd->GetCellData()->GetArray(partArray.c_str());
+  auto* colors = vtkUnsignedCharArray::SafeDownCast(pd->GetCellData()->GetScalars());
+  if (colors && colors->GetNumberOfComponents() != 4)
+    colors = nullptr;
   std::unordered_map<long long, PartBox> parts;
   vtkCellArray* polys = pd->GetPolys();
   vtkIdType npts = 0;
@@ -103,6 +107,7 @@ std::vector<PartBox> PartBoxes(vtkPolyData* pd, const std::string& partArray)
       part = &parts[id];
     partId = id;
     part->Triangles += std::max<vtkIdType>(npts - 2, 0);
+    part->Translucent = part->Translucent || (colors && colors->GetTypedComponent(c, 3) < 255);
     for (vtkIdType k = 0; k < npts; ++k)
     {
       double p[3];
@@ -203,7 +208,7 @@ CullPlan PlanCulling(
 /// The translucency method given the culling plan: prop culling draws one actor per group, which
 /// only methods that work across actors can order; chunked drawing reorders the polygons chunk by
 /// chunk, which only order-independent methods survive.
-std::string ChooseSort(const std::string& requested, bool translucent, const CullPlan& cull,
+std::string ChooseSort(const std::string& requested, const SceneFacts& facts, const CullPlan& cull,
   bool split, std::size_t actors, std::string& reason)
 {
   reason = "requested with --sort";
@@ -221,7 +226,7 @@ std::string ChooseSort(const std::string& requested, bool translucent, const Cul
     return requested;
   }
   const vtkScenePlanChoice choice =
-    vtkScenePlanRule::ChooseTranslucency(translucent, cull.chunked, split, actors);
+    vtkScenePlanRule::ChooseTranslucency(facts, cull.chunked, split, actors);
   reason = choice.Reason;
   return choice.Method;
 }
@@ -267,14 +272,29 @@ ScenePlan PlanScene(const Options& options, const LoadedScene& scene, const std:
   plan.instanced = scene.instanced.get();
   plan.facts = plan.instanced ? InspectInstances(*plan.instanced)
                               : InspectScene(scene.polydata, scene.portals, options);
-  if (plan.facts.parts >= kManyProps)
+  // A translucent mesh of parts: how much its translucent parts overlap decides whether it is
+  // split into them (vtkScenePlanRule::SplitsIntoParts), unless the sort orders one mesh.
+  // Portal and prop culling draw one actor per room or part, which such a sort cannot follow
+  // either.
+  const bool sortAcrossActors = sort == "auto" || sort == "none" || sort == "oit" ||
+    sort == "multi-actor" || sort.rfind("peel:", 0) == 0;
+  const bool measureOverlap = !plan.instanced && sortAcrossActors &&
+    plan.facts.translucentFraction > 0.0 && plan.facts.parts >= vtkScenePlanRule::MinPartsToSplit;
+  if (plan.facts.parts >= kManyProps || measureOverlap)
   {
     const std::vector<PartBox> boxes = plan.instanced
       ? InstanceBoxes(*plan.instanced)
       : PartBoxes(scene.polydata, options.partArray);
-    plan.facts.inView = vtkScenePlanRule::MeasureView(boxes, renderer->GetActiveCamera(),
-      static_cast<double>(options.width) / static_cast<double>(options.height),
-      &plan.facts.depthComplexity);
+    if (plan.facts.parts >= kManyProps)
+      plan.facts.inView = vtkScenePlanRule::MeasureView(boxes, renderer->GetActiveCamera(),
+        static_cast<double>(options.width) / static_cast<double>(options.height),
+        &plan.facts.depthComplexity);
+    if (measureOverlap)
+    {
+      plan.facts.translucentParts = static_cast<std::size_t>(std::count_if(
+        boxes.begin(), boxes.end(), [](const PartBox& box) { return box.Translucent; }));
+      plan.facts.translucentOverlap = vtkScenePlanRule::MeasureOverlap(boxes);
+    }
   }
   plan.inspectMs = Milliseconds(inspectStart);
   plan.portals = scene.portals;
@@ -282,9 +302,6 @@ ScenePlan PlanScene(const Options& options, const LoadedScene& scene, const std:
   if (options.cull == "auto" && !plan.instanced &&
     !(plan.facts.rooms > 0 && plan.facts.portals > 0))
   {
-    // Portal culling draws one actor per room: a sort method that orders one mesh cannot follow.
-    const bool sortAcrossActors = sort == "auto" || sort == "none" || sort == "oit" ||
-      sort == "multi-actor" || sort.rfind("peel:", 0) == 0;
     generation = sortAcrossActors
       ? GenerateRoomsForAuto(
           scene.polydata, options.roomArray, plan.facts, plan.portals, plan.generateMs)
@@ -324,8 +341,8 @@ ScenePlan PlanScene(const Options& options, const LoadedScene& scene, const std:
     plan.splitMs = Milliseconds(splitStart);
   }
   const std::size_t actors = plan.instanced ? plan.instanced->instances.size() : plan.groups.size();
-  plan.sort = ChooseSort(sort, plan.facts.translucentFraction > 0.0, plan.cull,
-    plan.instanced || plan.groups.size() > 1, actors, plan.sortReason);
+  plan.sort = ChooseSort(
+    sort, plan.facts, plan.cull, plan.instanced || plan.groups.size() > 1, actors, plan.sortReason);
   const std::string& m = plan.cull.method;
   plan.instancedProps = plan.instanced && !options.instanceActors && plan.sort != "multi-actor" &&
     (m == "none" || m == "octree" || m == "occlusion");

@@ -200,6 +200,8 @@ int RunRender(const Options& options)
        << ",\n  \"parts\": " << plan.facts.parts
        << ",\n  \"translucent_fraction\": " << std::setprecision(4)
        << plan.facts.translucentFraction << std::setprecision(3)
+       << ",\n  \"translucent_parts\": " << plan.facts.translucentParts
+       << ",\n  \"translucent_overlap\": " << plan.facts.translucentOverlap
        << ",\n  \"rooms\": " << plan.facts.rooms << ",\n  \"portals\": " << plan.facts.portals
        << ",\n  \"translucent\": " << (translucent ? "true" : "false")
        << ",\n  \"translucency\": {\"method\": " << JsonString(method)

@@ -13,6 +13,10 @@ constexpr vtkIdType vtkScenePlanRule::HugeMesh;
 constexpr double vtkScenePlanRule::MaxTranslucentForActors;
 constexpr double vtkScenePlanRule::MinInViewForNoCulling;
 constexpr double vtkScenePlanRule::OcclusionDepthComplexity;
+constexpr double vtkScenePlanRule::MaxOverlapToSplit;
+constexpr std::size_t vtkScenePlanRule::MinPartsToSplit;
+constexpr std::size_t vtkScenePlanRule::MaxPartsToSplit;
+constexpr std::size_t vtkScenePlanRule::OverlapTestsPerPart;
 
 std::string vtkScenePlanFacts::Summary() const
 {
@@ -24,7 +28,18 @@ std::string vtkScenePlanFacts::Summary() const
     text << ", " << 100.0 * inView << " % of the triangles in view";
   if (depthComplexity >= 0.0)
     text << ", estimated depth complexity " << depthComplexity;
+  if (translucentOverlap >= 0.0)
+    text << ", " << 100.0 * translucentOverlap << " % of the triangles in translucent parts ("
+         << translucentParts << ") whose boxes overlap another's";
   return text.str();
+}
+
+bool vtkScenePlanRule::SplitsIntoParts(const vtkScenePlanFacts& facts)
+{
+  return !facts.fixedActors && facts.translucentFraction > 0.0 && facts.parts <= MaxPartsToSplit &&
+    facts.translucentParts >= MinPartsToSplit &&
+    static_cast<double>(facts.triangles) >= SmallPartTriangles * static_cast<double>(facts.parts) &&
+    facts.translucentOverlap >= 0.0 && facts.translucentOverlap < MaxOverlapToSplit;
 }
 
 vtkScenePlanChoice vtkScenePlanRule::ChooseCulling(const vtkScenePlanFacts& facts)
@@ -66,7 +81,7 @@ vtkScenePlanChoice vtkScenePlanRule::ChooseCulling(const vtkScenePlanFacts& fact
   }
   else if (facts.parts >= ManyProps &&
     (facts.fixedActors ||
-      (facts.translucentFraction <= MaxTranslucentForActors &&
+      ((facts.translucentFraction <= MaxTranslucentForActors || SplitsIntoParts(facts)) &&
         facts.inView < MinInViewForNoCulling)))
   {
     const double opaqueDepth = facts.depthComplexity * (1.0 - facts.translucentFraction);
@@ -125,9 +140,9 @@ vtkScenePlanChoice vtkScenePlanRule::ChooseCulling(const vtkScenePlanFacts& fact
 }
 
 vtkScenePlanChoice vtkScenePlanRule::ChooseTranslucency(
-  bool translucent, bool chunked, bool severalActors, std::size_t actors)
+  const vtkScenePlanFacts& facts, bool chunked, bool severalActors, std::size_t actors)
 {
-  if (!translucent)
+  if (facts.translucentFraction <= 0.0)
   {
     return { "none", "the scene is opaque: no sorting needed" };
   }
@@ -142,6 +157,17 @@ vtkScenePlanChoice vtkScenePlanRule::ChooseTranslucency(
     return { "multi-actor",
       "translucent polygons in " + std::to_string(actors) +
         " actors (prop culling): exact order across actors with vtkBSPTranslucentPass" };
+  }
+  if (SplitsIntoParts(facts))
+  {
+    std::ostringstream why;
+    why << "the mesh's " << facts.translucentParts << " translucent parts overlap little ("
+        << std::setprecision(3) << 100.0 * facts.translucentOverlap
+        << " % of the triangles are in translucent parts whose boxes overlap another's, < "
+        << 100.0 * MaxOverlapToSplit
+        << " %): split into one actor per part, ordered as wholes by vtkBSPTranslucentPass "
+           "(polygons split only where parts cannot be separated)";
+    return { "multi-actor", why.str() };
   }
   // The mapper, not the filter: the same exact order, but only the index buffer changes per
   // frame (scripts/culling-report.py, docs/auto-vs-fixed.csv: 1.1-1.3x faster frames).
@@ -228,4 +254,96 @@ double vtkScenePlanRule::MeasureView(const std::vector<vtkScenePlanPartBox>& par
     *depthComplexity = area > 0.0 ? covered / area : 0.0;
   }
   return static_cast<double>(inView) / static_cast<double>(total);
+}
+
+double vtkScenePlanRule::MeasureOverlap(const std::vector<vtkScenePlanPartBox>& parts)
+{
+  std::vector<const vtkScenePlanPartBox*> boxes; // the translucent ones
+  double triangles = 0.0, translucentTriangles = 0.0;
+  for (const vtkScenePlanPartBox& part : parts)
+  {
+    triangles += static_cast<double>(part.Triangles);
+    const double* b = part.Box;
+    if (part.Translucent && std::all_of(b, b + 6, [](double v) { return std::isfinite(v); }) &&
+      b[0] <= b[1] && b[2] <= b[3] && b[4] <= b[5])
+    {
+      boxes.push_back(&part);
+      translucentTriangles += static_cast<double>(part.Triangles);
+    }
+  }
+  const std::size_t n = boxes.size();
+  if (n < 2 || translucentTriangles <= 0.0)
+    return 0.0;
+  // The sweep axis: where the boxes' extents cover the least of their span, so the fewest pairs
+  // overlap along it.
+  int axis = 0;
+  double bestCover = VTK_DOUBLE_MAX;
+  double magnitude = 0.0;
+  for (int a = 0; a < 3; ++a)
+  {
+    double lo = VTK_DOUBLE_MAX, hi = -VTK_DOUBLE_MAX, extents = 0.0;
+    for (const vtkScenePlanPartBox* part : boxes)
+    {
+      lo = std::min(lo, part->Box[2 * a]);
+      hi = std::max(hi, part->Box[2 * a + 1]);
+      extents += part->Box[2 * a + 1] - part->Box[2 * a];
+    }
+    magnitude = std::max({ magnitude, std::abs(lo), std::abs(hi) });
+    const double cover = hi > lo ? extents / (hi - lo) : VTK_DOUBLE_MAX;
+    if (cover < bestCover)
+    {
+      bestCover = cover;
+      axis = a;
+    }
+  }
+  // Separated along an axis: one box ends where the other begins, up to the rounding of the
+  // coordinates and a millionth of the boxes' extents.
+  const double rounding = 1e-12 * magnitude;
+  const auto overlap = [rounding](const double* p, const double* q)
+  {
+    for (int a = 0; a < 3; ++a)
+    {
+      const double tolerance =
+        rounding + 1e-6 * std::max(p[2 * a + 1] - p[2 * a], q[2 * a + 1] - q[2 * a]);
+      if (p[2 * a + 1] - q[2 * a] <= tolerance || q[2 * a + 1] - p[2 * a] <= tolerance)
+        return false;
+    }
+    return true;
+  };
+  std::vector<std::size_t> order(n);
+  for (std::size_t i = 0; i < n; ++i)
+    order[i] = i;
+  std::sort(order.begin(), order.end(),
+    [&boxes, axis](std::size_t p, std::size_t q)
+    { return boxes[p]->Box[2 * axis] < boxes[q]->Box[2 * axis]; });
+  std::vector<char> overlapping(n, 0);
+  std::vector<std::size_t> active; // swept boxes that may still reach the next ones
+  const std::size_t budget = OverlapTestsPerPart * n;
+  std::size_t tests = 0, swept = 0;
+  while (swept < n && tests <= budget)
+  {
+    const std::size_t i = order[swept++];
+    const double start = boxes[i]->Box[2 * axis];
+    active.erase(
+      std::remove_if(active.begin(), active.end(),
+        [&boxes, axis, start](std::size_t j) { return boxes[j]->Box[2 * axis + 1] <= start; }),
+      active.end());
+    for (const std::size_t j : active)
+    {
+      ++tests;
+      if (overlap(boxes[i]->Box, boxes[j]->Box))
+        overlapping[i] = overlapping[j] = 1;
+    }
+    active.push_back(i);
+  }
+  // Of the swept boxes' triangles, the overlapping ones' share, scaled to the whole scene.
+  double sweptTriangles = 0.0, overlappingTriangles = 0.0;
+  for (std::size_t k = 0; k < swept; ++k)
+  {
+    const auto t = static_cast<double>(boxes[order[k]]->Triangles);
+    sweptTriangles += t;
+    overlappingTriangles += overlapping[order[k]] ? t : 0.0;
+  }
+  const double share = sweptTriangles > 0.0 ? overlappingTriangles / sweptTriangles : 0.0;
+  return share * translucentTriangles / triangles;
 }

@@ -27,8 +27,9 @@
  *
  * Translucency methods (ChooseTranslucency): "none" (opaque), "oit" (translucent but chunked:
  * only an order-independent method survives the chunks' reordering), "multi-actor" (translucent
- * polygons in several actors: vtkBSPTranslucentPass), "bsp-mapper" (one translucent mesh:
- * vtkBSPSortedPolyDataMapper).
+ * polygons in several actors: vtkBSPTranslucentPass; also one mesh of parts that may be split
+ * whose translucent parts' boxes overlap little: see SplitsIntoParts()), "bsp-mapper" (one
+ * translucent mesh: vtkBSPSortedPolyDataMapper).
  *
  * The thresholds and why they are what they are: see the constants below.
  *
@@ -66,6 +67,11 @@ struct SCENEVISRENDERINGAUTO_EXPORT vtkScenePlanFacts
   /// the command line): drawing them as one mesh instead is not an option, so with ManyProps+
   /// of them the choice is which culler, never whether (see ChooseCulling()).
   bool fixedActors = false;
+  /// Parts with translucent polygons, and the fraction of all the triangles that lie in
+  /// translucent parts whose bounding box overlaps another translucent part's box
+  /// (MeasureOverlap()); < 0 when not measured.
+  std::size_t translucentParts = 0;
+  double translucentOverlap = -1.0;
 
   /// The facts in one line, as the reports quote them.
   std::string Summary() const;
@@ -87,6 +93,7 @@ struct SCENEVISRENDERINGAUTO_EXPORT vtkScenePlanPartBox
   double Box[6] = { VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX, VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX,
     VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX };
   vtkIdType Triangles = 0;
+  bool Translucent = false; ///< has translucent polygons (what MeasureOverlap looks at)
 };
 
 class SCENEVISRENDERINGAUTO_EXPORT vtkScenePlanRule
@@ -139,17 +146,72 @@ public:
   /// too few to cull).
   static constexpr int SmallPartChunkSize = 64;
 
+  /**
+   * Below this fraction of the triangles in translucent parts whose boxes overlap another
+   * translucent part's box (facts.translucentOverlap), a translucent mesh of MinPartsToSplit+
+   * parts that may be split is drawn as one actor per part with vtkBSPTranslucentPass rather
+   * than as one mesh with the BSP mapper. The mapper orders every polygon of the mesh in one
+   * tree, split by every other part's planes; the pass draws opaque parts as they are, orders
+   * translucent parts as wholes and merges into one tree only parts that no plane separates,
+   * whose fragments then interleave into many draw calls. Measured (BENCHMARKS.md, "Auto
+   * splits a translucent mesh whose translucent parts overlap little"; frame times interleaved,
+   * median of 7 rounds of multi-actor / bsp-mapper): the cad demo at 1.1 % 0.80; the cad demo
+   * made all translucent at 36 % 0.94 (a tie); the 2CylinderEngine at opacity 0.4 at 100 % 1.30
+   * (0.68-3.15). No scene measured between 36 and 100 %: the threshold lies above the tie, short
+   * of where the engine loses. Not told apart: the 64 interpenetrating spheres, also 100 %, draw
+   * 0.83 split.
+   */
+  static constexpr double MaxOverlapToSplit = 0.5;
+  /// Translucent parts from which splitting a mesh into its parts is considered (one part has
+  /// nothing to order across).
+  static constexpr std::size_t MinPartsToSplit = 2;
+  /// Parts up to which a mesh is split: the multi-actor pass's frame grows faster with the
+  /// actors than the mapper's with the triangles. The cad demo at 52 triangles a part, multi-actor
+  /// / bsp-mapper in interleaved rounds: 1,000 parts 0.41-0.64, 1,500 parts 0.89-0.96, 2,500
+  /// parts 1.55-3.98, 5,000 parts 1.67-3.10 (and at 400 triangles a part 1.27-2.70).
+  static constexpr std::size_t MaxPartsToSplit = 1500;
+
   /// The culling method for @p facts and why.
   static vtkScenePlanChoice ChooseCulling(const vtkScenePlanFacts& facts);
+
+  /**
+   * Whether a translucent scene given as one mesh of parts is better drawn as one actor per
+   * part (multi-actor) than as one mesh (bsp-mapper): parts that may be split (not
+   * facts.fixedActors), no more than MaxPartsToSplit of them, at least MinPartsToSplit
+   * translucent ones, of SmallPartTriangles or
+   * more triangles on average (an actor costs more than a few triangles: two game levels at
+   * opacity 0.4, 3-4 triangles a surface, draw 2-9x slower split although their translucent
+   * parts overlap as little as the cad demo's made all translucent), whose boxes overlap little
+   * (facts.translucentOverlap measured and below MaxOverlapToSplit).
+   */
+  static bool SplitsIntoParts(const vtkScenePlanFacts& facts);
 
   /**
    * The translucency method given the culling: prop culling (or a scene of several translucent
    * actors) needs an order across actors; chunked drawing reorders the polygons chunk by chunk,
    * which only order-independent methods survive. @p severalActors: the translucent polygons
-   * are drawn by more than one actor (@p actors of them).
+   * are drawn by more than one actor (@p actors of them). A single mesh whose parts
+   * SplitsIntoParts() is split and drawn with multi-actor too: the caller then draws one actor
+   * per part.
    */
   static vtkScenePlanChoice ChooseTranslucency(
-    bool translucent, bool chunked, bool severalActors, std::size_t actors);
+    const vtkScenePlanFacts& facts, bool chunked, bool severalActors, std::size_t actors);
+
+  /**
+   * The fraction of the triangles of @p parts that lie in translucent parts (Translucent set,
+   * finite box) whose box overlaps another translucent part's box: their intersection has
+   * positive extent along every axis beyond a tolerance of 1e-6 of the two boxes' extents
+   * (touching parts, a bolt on a plate, do not overlap: a plane separates them; a flat part
+   * through a box does). 0 with fewer than two such parts. Weighted by triangles over the whole
+   * mesh because that is the share of the one-mesh sort's work that the multi-actor pass may
+   * have to do in merged trees. A sweep over the translucent boxes sorted along the axis where
+   * they are most spread out (the smallest sum of extents over the span): O(n log n) plus the
+   * pairs that overlap along that axis, stopped after OverlapTestsPerPart tests per box on
+   * average; the share is then that of the boxes swept so far.
+   */
+  static double MeasureOverlap(const std::vector<vtkScenePlanPartBox>& parts);
+  /// The early stop of MeasureOverlap(): box pair tests per translucent box.
+  static constexpr std::size_t OverlapTestsPerPart = 16;
 
   /**
    * The fraction of the triangles of @p parts whose bounding box meets the side planes of

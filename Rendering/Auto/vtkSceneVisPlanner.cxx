@@ -186,8 +186,8 @@ vtkScenePlanChoice vtkSceneVisPlanner::vtkInternals::ChooseTranslucency(
 {
   const vtkScenePlanFacts& facts = this->Inventory.GetFacts();
   const int translucentActors = this->Inventory.GetTranslucentActors();
-  vtkScenePlanChoice sort = vtkScenePlanRule::ChooseTranslucency(facts.translucentFraction > 0.0,
-    cull.Method == "chunked", translucentActors > 1, static_cast<std::size_t>(translucentActors));
+  vtkScenePlanChoice sort = vtkScenePlanRule::ChooseTranslucency(facts, cull.Method == "chunked",
+    translucentActors > 1, static_cast<std::size_t>(translucentActors));
   if (sort.Method != "bsp-mapper")
     return sort;
   // The BSP mapper replaces a plain mapper only; any other is ordered by the pass.
