@@ -719,6 +719,48 @@ glm::dvec3 windowPoint(const Camera& cam, double x, double y, double z)
   return { 2.0 * x / cam.width - 1.0, 2.0 * y / cam.height - 1.0, z };
 }
 
+/// A pixel centre that a buffer claims covered: at the whole tile's z0, or at the working
+/// layer's z1 where its mask has the pixel.
+struct ClaimedPixel
+{
+  int i, j;
+  double depth;
+  bool whole;
+};
+
+/// Every pixel of the viewport that @p buffer claims covered at a depth below 1.
+std::vector<ClaimedPixel> claimedPixels(const MaskedDepthBuffer& buffer, int width, int height)
+{
+  std::vector<ClaimedPixel> claimed;
+  for (int ty = 0; ty < buffer.tilesY(); ++ty)
+  {
+    for (int tx = 0; tx < buffer.tilesX(); ++tx)
+    {
+      const MaskedDepthBuffer::Tile& tile = buffer.tiles()[ty * buffer.tilesX() + tx];
+      for (int bit = 0; bit < 32; ++bit)
+      {
+        const int i = tx * 8 + bit % 8, j = ty * 4 + bit / 8;
+        const bool whole = tile.z0 < 1.0f, layer = tile.mask & (1u << bit);
+        const double depth = whole ? tile.z0 : tile.z1;
+        if (i < width && j < height && (whole || layer) && depth < 1.0)
+        {
+          claimed.push_back({ i, j, depth, whole });
+        }
+      }
+    }
+  }
+  return claimed;
+}
+
+/// A box of 1/50 pixel around @p p's centre, just behind the depth it is claimed at: hidden when
+/// the claim holds.
+std::pair<glm::dvec3, glm::dvec3> justBehind(const Camera& cam, const ClaimedPixel& p)
+{
+  const double z = 2.0 * p.depth - 1.0;
+  return { windowPoint(cam, p.i + 0.49, p.j + 0.49, z + 1e-6),
+    windowPoint(cam, p.i + 0.51, p.j + 0.51, z + 2e-6) };
+}
+
 /// What OpenGL draws of @p soup with @p culling (facing: the sign of det[x y w] in clip space).
 std::vector<Triangle> drawnFaces(
   const Camera& cam, const std::vector<Triangle>& soup, FaceCulling culling)
@@ -866,33 +908,13 @@ TEST_P(OcclusionBuffer, FloatHazardsAreConservativeAtEveryPixel)
       // The buffer itself, below the box test's one-pixel safety ring: every pixel centre it
       // claims (the whole tile at z0, the working layer's mask at z1) has a drawn triangle at
       // least as near (a box of 1/50 pixel just behind the claimed depth is hidden there).
-      for (int ty = 0; ty < buffer.tilesY(); ++ty)
+      for (const ClaimedPixel& p : claimedPixels(buffer, cam.width, cam.height))
       {
-        for (int tx = 0; tx < buffer.tilesX(); ++tx)
-        {
-          const MaskedDepthBuffer::Tile& tile = buffer.tiles()[ty * buffer.tilesX() + tx];
-          for (int bit = 0; bit < 32; ++bit)
-          {
-            const int i = tx * 8 + bit % 8, j = ty * 4 + bit / 8;
-            const bool whole = tile.z0 < 1.0f, layer = tile.mask & (1u << bit);
-            if (i >= cam.width || j >= cam.height || (!whole && !layer))
-            {
-              continue;
-            }
-            const double depth = whole ? tile.z0 : tile.z1;
-            if (!(depth < 1.0))
-            {
-              continue;
-            }
-            const double z = 2.0 * depth - 1.0;
-            ++pixelsClaimed;
-            const glm::dvec3 lo = windowPoint(cam, i + 0.49, j + 0.49, z + 1e-6);
-            const glm::dvec3 hi = windowPoint(cam, i + 0.51, j + 0.51, z + 2e-6);
-            ASSERT_EQ(visiblePixels(cam, drawn, lo, hi), 0)
-              << "scene " << scene << " (kind " << kind << "): pixel " << i << ", " << j
-              << " claimed at depth " << depth << (whole ? " (whole tile)" : " (working layer)");
-          }
-        }
+        ++pixelsClaimed;
+        const auto box = justBehind(cam, p);
+        ASSERT_EQ(visiblePixels(cam, drawn, box.first, box.second), 0)
+          << "scene " << scene << " (kind " << kind << "): pixel " << p.i << ", " << p.j
+          << " claimed at depth " << p.depth << (p.whole ? " (whole tile)" : " (working layer)");
       }
     }
     for (int b = 0; b < 80; ++b)
@@ -1144,28 +1166,13 @@ TEST_P(OcclusionBuffer, OutlineEdgesKeepTheCoverageMarginAtEveryPixel)
     }
     MaskedDepthBuffer buffer = bufferFor(cam);
     draw(buffer, cam, soup, FaceCulling::None, false);
-    for (int ty = 0; ty < buffer.tilesY(); ++ty)
+    for (const ClaimedPixel& p : claimedPixels(buffer, cam.width, cam.height))
     {
-      for (int tx = 0; tx < buffer.tilesX(); ++tx)
-      {
-        const MaskedDepthBuffer::Tile& tile = buffer.tiles()[ty * buffer.tilesX() + tx];
-        for (int bit = 0; bit < 32; ++bit)
-        {
-          const int i = tx * 8 + bit % 8, j = ty * 4 + bit / 8;
-          const bool whole = tile.z0 < 1.0f, layer = tile.mask & (1u << bit);
-          if (!whole && !layer)
-          {
-            continue;
-          }
-          const double z = 2.0 * (whole ? tile.z0 : tile.z1) - 1.0;
-          ++claimed;
-          const glm::dvec3 lo = windowPoint(cam, i + 0.49, j + 0.49, z + 1e-6);
-          const glm::dvec3 hi = windowPoint(cam, i + 0.51, j + 0.51, z + 2e-6);
-          ASSERT_EQ(visiblePixels(cam, shrunk, lo, hi), 0)
-            << "scene " << scene << ": pixel " << i << ", " << j << " claimed"
-            << (whole ? " (whole tile)" : " (working layer)") << " within the margin";
-        }
-      }
+      ++claimed;
+      const auto box = justBehind(cam, p);
+      ASSERT_EQ(visiblePixels(cam, shrunk, box.first, box.second), 0)
+        << "scene " << scene << ": pixel " << p.i << ", " << p.j << " claimed"
+        << (p.whole ? " (whole tile)" : " (working layer)") << " within the margin";
     }
   }
   EXPECT_GT(claimed, 5000u); // not kept by claiming nothing
