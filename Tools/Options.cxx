@@ -398,7 +398,10 @@ Options ParseOptions(int argc, char* argv[])
       options.orbitSet = true;
     }
     else if (flag == "--out-dir")
+    {
       options.outDir = value();
+      options.outDirSet = true;
+    }
     else if (flag == "--out")
       options.out = value();
     else if (flag == "--report")
@@ -458,6 +461,11 @@ Options ParseOptions(int argc, char* argv[])
   {
     throw UsageError(
       std::string(options.exact ? "--exact" : "--export-scene") + " belongs to the cull command");
+  }
+  if (options.outDirSet && options.command != "bench")
+  {
+    throw UsageError("--out-dir belongs to the bench command (render writes its frames with "
+                     "--out PREFIX)");
   }
   if (options.keepLeakingRooms && options.command != "portals")
   {

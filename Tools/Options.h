@@ -29,6 +29,7 @@ struct Options
   std::string scene = "spheres";
   std::vector<std::string> scenes; ///< bench: every --scene, in order
   std::string outDir = ".";
+  bool outDirSet = false;
   bool framesSet = false;
   bool sizeSet = false;
   bool orbitSet = false;
