@@ -725,10 +725,7 @@ void vtkBSPSortedPolyDataMapper::RenderPieceStart(vtkRenderer* ren, vtkActor* ac
           if (moved)
           {
             bsp::order(*internal.Tree, view, bsp::Direction::BackToFront, internal.FullOrder);
-            ++internal.OrderUpdates;
             changed = changed || internal.FullOrder != internal.UploadedOrder;
-            internal.HaveView = true;
-            internal.LastView = view;
           }
         }
         else
@@ -742,12 +739,15 @@ void vtkBSPSortedPolyDataMapper::RenderPieceStart(vtkRenderer* ren, vtkActor* ac
           if (moved)
           {
             const auto& stats = internal.Order->update(view);
-            ++internal.OrderUpdates;
             changed = changed || stats.nodesFlipped > 0 || stats.fragmentsMoved > 0 ||
               internal.UploadedOrder.empty();
-            internal.HaveView = true;
-            internal.LastView = view;
           }
+        }
+        if (moved)
+        {
+          ++internal.OrderUpdates;
+          internal.HaveView = true;
+          internal.LastView = view;
         }
         if (changed)
         {

@@ -860,12 +860,13 @@ void vtkBSPTranslucentPass::Render(const vtkRenderState* s)
       entry.MapperSettings = settings;
       mapperChanged[k] = true;
     }
+    bool inputChanged = false; // its cell colours' uniformity is found again below
     if (entry.Input != inputs[k] || entry.InputMTime != inputs[k]->GetMTime())
     {
       entry.Input = inputs[k];
       entry.InputMTime = inputs[k]->GetMTime();
       rebuild = true;
-      mapperChanged[k] = true; // the uniformity of its cell colours is found again below
+      inputChanged = true;
     }
     if (entry.Helper->GetInputDataObject(0, 0) != inputs[k])
     {
@@ -879,7 +880,7 @@ void vtkBSPTranslucentPass::Render(const vtkRenderState* s)
       std::copy(m, m + 16, entry.Matrix.begin());
       rebuild = true;
     }
-    if (mapperChanged[k])
+    if (mapperChanged[k] || inputChanged)
     {
       entry.UniformCellScalars = UniformCellScalars(mappers[k], inputs[k]);
     }
