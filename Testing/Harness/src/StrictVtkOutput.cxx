@@ -1,5 +1,7 @@
 #include "scenevis/testing/StrictVtkOutput.h"
 
+#include "scenevis/testing/FatalSignals.h"
+
 #include <vtkObject.h>
 #include <vtkObjectFactory.h>
 
@@ -181,6 +183,7 @@ StrictVtkOutput::StrictVtkOutput()
   , Previous(vtkOutputWindow::GetInstance())
   , PreviousGlobalWarningDisplay(vtkObject::GetGlobalWarningDisplay())
 {
+  InstallFatalSignalHandlers(); // over the test driver's, which can deadlock (FatalSignals.h)
   this->Recorder->SetNext(this->Previous);
   this->Recorder->SetFilter(
     [this](const VtkMessage& message)

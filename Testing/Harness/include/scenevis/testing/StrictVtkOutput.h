@@ -138,7 +138,8 @@ private:
  * ExpectWarning (must occur) or AllowError / AllowWarning (may occur); matching is by substring.
  * Declared messages are printed marked "(expected)" and not passed on; undeclared ones are passed
  * on to the previous output window (printed, or judged by an enclosing guard).
- * Also forces vtkObject::GlobalWarningDisplay on while alive (when off, VTK prints nothing).
+ * Also forces vtkObject::GlobalWarningDisplay on while alive (when off, VTK prints nothing), and
+ * installs InstallFatalSignalHandlers() (FatalSignals.h): a crash ends the test at once.
  */
 class StrictVtkOutput
 {
