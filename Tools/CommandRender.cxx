@@ -3,6 +3,7 @@
 #include "Commands.h"
 #include "CullSetup.h"
 #include "HugePages.h"
+#include "MallocRetention.h"
 #include "Memory.h"
 #include "MethodPipeline.h"
 #include "Progress.h"
@@ -214,10 +215,9 @@ int RunRender(const Options& options)
        << "],\n  \"load_ms\": " << scene.loadMs << ",\n  \"check_ms\": " << scene.checkMs
        << ",\n  \"normals_ms\": " << scene.normalsMs << ",\n  \"window_ms\": " << windowMs
        << ",\n  \"bounds_ms\": " << boundsMs << ",\n  \"inspect_ms\": " << plan.inspectMs
-       << ",\n  \"rooms_ms\": " << plan.generateMs
-       << ",\n  \"split_ms\": " << plan.splitMs << ",\n  \"actors_ms\": " << actorsMs
-       << ",\n  \"cullers_ms\": " << cullersMs << ",\n  \"build_ms\": " << buildMs
-       << ",\n  \"cull_setup_ms\": " << culling.SetupMs()
+       << ",\n  \"rooms_ms\": " << plan.generateMs << ",\n  \"split_ms\": " << plan.splitMs
+       << ",\n  \"actors_ms\": " << actorsMs << ",\n  \"cullers_ms\": " << cullersMs
+       << ",\n  \"build_ms\": " << buildMs << ",\n  \"cull_setup_ms\": " << culling.SetupMs()
        << ",\n  \"first_frame_ms\": " << firstFrameMs
        << ",\n  \"unaccounted_ms\": " << std::max(0.0, firstFrameMs - accountedMs)
        << ",\n  \"memory\": {\"peak_rss\": " << memory.peak
@@ -225,6 +225,7 @@ int RunRender(const Options& options)
        << ", \"polydata_bytes\": " << polydataBytes
        << ", \"cells_compacted_bytes\": " << scene.compactedBytes
        << ", \"huge_page_malloc\": " << (HugePageMalloc() ? "true" : "false")
+       << ", \"keeps_freed_memory\": " << (KeepsFreedMemory() ? "true" : "false")
        << ", \"peak_over_polydata\": " << static_cast<double>(memory.peak) / polydataBytes
        << ", \"peak_bytes_per_triangle\": "
        << static_cast<double>(memory.peak) /

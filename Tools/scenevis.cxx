@@ -8,6 +8,7 @@
 
 #include "Commands.h"
 #include "HugePages.h"
+#include "MallocRetention.h"
 #include "Options.h"
 
 #include <vtkAutoInit.h>
@@ -57,6 +58,7 @@ int main(int argc, char* argv[])
     return EXIT_SUCCESS;
   }
   scenevis::tool::RerunWithHugePages(argc, argv);
+  scenevis::tool::KeepFreedMemory();
   try
   {
     const scenevis::tool::Options options = scenevis::tool::ParseOptions(argc, argv);
