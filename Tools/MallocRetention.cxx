@@ -19,10 +19,10 @@ bool gKept = false;
 bool KeepFreedMemory()
 {
 #if defined(__GLIBC__)
-  const char* off = std::getenv("SCENEVIS_KEEP_FREED_MEMORY");
-  if (off && std::strcmp(off, "0") == 0)
+  const char* on = std::getenv("SCENEVIS_KEEP_FREED_MEMORY");
+  if (!on || std::strcmp(on, "1") != 0)
   {
-    return false;
+    return false; // opt-in: see the header on the planner's rule
   }
   const char* tunables = std::getenv("GLIBC_TUNABLES");
   if (tunables &&

@@ -303,7 +303,9 @@ void MethodPipeline::Describe(std::ostream& json, std::ostream& text) const
     json << ",\n  \"bsp_mapper\": {\"fragments\": " << this->BspMapper->GetNumberOfFragments()
          << ", \"triangles\": " << this->BspMapper->GetNumberOfFragmentTriangles()
          << ", \"tree_builds\": " << this->BspMapper->GetNumberOfTreeBuilds()
-         << ", \"index_uploads\": " << this->BspMapper->GetNumberOfIndexUploads() << "}";
+         << ", \"index_uploads\": " << this->BspMapper->GetNumberOfIndexUploads()
+         << ", \"vertex_buffer_builds\": " << this->BspMapper->GetNumberOfVertexBufferBuilds()
+         << "}";
     text << ", BSP build (in the mapper) " << this->BuildMs() << " ms ("
          << this->BspMapper->GetNumberOfFragments() << " fragments)";
   }
