@@ -39,6 +39,7 @@
 #include "vtkOcclusionCuller.h"
 #include "vtkOctreeCuller.h"
 
+#include "RenderFrame.h"
 #include "scenevis/testing/RenderWindow.h"
 
 #include <vtkActor.h>
@@ -157,7 +158,8 @@ Row Measure(EngineGrid& g, vtkRenderWindow* window, vtkOctreeCuller* culler, con
   row.culler = name;
   g.renderer->GetCullers()->RemoveAllItems();
   g.renderer->AddCuller(culler);
-  window->Render(); // warm-up: hierarchy, buffers, caches, last frame's visible set
+  scenevis::bench::RenderFrame(
+    window); // warm-up: hierarchy, buffers, caches, last frame's visible set
   // The drawn set of this camera, by a direct Cull() on the renderer's props.
   std::vector<vtkProp*> props(g.actors.begin(), g.actors.end());
   int length = static_cast<int>(props.size()), initialized = 0;
@@ -176,7 +178,7 @@ Row Measure(EngineGrid& g, vtkRenderWindow* window, vtkOctreeCuller* culler, con
   const auto start = Clock::now();
   for (int f = 0; f < frames; ++f)
   {
-    window->Render();
+    scenevis::bench::RenderFrame(window);
     if (auto* occlusion = vtkOcclusionCuller::SafeDownCast(culler))
     {
       cull += occlusion->GetCullTime();
@@ -243,9 +245,9 @@ Row MeasureQueries(EngineGrid& g, vtkRenderWindow* window, const std::set<std::s
     g.actors[a]->SetVisibility(visible.count(a) ? 1 : 0);
   }
   g.renderer->GetCullers()->RemoveAllItems();
-  window->Render(); // warm-up
+  scenevis::bench::RenderFrame(window); // warm-up
   auto start = Clock::now();
-  window->Render();
+  scenevis::bench::RenderFrame(window);
   const double occludersMs = 1e3 * Seconds(start);
   scenevis::bench::QueryResult queries;
   vtkNew<vtkCallbackCommand> onEnd;
@@ -274,7 +276,7 @@ Row MeasureQueries(EngineGrid& g, vtkRenderWindow* window, const std::set<std::s
     }
   }
   start = Clock::now();
-  window->Render();
+  scenevis::bench::RenderFrame(window);
   const double drawMs = 1e3 * Seconds(start);
   for (const auto& actor : g.actors)
   {
