@@ -23,17 +23,16 @@ namespace occlusion
 inline float roundUp(double value)
 {
   float f = static_cast<float>(value);
-  if (static_cast<double>(f) < value)
-  {
-    // std::nextafter(f, +inf) without the library call (one per tile update): f is below value,
-    // so neither +inf nor NaN; the next float up is one step of its bits away from zero when
-    // positive, towards zero when negative (-inf gives the lowest finite float, as nextafter
-    // does), the smallest positive one from +-0.
-    std::uint32_t bits;
-    std::memcpy(&bits, &f, sizeof bits);
-    bits = f == 0.0f ? 1u : ((bits >> 31) == 0u ? bits + 1u : bits - 1u);
-    std::memcpy(&f, &bits, sizeof f);
-  }
+  // std::nextafter(f, +inf) where f is below value, without the library call or a branch (one
+  // per tile update; rounding down or up is a coin toss): then f is neither +inf nor NaN, and
+  // the next float up is one step of its bits away from zero when positive, towards zero when
+  // negative (-inf gives the lowest finite float, as nextafter does), the smallest positive one
+  // from +0 (-0 is never below value: a value that rounds to -0 is not positive).
+  std::uint32_t bits;
+  std::memcpy(&bits, &f, sizeof bits);
+  const std::uint32_t below = static_cast<double>(f) < value ? 1u : 0u;
+  bits += (bits >> 31) == 0u ? below : 0u - below;
+  std::memcpy(&f, &bits, sizeof f);
   return f;
 }
 
@@ -92,7 +91,9 @@ struct EdgeTest
   EdgeTest(
     const glm::dvec3& from, const glm::dvec3& to, double orientation, bool outline, double margin)
   {
-    const bool forward = from.x < to.x || (from.x == to.x && from.y < to.y);
+    // No short-circuit, the square root always: which end point comes first and whether the
+    // edge is an outline change from one edge to the next, and branches on them mispredict.
+    const bool forward = (from.x < to.x) | ((from.x == to.x) & (from.y < to.y));
     const glm::dvec3& p = forward ? from : to;
     const glm::dvec3& q = forward ? to : from;
     px = p.x;
@@ -100,8 +101,9 @@ struct EdgeTest
     dx = q.x - p.x;
     dy = q.y - p.y;
     sign = (forward ? 1.0 : -1.0) * orientation;
-    threshold = outline ? margin * std::sqrt(dx * dx + dy * dy) : 0.0;
-    includeTie = outline || sign > 0.0;
+    const double outlineThreshold = margin * std::sqrt(dx * dx + dy * dy);
+    threshold = outline ? outlineThreshold : 0.0;
+    includeTie = outline | (sign > 0.0);
     gx = -sign * dy;
   }
   double value(double x, double y) const { return sign * (dx * (y - py) - dy * (x - px)); }
