@@ -91,9 +91,7 @@ struct EdgeTest
   EdgeTest(
     const glm::dvec3& from, const glm::dvec3& to, double orientation, bool outline, double margin)
   {
-    // No short-circuit, the square root always: which end point comes first and whether the
-    // edge is an outline change from one edge to the next, and branches on them mispredict.
-    const bool forward = (from.x < to.x) | ((from.x == to.x) & (from.y < to.y));
+    const bool forward = from.x < to.x || (from.x == to.x && from.y < to.y);
     const glm::dvec3& p = forward ? from : to;
     const glm::dvec3& q = forward ? to : from;
     px = p.x;
@@ -101,9 +99,8 @@ struct EdgeTest
     dx = q.x - p.x;
     dy = q.y - p.y;
     sign = (forward ? 1.0 : -1.0) * orientation;
-    const double outlineThreshold = margin * std::sqrt(dx * dx + dy * dy);
-    threshold = outline ? outlineThreshold : 0.0;
-    includeTie = outline | (sign > 0.0);
+    threshold = outline ? margin * std::sqrt(dx * dx + dy * dy) : 0.0;
+    includeTie = outline || sign > 0.0;
     gx = -sign * dy;
   }
   double value(double x, double y) const { return sign * (dx * (y - py) - dy * (x - px)); }

@@ -55,7 +55,7 @@ public:
     {
       const EdgeTest& e = edges[k];
       // Inside for larger i (gx > 0), for smaller i (gx < 0), or alike on the whole scanline.
-      side_[k] = (e.gx > 0.0) - (e.gx < 0.0);
+      side_[k] = e.gx > 0.0 ? 1 : (e.gx < 0.0 ? -1 : 0);
       inverseDy_[k] = e.dy != 0.0 ? 1.0 / e.dy : 0.0;
       signedThreshold_[k] = e.sign * e.threshold;
       // How far (in columns) a crossing computed below may lie from the boundary of the
