@@ -19,6 +19,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <limits>
 #include <random>
 #include <string>
@@ -1306,4 +1308,46 @@ TEST(OcclusionScanline, RowIntervalsAreTheCentresInsideAllThreeEdges)
     }
   }
   EXPECT_GT(nonEmpty, intervals / 4); // not kept by testing empty scanlines only
+}
+
+// roundUp (src/OcclusionEdge.h: every tile depth bound goes through it) is the smallest float not
+// below its argument, as std::nextafter gives it, for every kind of double.
+TEST(OcclusionScanline, RoundUpIsTheSmallestFloatNotBelow)
+{
+  auto reference = [](double value)
+  {
+    float f = static_cast<float>(value);
+    if (static_cast<double>(f) < value)
+    {
+      f = std::nextafter(f, std::numeric_limits<float>::infinity());
+    }
+    return f;
+  };
+  auto same = [](float a, float b) { return std::memcmp(&a, &b, sizeof a) == 0; };
+  const double inf = std::numeric_limits<double>::infinity();
+  const double special[] = { 0.0, -0.0, 1e-320, -1e-320, 1e-46, -1e-46, 1.4e-45, -1.4e-45, 0.1,
+    -0.1, 0.5, 1.0, -1.0, 1.0 + 1e-12, -1.0 - 1e-12, 3.4028235e38, 3.4028236e38, -3.4028236e38,
+    1e300, -1e300, inf, -inf };
+  for (double v : special)
+  {
+    EXPECT_TRUE(same(roundUp(v), reference(v))) << v;
+  }
+  EXPECT_TRUE(std::isnan(roundUp(std::numeric_limits<double>::quiet_NaN())));
+  std::mt19937_64 rng(7);
+  for (int i = 0; i < 1000000; ++i)
+  {
+    // Depth-like values of both signs, and any bits.
+    double v = std::ldexp(static_cast<double>(rng() >> 11) / 9007199254740992.0 - 0.5,
+      static_cast<int>(rng() % 64) - 40);
+    if (i % 4 == 0)
+    {
+      const std::uint64_t bits = rng();
+      std::memcpy(&v, &bits, sizeof v);
+      if (std::isnan(v))
+      {
+        continue;
+      }
+    }
+    ASSERT_TRUE(same(roundUp(v), reference(v))) << v;
+  }
 }
