@@ -10,6 +10,8 @@
 #include "scenevis/OcclusionBuffer.h"
 #include "scenevis/OcclusionOracle.h"
 
+#include "../src/OcclusionScanline.h" // module-private: the exact rasterizer's intervals
+
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/matrix_inverse.hpp>
 
@@ -17,6 +19,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <limits>
 #include <random>
 #include <string>
@@ -1176,4 +1180,174 @@ TEST_P(OcclusionBuffer, OutlineEdgesKeepTheCoverageMarginAtEveryPixel)
     }
   }
   EXPECT_GT(claimed, 5000u); // not kept by claiming nothing
+}
+
+// The exact rasterizer's per-scanline intervals (src/OcclusionScanline.h: four scanlines at a
+// time, SSE2 where available, each edge's side applied by masks) are exactly the centres that
+// pass all three canonical edge tests, over any narrowed range of columns of a row of tiles:
+// random triangles of every kind the set-up meets (centre-aligned and integer vertices,
+// horizontal and vertical edges, slivers, outline and interior edges, both windings).
+TEST(OcclusionScanline, RowIntervalsAreTheCentresInsideAllThreeEdges)
+{
+  constexpr int width = 96, height = 48;
+  std::mt19937_64 rng(12);
+  auto uniform = [&](double a, double b)
+  { return std::uniform_real_distribution<double>(a, b)(rng); };
+  auto coordinate = [&](double lo, double hi)
+  {
+    switch (rng() % 4)
+    {
+      case 0:
+        return std::floor(uniform(lo, hi)) + 0.5; // on a pixel centre
+      case 1:
+        return std::floor(uniform(lo, hi)); // between centres
+      default:
+        return uniform(lo, hi);
+    }
+  };
+  const double margin = MaskedDepthBuffer().coverageMargin;
+  std::size_t intervals = 0, nonEmpty = 0;
+  for (int t = 0; t < 200000; ++t)
+  {
+    // Small triangles (most of the engine row's) and large ones, around and beyond the viewport.
+    const double size = t % 3 == 0 ? uniform(1.0, 120.0) : uniform(0.5, 12.0);
+    const double cx = uniform(-10.0, width + 10.0), cy = uniform(-10.0, height + 10.0);
+    glm::dvec3 v[3];
+    for (glm::dvec3& p : v)
+    {
+      p = glm::dvec3(coordinate(cx - size, cx + size), coordinate(cy - size, cy + size), 0.5);
+    }
+    unsigned outline = static_cast<unsigned>(rng() % 8);
+    switch (rng() % 7)
+    {
+      case 6:
+      {
+        // Edge 0 through a pixel centre (interior) or at the coverage margin from it (outline),
+        // at a random slope: its crossings lie within rounding of a column.
+        const double angle = uniform(0.0, 6.283185307179586);
+        const glm::dvec3 d(std::cos(angle), std::sin(angle), 0.0), n(-d.y, d.x, 0.0);
+        const glm::dvec3 c(std::floor(cx) + 0.5, std::floor(cy) + 0.5, 0.5);
+        const glm::dvec3 on = c + n * ((outline & 1u) ? margin : 0.0) * (rng() % 2 ? 1.0 : -1.0);
+        v[0] = on - d * uniform(0.5, size);
+        v[1] = on + d * uniform(0.5, size);
+        v[2] = on + n * uniform(-size, size) + d * uniform(-size, size);
+        break;
+      }
+      case 0:
+        v[1].y = v[0].y; // a horizontal edge
+        break;
+      case 1:
+        v[2].x = v[1].x; // a vertical edge
+        break;
+      case 2:
+        v[2] = v[0] + (v[1] - v[0]) * uniform(-0.5, 1.5) + glm::dvec3(uniform(-0.1, 0.1), 0, 0);
+        break; // a sliver
+      default:
+        break;
+    }
+    const double area2 =
+      (v[1].x - v[0].x) * (v[2].y - v[0].y) - (v[1].y - v[0].y) * (v[2].x - v[0].x);
+    if (!(std::abs(area2) > 0.0))
+    {
+      continue;
+    }
+    auto columnSpan = [](double a, double b, double c, int pixels, int& lo, int& hi)
+    {
+      lo = std::max(0, static_cast<int>(std::ceil(std::min({ a, b, c }) - 0.5)));
+      hi = std::min(pixels - 1, static_cast<int>(std::floor(std::max({ a, b, c }) - 0.5)));
+    };
+    int x0, x1, y0, y1;
+    columnSpan(v[0].x, v[1].x, v[2].x, width, x0, x1);
+    columnSpan(v[0].y, v[1].y, v[2].y, height, y0, y1);
+    if (x0 > x1 || y0 > y1)
+    {
+      continue;
+    }
+    const double orientation = area2 > 0.0 ? 1.0 : -1.0;
+    const EdgeTest edges[3] = { EdgeTest(v[0], v[1], orientation, outline & 1u, margin),
+      EdgeTest(v[1], v[2], orientation, outline & 2u, margin),
+      EdgeTest(v[2], v[0], orientation, outline & 4u, margin) };
+    double extent = width + height;
+    for (const glm::dvec3& p : v)
+    {
+      extent = std::max({ extent, std::abs(p.x), std::abs(p.y) });
+    }
+    const ScanlineCoverage coverage(edges, extent, x0, x1);
+    for (int ty = y0 / 4; ty <= y1 / 4; ++ty)
+    {
+      // The columns of a run of the span's tiles (drawFrontTriangle narrows to the live ones).
+      const int tx0 = x0 / 8, tx1 = x1 / 8;
+      const int txFirst = tx0 + static_cast<int>(rng() % (tx1 - tx0 + 1));
+      const int txLast = txFirst + static_cast<int>(rng() % (tx1 - txFirst + 1));
+      const int rx0 = std::max(x0, txFirst * 8), rx1 = std::min(x1, txLast * 8 + 7);
+      int first[4], last[4];
+      coverage.rowIntervals(ty * 4, y0, y1, rx0, rx1, first, last);
+      for (int j = 0; j < 4; ++j)
+      {
+        const int y = ty * 4 + j;
+        int expectFirst = ScanlineCoverage::kEmpty, expectLast = -ScanlineCoverage::kEmpty;
+        if (y >= y0 && y <= y1)
+        {
+          for (int i = rx0; i <= rx1; ++i)
+          {
+            if (edges[0].inside(i + 0.5, y + 0.5) && edges[1].inside(i + 0.5, y + 0.5) &&
+              edges[2].inside(i + 0.5, y + 0.5))
+            {
+              ASSERT_TRUE(expectLast == -ScanlineCoverage::kEmpty || expectLast == i - 1)
+                << "the centres inside are not one interval: triangle " << t;
+              expectFirst = std::min(expectFirst, i);
+              expectLast = i;
+            }
+          }
+        }
+        ++intervals;
+        nonEmpty += expectLast >= expectFirst ? 1 : 0;
+        ASSERT_EQ(first[j], expectFirst) << "triangle " << t << " scanline " << y;
+        ASSERT_EQ(last[j], expectLast) << "triangle " << t << " scanline " << y;
+      }
+    }
+  }
+  EXPECT_GT(nonEmpty, intervals / 4); // not kept by testing empty scanlines only
+}
+
+// roundUp (src/OcclusionEdge.h: every tile depth bound goes through it) is the smallest float not
+// below its argument, as std::nextafter gives it, for every kind of double.
+TEST(OcclusionScanline, RoundUpIsTheSmallestFloatNotBelow)
+{
+  auto reference = [](double value)
+  {
+    float f = static_cast<float>(value);
+    if (static_cast<double>(f) < value)
+    {
+      f = std::nextafter(f, std::numeric_limits<float>::infinity());
+    }
+    return f;
+  };
+  auto same = [](float a, float b) { return std::memcmp(&a, &b, sizeof a) == 0; };
+  const double inf = std::numeric_limits<double>::infinity();
+  const double special[] = { 0.0, -0.0, 1e-320, -1e-320, 1e-46, -1e-46, 1.4e-45, -1.4e-45, 0.1,
+    -0.1, 0.5, 1.0, -1.0, 1.0 + 1e-12, -1.0 - 1e-12, 3.4028235e38, 3.4028236e38, -3.4028236e38,
+    1e300, -1e300, inf, -inf };
+  for (double v : special)
+  {
+    EXPECT_TRUE(same(roundUp(v), reference(v))) << v;
+  }
+  EXPECT_TRUE(std::isnan(roundUp(std::numeric_limits<double>::quiet_NaN())));
+  std::mt19937_64 rng(7);
+  for (int i = 0; i < 1000000; ++i)
+  {
+    // Depth-like values of both signs, and any bits.
+    double v = std::ldexp(static_cast<double>(rng() >> 11) / 9007199254740992.0 - 0.5,
+      static_cast<int>(rng() % 64) - 40);
+    if (i % 4 == 0)
+    {
+      const std::uint64_t bits = rng();
+      std::memcpy(&v, &bits, sizeof v);
+      if (std::isnan(v))
+      {
+        continue;
+      }
+    }
+    ASSERT_TRUE(same(roundUp(v), reference(v))) << v;
+  }
 }

@@ -23,17 +23,16 @@ namespace occlusion
 inline float roundUp(double value)
 {
   float f = static_cast<float>(value);
-  if (static_cast<double>(f) < value)
-  {
-    // std::nextafter(f, +inf) without the library call (one per tile update): f is below value,
-    // so neither +inf nor NaN; the next float up is one step of its bits away from zero when
-    // positive, towards zero when negative (-inf gives the lowest finite float, as nextafter
-    // does), the smallest positive one from +-0.
-    std::uint32_t bits;
-    std::memcpy(&bits, &f, sizeof bits);
-    bits = f == 0.0f ? 1u : ((bits >> 31) == 0u ? bits + 1u : bits - 1u);
-    std::memcpy(&f, &bits, sizeof f);
-  }
+  // std::nextafter(f, +inf) where f is below value, without the library call or a branch (one
+  // per tile update; rounding down or up is a coin toss): then f is neither +inf nor NaN, and
+  // the next float up is one step of its bits away from zero when positive, towards zero when
+  // negative (-inf gives the lowest finite float, as nextafter does), the smallest positive one
+  // from +0 (-0 is never below value: a value that rounds to -0 is not positive).
+  std::uint32_t bits;
+  std::memcpy(&bits, &f, sizeof bits);
+  const std::uint32_t below = static_cast<double>(f) < value ? 1u : 0u;
+  bits += (bits >> 31) == 0u ? below : 0u - below;
+  std::memcpy(&f, &bits, sizeof f);
   return f;
 }
 
