@@ -61,7 +61,8 @@ void OnFatalSignal(int signal)
   ::raise(signal); // delivered on return: the default action (core, killed by the signal)
 }
 
-/// The handler's own stack, so that a stack overflow still reaches it.
+/// The handler's own stack (sigaltstack is per thread: the installing one's), so that a stack
+/// overflow there still reaches it.
 char gAlternateStack[64 * 1024];
 } // namespace
 

@@ -8,9 +8,10 @@
  * SIGSEGV became a 600 s timeout with nothing but "Loguru caught a signal: SIGSEGV" printed
  * (vtkLogger.h itself warns of "crashes and deadlocks"). The handler here only calls
  * async-signal-safe functions (write, backtrace_symbols_fd after backtrace's library was loaded at
- * install, sigaction, raise), runs on its own stack (stack overflows reach it too), arms a 10 s
- * alarm in case the unwinder still blocks, and re-raises the signal with the default action, so
- * CTest reports the crash ("Exception: SegFault") as soon as it happens.
+ * install, sigaction, raise), runs on its own stack in the thread that installed it (a stack
+ * overflow there reaches it too; in other threads it still ends the process, without a stack),
+ * arms a 10 s alarm in case the unwinder still blocks, and re-raises the signal with the default
+ * action, so CTest reports the crash ("Exception: SegFault") as soon as it happens.
  *
  * StrictVtkOutput's constructor installs it, so every VTK-level test that guards its output has
  * it. Sanitizer builds keep the sanitizers' own handlers (their reports are better): there it does
