@@ -251,7 +251,7 @@ int benchSceneFile(const std::string& scene, const std::string& portalsFile,
         for (const std::int32_t start : loc.nodes)
         {
           bench::RayWalk(graph, portalsOf, start, eye, d,
-            [&](std::int32_t node)
+            [&](std::int32_t node, double)
             {
               ++rayRooms;
               if (!t.nodeVisible(node) && !missed[static_cast<std::size_t>(node)])

@@ -702,12 +702,14 @@ bool PortalGraph::inside(std::int32_t room, const glm::dvec3& p) const
   static const glm::dvec3 dirs[3] = { glm::normalize(glm::dvec3(0.5377, 0.8191, 0.2003)),
     glm::normalize(glm::dvec3(-0.7071, 0.3156, 0.6321)),
     glm::normalize(glm::dvec3(0.1234, -0.5871, -0.8001)) };
-  int votes = 0;
-  for (const auto& d : dirs)
+  // Two agreeing rays decide the vote; the third is cast only when they disagree.
+  const int first = this->parity(room, p, dirs[0]);
+  const int second = this->parity(room, p, dirs[1]);
+  if (first == second)
   {
-    votes += this->parity(room, p, d);
+    return first == 1;
   }
-  return votes >= 2;
+  return this->parity(room, p, dirs[2]) == 1;
 }
 
 EyeLocation PortalGraph::locate(const glm::dvec3& eye, double nearDistance,

@@ -20,6 +20,12 @@ namespace
 /// Rectangles grow by this much (NDC) whenever they are computed: float noise never shrinks them.
 constexpr double kRectSlack = 1e-9;
 
+/// The part of rectangle @p a (xmin, ymin, xmax, ymax) inside @p b; empty when min > max.
+glm::dvec4 intersectRects(const glm::dvec4& a, const glm::dvec4& b)
+{
+  return glm::dvec4(std::max(a.x, b.x), std::max(a.y, b.y), std::min(a.z, b.z), std::min(a.w, b.w));
+}
+
 glm::dvec4 normalizedPlane(const glm::dvec4& p)
 {
   const double len = glm::length(glm::dvec3(p));
@@ -40,6 +46,27 @@ PortalView PortalView::fromRowMajor(const double m[16], const glm::dvec3& eye, b
   v.eye = eye;
   v.parallel = parallel;
   return v;
+}
+
+glm::dvec4 PortalTraversal::ndcBounds(const glm::dvec3* poly, std::size_t count) const
+{
+  constexpr double inf = std::numeric_limits<double>::infinity();
+  glm::dvec4 rect(inf, inf, -inf, -inf);
+  const glm::dmat4& m = this->View.clipFromWorld;
+  for (std::size_t k = 0; k < count; ++k)
+  {
+    const glm::dvec4 c = m * glm::dvec4(poly[k], 1.0);
+    if (!(c.w > 0.0))
+    {
+      // Cannot happen after the front clip, but never shrink on doubt.
+      return glm::dvec4(-inf, -inf, inf, inf);
+    }
+    const double x = c.x / c.w, y = c.y / c.w;
+    rect = glm::dvec4(
+      std::min(rect.x, x), std::min(rect.y, y), std::max(rect.z, x), std::max(rect.w, y));
+  }
+  return glm::dvec4(
+    rect.x - kRectSlack, rect.y - kRectSlack, rect.z + kRectSlack, rect.w + kRectSlack);
 }
 
 glm::dvec4 PortalTraversal::rectPlane(int side, double value) const
@@ -97,7 +124,8 @@ bool PortalTraversal::begin(const PortalGraph& graph, const PortalView& view,
   // its graph in place (vtkPortalCuller does), and the per-portal cache must fit its portals.
   if (this->LastGraph == &graph && this->LastFingerprint == graph.fingerprint() &&
     this->LastNodes == nodes && this->NodeRegions.size() >= nodes &&
-    this->NodeGeneration.size() >= nodes && this->Clipped.size() == graph.portals().size())
+    this->NodeGeneration.size() >= nodes && this->Clipped.size() == graph.portals().size() &&
+    this->ExitStart.size() == nodes + 1)
   {
     // Only the nodes the previous frame reached have regions: reset those, not every node.
     for (const std::int32_t n : this->Visible)
@@ -118,6 +146,7 @@ bool PortalTraversal::begin(const PortalGraph& graph, const PortalView& view,
     }
     this->NodeGeneration.assign(nodes, 0);
     this->Clipped.assign(graph.portals().size(), ClippedPortal());
+    this->buildExits(graph);
     this->Frame = 0;
   }
   this->LastGraph = &graph;
@@ -211,7 +240,24 @@ bool PortalTraversal::begin(const PortalGraph& graph, const PortalView& view,
   return true;
 }
 
-bool PortalTraversal::subsumed(const Region& inner, const Region& outer) const
+PortalTraversal::RegionShape PortalTraversal::shapeOf(const Region& r) const
+{
+  return RegionShape{ r.rect, r.via, this->Vertices.data() + r.firstVertex, r.vertexCount };
+}
+
+bool PortalTraversal::subsumedInNode(std::int32_t node, const RegionShape& inner) const
+{
+  for (const std::uint32_t other : this->NodeRegions[static_cast<std::size_t>(node)])
+  {
+    if (this->subsumed(inner, this->Regions[other]))
+    {
+      return true;
+    }
+  }
+  return false;
+}
+
+bool PortalTraversal::subsumed(const RegionShape& inner, const Region& outer) const
 {
   constexpr double e = 1e-12;
   if (inner.rect.x < outer.rect.x - e || inner.rect.y < outer.rect.y - e ||
@@ -227,9 +273,9 @@ bool PortalTraversal::subsumed(const Region& inner, const Region& outer) const
     {
       return false;
     }
-    for (std::uint32_t v = inner.firstVertex; v < inner.firstVertex + inner.vertexCount; ++v)
+    for (std::uint32_t v = 0; v < inner.vertexCount; ++v)
     {
-      if (geometry::planeDistance(outer.entry, this->Vertices[v]) < -10.0 * this->PlaneSlack)
+      if (geometry::planeDistance(outer.entry, inner.vertices[v]) < -10.0 * this->PlaneSlack)
       {
         return false;
       }
@@ -244,7 +290,7 @@ bool PortalTraversal::subsumed(const Region& inner, const Region& outer) const
     return false; // a rectangle-only region: cannot show it is inside the edge planes
   }
   const std::uint32_t firstEdge = outer.firstPlane + 4;
-  for (std::uint32_t v = inner.firstVertex; v < inner.firstVertex + inner.vertexCount; ++v)
+  for (std::uint32_t v = 0; v < inner.vertexCount; ++v)
   {
     for (std::uint32_t p = firstEdge; p < firstEdge + outer.edgePlanes; ++p)
     {
@@ -252,7 +298,7 @@ bool PortalTraversal::subsumed(const Region& inner, const Region& outer) const
       // went round a cycle of rooms sticks out of its ancestor by a few; with one slack it
       // would never be subsumed and the cycle would run until the rooms' regions are merged
       // (seen with parallel views: 50x the work and looser merged regions).
-      if (geometry::planeDistance(this->Planes[p], this->Vertices[v]) < -10.0 * this->PlaneSlack)
+      if (geometry::planeDistance(this->Planes[p], inner.vertices[v]) < -10.0 * this->PlaneSlack)
       {
         return false;
       }
@@ -264,16 +310,12 @@ bool PortalTraversal::subsumed(const Region& inner, const Region& outer) const
 bool PortalTraversal::attach(std::int32_t node, std::uint32_t region, bool checkSubsumed)
 {
   auto& list = this->NodeRegions[static_cast<std::size_t>(node)];
-  if (checkSubsumed)
+  if (checkSubsumed &&
+    (std::find(list.begin(), list.end(), region) != list.end() ||
+      this->subsumedInNode(node, this->shapeOf(this->Regions[region]))))
   {
-    for (const std::uint32_t other : list)
-    {
-      if (other == region || this->subsumed(this->Regions[region], this->Regions[other]))
-      {
-        ++this->Stats.regionsSubsumed;
-        return false;
-      }
-    }
+    ++this->Stats.regionsSubsumed;
+    return false;
   }
   if (list.empty())
   {
@@ -328,21 +370,37 @@ const PortalTraversal::ClippedPortal& PortalTraversal::clippedPortal(std::uint32
   c.first = static_cast<std::uint32_t>(this->ClippedVertices.size());
   c.count = a->size() >= 3 ? static_cast<std::uint32_t>(a->size()) : 0;
   this->ClippedVertices.insert(this->ClippedVertices.end(), a->begin(), a->begin() + c.count);
+  c.rect = this->ndcBounds(a->data(), c.count);
   return c;
 }
 
-void PortalTraversal::crossPortal(std::uint32_t index, std::int32_t to, std::uint32_t from)
+void PortalTraversal::buildExits(const PortalGraph& graph)
+{
+  this->ExitStart.assign(1, 0);
+  this->Exits.clear();
+  for (std::int32_t n = 0; n < graph.nodeCount(); ++n)
+  {
+    for (const std::uint32_t pi : graph.rooms()[static_cast<std::size_t>(n)].portals)
+    {
+      const GraphPortal& p = graph.portals()[pi];
+      this->Exits.push_back(Exit{ p.bounds.lo, p.bounds.hi, pi, p.other(n) });
+    }
+    this->ExitStart.push_back(static_cast<std::uint32_t>(this->Exits.size()));
+  }
+}
+
+void PortalTraversal::crossPortal(const Exit& exit, std::uint32_t from, const Region& parent)
 {
   ++this->Stats.portalsTested;
-  const GraphPortal& portal = this->Graph->portals()[index];
-  const Region parent = this->Regions[from];
+  const std::uint32_t index = exit.portal;
+  const std::int32_t to = exit.to;
   const double slack = this->PlaneSlack;
   const culling::Frustum& f = this->ViewFrustum;
 
   // The rays of the parent crossed its entry portal's plane away from the eye, once: that
   // portal again, or one wholly on the eye's side of its plane, is out of their reach.
-  const glm::dvec3& lo = portal.bounds.lo;
-  const glm::dvec3& hi = portal.bounds.hi;
+  const glm::dvec3& lo = exit.lo;
+  const glm::dvec3& hi = exit.hi;
   if (parent.via >= 0 &&
     (static_cast<std::uint32_t>(parent.via) == index ||
       culling::pVertexDistance(parent.entry, lo, hi) < -slack))
@@ -366,6 +424,7 @@ void PortalTraversal::crossPortal(std::uint32_t index, std::int32_t to, std::uin
 
   // Edge-on (the eye in the portal's plane; parallel rays along it) or non-planar: no narrowing
   // is possible or safe.
+  const GraphPortal& portal = this->Graph->portals()[index];
   const bool edgeOn = this->View.parallel
     ? std::abs(glm::dot(glm::dvec3(portal.plane), this->Direction)) <= 1e-9
     : std::abs(geometry::planeDistance(portal.plane, this->View.eye)) <= slack;
@@ -384,15 +443,39 @@ void PortalTraversal::crossPortal(std::uint32_t index, std::int32_t to, std::uin
   {
     return;
   }
-  std::vector<glm::dvec3>* a = &this->ClipA;
-  std::vector<glm::dvec3>* b = &this->ClipB;
-  a->assign(this->ClippedVertices.begin() + cached.first,
-    this->ClippedVertices.begin() + cached.first + cached.count);
+  // The portal as clipped so far: the frame's cached polygon until a plane cuts it (most planes
+  // keep all of it), then ClipA and ClipB in turn.
+  const glm::dvec3* poly = this->ClippedVertices.data() + cached.first;
+  std::size_t count = cached.count;
+  if (exact)
+  {
+    // The region this crossing can make lies inside the cached portal and the parent's rectangle
+    // (clipping keeps a polygon within its input's hull): when the room already has a region
+    // that holds all of that, or nothing is left, the clipping is not needed.
+    const glm::dvec4 most = intersectRects(cached.rect, parent.rect);
+    if (!(most.x <= most.z && most.y <= most.w))
+    {
+      return;
+    }
+    if (this->subsumedInNode(to,
+          RegionShape{
+            most, static_cast<std::int32_t>(index), poly, static_cast<std::uint32_t>(count) }))
+    {
+      ++this->Stats.regionsSubsumed;
+      return;
+    }
+  }
   auto clip = [&](const glm::dvec4& plane)
   {
-    geometry::clipPolygon(*a, plane, slack, *b);
-    std::swap(a, b);
-    return a->size() >= 3;
+    if (geometry::allKept(poly, count, plane, slack))
+    {
+      return true;
+    }
+    std::vector<glm::dvec3>& out = poly == this->ClipA.data() ? this->ClipB : this->ClipA;
+    geometry::clipPolygon(poly, count, plane, slack, out);
+    poly = out.data();
+    count = out.size();
+    return count >= 3;
   };
   if (exact)
   {
@@ -411,26 +494,18 @@ void PortalTraversal::crossPortal(std::uint32_t index, std::int32_t to, std::uin
   }
 
   // Screen rectangle of what is left, within the parent's.
-  glm::dvec4 rect(std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity(),
-    -std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity());
-  const glm::dmat4& m = this->View.clipFromWorld;
-  for (const glm::dvec3& v : *a)
-  {
-    const glm::dvec4 c = m * glm::dvec4(v, 1.0);
-    if (!(c.w > 0.0))
-    {
-      rect = parent.rect; // cannot happen after the front clip, but never shrink on doubt
-      break;
-    }
-    const double x = c.x / c.w, y = c.y / c.w;
-    rect = glm::dvec4(std::min(rect.x, x), std::min(rect.y, y), std::max(rect.z, x),
-      std::max(rect.w, y));
-  }
-  rect = glm::dvec4(std::max(rect.x - kRectSlack, parent.rect.x),
-    std::max(rect.y - kRectSlack, parent.rect.y), std::min(rect.z + kRectSlack, parent.rect.z),
-    std::min(rect.w + kRectSlack, parent.rect.w));
+  const glm::dvec4 rect = intersectRects(this->ndcBounds(poly, count), parent.rect);
   if (!(rect.x <= rect.z && rect.y <= rect.w))
   {
+    return;
+  }
+  // A region the room already holds a bigger one of adds nothing: found before its planes are
+  // made (most crossings of a frame on open levels end here).
+  const RegionShape shape{ rect, static_cast<std::int32_t>(index), exact ? poly : nullptr,
+    exact ? static_cast<std::uint32_t>(count) : 0U };
+  if (this->subsumedInNode(to, shape))
+  {
+    ++this->Stats.regionsSubsumed;
     return;
   }
 
@@ -449,19 +524,19 @@ void PortalTraversal::crossPortal(std::uint32_t index, std::int32_t to, std::uin
   {
     // Planes through the eye and each edge of the clipped portal, facing its centroid.
     glm::dvec3 centroid(0.0);
-    for (const glm::dvec3& v : *a)
+    for (std::size_t k = 0; k < count; ++k)
     {
-      centroid += v;
+      centroid += poly[k];
     }
-    centroid /= static_cast<double>(a->size());
+    centroid /= static_cast<double>(count);
     // Parallel projection: planes through each edge containing the ray direction.
     const glm::dvec3& eye = this->View.eye;
     const bool parallel = this->View.parallel;
     std::uint32_t edges = 0;
-    for (std::size_t k = 0; k < a->size(); ++k)
+    for (std::size_t k = 0; k < count; ++k)
     {
-      const glm::dvec3& q0 = (*a)[k];
-      const glm::dvec3& q1 = (*a)[(k + 1) % a->size()];
+      const glm::dvec3& q0 = poly[k];
+      const glm::dvec3& q1 = poly[(k + 1) % count];
       const glm::dvec3 p0 = parallel ? q1 - q0 : q0 - eye;
       const glm::dvec3 p1 = parallel ? this->Direction : q1 - eye;
       glm::dvec3 n = glm::cross(p0, p1);
@@ -483,10 +558,10 @@ void PortalTraversal::crossPortal(std::uint32_t index, std::int32_t to, std::uin
     r.edgePlanes = edges;
     r.planeCount += edges;
     r.firstVertex = static_cast<std::uint32_t>(this->Vertices.size());
-    r.vertexCount = static_cast<std::uint32_t>(a->size());
-    this->Vertices.insert(this->Vertices.end(), a->begin(), a->end());
+    r.vertexCount = static_cast<std::uint32_t>(count);
+    this->Vertices.insert(this->Vertices.end(), poly, poly + count);
   }
-  if (this->attach(to, id, true))
+  if (this->attach(to, id, false))
   {
     ++this->Stats.portalsTraversed;
   }
@@ -573,10 +648,12 @@ void PortalTraversal::run(const PortalGraph& graph, const PortalView& view,
       continue; // merged into a bigger region since it was queued
     }
     ++this->Stats.regionsExpanded;
-    const GraphRoom& room = graph.rooms()[static_cast<std::size_t>(w.node)];
-    for (const std::uint32_t pi : room.portals)
+    // A copy: crossings append to Regions.
+    const Region parent = this->Regions[w.region];
+    const auto node = static_cast<std::size_t>(w.node);
+    for (std::uint32_t e = this->ExitStart[node]; e < this->ExitStart[node + 1]; ++e)
     {
-      this->crossPortal(pi, graph.portals()[pi].other(w.node), w.region);
+      this->crossPortal(this->Exits[e], w.region, parent);
       if (this->FrustumOnly)
       {
         return;

@@ -117,11 +117,10 @@ inline double distanceToConvex(const std::vector<glm::dvec3>& hull, const glm::d
  * Sutherland-Hodgman: clip the polygon @p in against the half-space dot(n, p) + d >= -slack,
  * writing the result to @p out (which must not alias @p in). A convex input stays convex.
  */
-inline void clipPolygon(const std::vector<glm::dvec3>& in, const glm::dvec4& plane, double slack,
+inline void clipPolygon(const glm::dvec3* in, std::size_t n, const glm::dvec4& plane, double slack,
   std::vector<glm::dvec3>& out)
 {
   out.clear();
-  const std::size_t n = in.size();
   if (n == 0)
   {
     return;
@@ -144,6 +143,25 @@ inline void clipPolygon(const std::vector<glm::dvec3>& in, const glm::dvec4& pla
     prev = &cur;
     dPrev = dCur;
   }
+}
+
+inline void clipPolygon(const std::vector<glm::dvec3>& in, const glm::dvec4& plane, double slack,
+  std::vector<glm::dvec3>& out)
+{
+  clipPolygon(in.data(), in.size(), plane, slack, out);
+}
+
+/// Whether clipPolygon() would return the polygon unchanged: every vertex kept by @p plane.
+inline bool allKept(const glm::dvec3* in, std::size_t n, const glm::dvec4& plane, double slack)
+{
+  for (std::size_t k = 0; k < n; ++k)
+  {
+    if (!(planeDistance(plane, in[k]) + slack >= 0.0))
+    {
+      return false;
+    }
+  }
+  return true;
 }
 
 } // namespace geometry

@@ -48,7 +48,14 @@
  *   portal or its clipped portal lies beyond that plane (else its rays may reach portals the
  *   other's may not).
  * - Per frame, each portal is clipped by the eye plane and the far plane once, on first use, and
- *   kept for every region that tests it (the per-frame cache of clipped portal polygons).
+ *   kept for every region that tests it (the per-frame cache of clipped portal polygons), with
+ *   its screen rectangle.
+ * - Containment is tested before work, not after: a crossing whose largest possible region (the
+ *   cached portal within the parent's rectangle; clipping keeps a polygon inside its input's
+ *   hull) lies in a region the room already has stops before any clipping, and a new region's
+ *   planes are made only once it is known not to lie in one. Planes that keep all of a polygon
+ *   do not copy it. On open levels most crossings end in containment (Freedoom MAP12 from its
+ *   player starts: 838 of 1,281 a frame).
  *
  * Tolerances: planes are compared with a slack of 10x PortalGraph::tolerance() and rectangles are
  * grown by 1e-9 in NDC, always in the direction that keeps more. A region counts as contained in
@@ -198,6 +205,7 @@ private:
     std::uint32_t stamp = 0;
     std::uint32_t first = 0; ///< Into ClippedVertices.
     std::uint32_t count = 0; ///< < 3: nothing of it in front of the eye and before the far plane.
+    glm::dvec4 rect{ 0.0 };  ///< Its NDC bounds (ndcBounds()).
   };
   struct Work
   {
@@ -210,11 +218,34 @@ private:
   void fallBack(Fallback why);
   std::uint32_t addRegion(const glm::dvec4& rect);
   bool attach(std::int32_t node, std::uint32_t region, bool checkSubsumed);
-  bool subsumed(const Region& inner, const Region& outer) const;
-  void crossPortal(std::uint32_t index, std::int32_t to, std::uint32_t from);
+  /// What the containment test reads of a region: its rectangle, entry portal and clipped portal.
+  struct RegionShape
+  {
+    glm::dvec4 rect;
+    std::int32_t via;
+    const glm::dvec3* vertices;
+    std::uint32_t vertexCount;
+  };
+  RegionShape shapeOf(const Region& r) const;
+  /// Whether @p inner lies in @p outer (see the tolerances above).
+  bool subsumed(const RegionShape& inner, const Region& outer) const;
+  /// Whether @p inner lies in one of the regions @p node already has.
+  bool subsumedInNode(std::int32_t node, const RegionShape& inner) const;
+  /// A portal seen from one of its nodes, with what the first tests read (kept together).
+  struct Exit
+  {
+    glm::dvec3 lo, hi;    ///< The portal's bounds.
+    std::uint32_t portal; ///< Index in the graph's portals.
+    std::int32_t to;      ///< The node on its other side.
+  };
+  void buildExits(const PortalGraph& graph);
+  /// Cross @p exit from region @p from (@p parent: a copy of it).
+  void crossPortal(const Exit& exit, std::uint32_t from, const Region& parent);
   /// The portal clipped by the eye and far planes (cached for the frame).
   const ClippedPortal& clippedPortal(std::uint32_t index);
   glm::dvec4 rectPlane(int side, double value) const;
+  /// The NDC bounding rectangle of a polygon in front of the eye, grown by the rectangle slack.
+  glm::dvec4 ndcBounds(const glm::dvec3* poly, std::size_t count) const;
   void startRegion(std::int32_t node, bool expand);
   /// The start nodes of a frame (falls back when there are none to trust).
   EyeLocation startNodes(
@@ -243,6 +274,9 @@ private:
   std::vector<Work> Stack;
   std::vector<glm::dvec3> ClipA, ClipB;
   std::vector<ClippedPortal> Clipped;
+  /// Per node, its exits: Exits[ExitStart[n] .. ExitStart[n + 1]) (rebuilt with the graph).
+  std::vector<Exit> Exits;
+  std::vector<std::uint32_t> ExitStart;
   std::vector<glm::dvec3> ClippedVertices;
   std::uint32_t Frame = 0;
   /// The graph of the previous frame (address, fingerprint and node count): when it is the same

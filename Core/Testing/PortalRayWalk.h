@@ -1,8 +1,8 @@
 // A ray from the eye walked through the portal graph: the oracle for "a line of sight through
-// portals reaches this room". Used by scenevis_pvs_bench to check the rooms the exact traversal
-// reaches and the PVS leaves out: if a ray from the eye crosses a chain of portals, each of the
-// room the ray is in, in order, into the room, the room is visible through portals from the eye's
-// room and a conservative PVS must hold it.
+// portals reaches this room". If a ray from the eye crosses a chain of portals, each of the room
+// the ray is in, in order, into the room, the room is visible through portals from the eye's room:
+// a conservative PVS must hold it (scenevis_pvs_bench), and a region of the exact traversal must
+// hold the ray beyond each crossing (TestPortalSightLines).
 #ifndef scenevis_bench_PortalRayWalk_h
 #define scenevis_bench_PortalRayWalk_h
 
@@ -68,7 +68,8 @@ inline std::vector<std::vector<std::uint32_t>> PortalsOfNodes(const portals::Por
 /// each time the nearest portal of the node it is in (never the one it came through), crossed
 /// from inside that room into the other; @p enter(node) for every node entered (return false to
 /// stop). A ray from the eye may leave a room through a wall and meet one of its portals from the
-/// far side; such a path is no line of sight, and the walk ends there.
+/// far side; such a path is no line of sight, and the walk ends there. @p enter also gets the
+/// ray parameter of the crossing (the point eye + t d on the portal).
 template <typename Enter>
 void RayWalk(const portals::PortalGraph& graph,
   const std::vector<std::vector<std::uint32_t>>& portalsOf, std::int32_t start,
@@ -110,7 +111,7 @@ void RayWalk(const portals::PortalGraph& graph,
     node = to;
     tNow = best;
     came = next;
-    if (!enter(node))
+    if (!enter(node, best))
     {
       return;
     }
@@ -119,12 +120,12 @@ void RayWalk(const portals::PortalGraph& graph,
 
 /// Whether RayWalk() from @p start enters node @p target.
 inline bool RayReaches(const portals::PortalGraph& graph,
-  const std::vector<std::vector<std::uint32_t>>& portalsOf, std::int32_t start,
-  std::int32_t target, const glm::dvec3& eye, const glm::dvec3& d)
+  const std::vector<std::vector<std::uint32_t>>& portalsOf, std::int32_t start, std::int32_t target,
+  const glm::dvec3& eye, const glm::dvec3& d)
 {
   bool reached = start == target;
   RayWalk(graph, portalsOf, start, eye, d,
-    [&reached, target](std::int32_t node)
+    [&reached, target](std::int32_t node, double)
     {
       reached = node == target;
       return !reached;

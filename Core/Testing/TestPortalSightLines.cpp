@@ -1,0 +1,261 @@
+// Specification of the exact traversal against sight lines: a ray from the eye that crosses a
+// chain of portals lies, beyond each crossing, in a region of the room it enters. This is what
+// lets the culler keep every object such a ray can meet; the oracle walks the ray through the
+// portals itself (PortalRayWalk.h), so it does not share the traversal's clipping, region
+// containment or merging.
+#include "AxisQuad.h"
+#include "PortalRayWalk.h"
+#include "scenevis/PortalGraph.h"
+#include "scenevis/PortalTraversal.h"
+#include "scenevis/Scenes.h"
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <random>
+#include <string>
+#include <vector>
+
+using namespace scenevis;
+using namespace scenevis::portals;
+
+namespace
+{
+/// Mazes with open halls: rooms reached by many chains of portals, so regions are contained in
+/// others, merged and clipped many times over.
+std::vector<scenes::MazeConfig> openMazes()
+{
+  std::vector<scenes::MazeConfig> configs;
+  const int shapes[][5] = { // x, y, floors, halls per floor, seed
+    { 7, 6, 2, 5, 1 }, { 8, 8, 2, 1, 2 }, { 10, 9, 1, 4, 3 }, { 6, 6, 3, 2, 4 }
+  };
+  for (const auto& s : shapes)
+  {
+    scenes::MazeConfig c;
+    c.roomsX = s[0];
+    c.roomsY = s[1];
+    c.floors = s[2];
+    c.hallsPerFloor = s[3];
+    c.seed = static_cast<std::uint64_t>(s[4]);
+    c.aligned = 0.8; // long sight lines
+    configs.push_back(c);
+  }
+  return configs;
+}
+
+/// An open floor as game levels have it: nx x ny cells of jittered widths, one storey, every face
+/// between two cells either open from wall to wall (a full-face portal, 70 %) or a wall. A room
+/// is reached along many chains of portals whose cones nest, so the traversal's regions are
+/// often contained in others (and merged), unlike in the mazes, whose openings sit inside walls.
+struct OpenFloor
+{
+  PolygonMesh mesh;
+  std::vector<std::int32_t> roomOfPolygon;
+  std::vector<PortalDesc> portals;
+  std::vector<Box> cells;
+
+  OpenFloor(int nx, int ny, std::uint64_t seed)
+  {
+    std::mt19937_64 rng(seed);
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    std::vector<double> xs{ 0.0 }, ys{ 0.0 };
+    for (int i = 0; i < nx; ++i)
+    {
+      xs.push_back(xs.back() + 0.3 + 2.0 * u(rng));
+    }
+    for (int j = 0; j < ny; ++j)
+    {
+      ys.push_back(ys.back() + 0.3 + 2.0 * u(rng));
+    }
+    const double h = 3.0;
+    const auto id = [nx](int i, int j) { return j * nx + i; };
+    const auto face = [this](std::int32_t room, int axis, double at, bool positive, double u0,
+                        double u1, double v0, double v1)
+    {
+      portaltest::addAxisQuad(this->mesh, axis, at, positive, u0, u1, v0, v1);
+      this->roomOfPolygon.push_back(room);
+    };
+    for (int j = 0; j < ny; ++j)
+    {
+      for (int i = 0; i < nx; ++i)
+      {
+        Box cell;
+        cell.extend(glm::dvec3(xs[i], ys[j], 0.0));
+        cell.extend(glm::dvec3(xs[i + 1], ys[j + 1], h));
+        this->cells.push_back(cell);
+        face(id(i, j), 2, 0.0, true, xs[i], xs[i + 1], ys[j], ys[j + 1]);
+        face(id(i, j), 2, h, false, xs[i], xs[i + 1], ys[j], ys[j + 1]);
+        // The face to +x (axis 0: u = y, v = z) and to +y (axis 1: u = z, v = x).
+        for (const int axis : { 0, 1 })
+        {
+          const bool last = axis == 0 ? i + 1 == nx : j + 1 == ny;
+          const double at = axis == 0 ? xs[i + 1] : ys[j + 1];
+          const double u0 = axis == 0 ? ys[j] : 0.0, u1 = axis == 0 ? ys[j + 1] : h;
+          const double v0 = axis == 0 ? 0.0 : xs[i], v1 = axis == 0 ? h : xs[i + 1];
+          const std::int32_t next =
+            axis == 0 ? (last ? -1 : id(i + 1, j)) : (last ? -1 : id(i, j + 1));
+          if (!last && u(rng) < 0.8)
+          {
+            std::vector<glm::dvec3> quad;
+            for (int k = 0; k < 4; ++k)
+            {
+              glm::dvec3 p(0.0);
+              p[axis] = at;
+              p[(axis + 1) % 3] = (k == 1 || k == 2) ? u1 : u0;
+              p[(axis + 2) % 3] = k >= 2 ? v1 : v0;
+              quad.push_back(p);
+            }
+            this->portals.push_back(PortalDesc{ quad, id(i, j), next });
+            continue;
+          }
+          face(id(i, j), axis, at, false, u0, u1, v0, v1);
+          if (next >= 0)
+          {
+            face(next, axis, at, true, u0, u1, v0, v1);
+          }
+        }
+        // Exterior walls to -x and -y.
+        if (i == 0)
+        {
+          face(id(i, j), 0, 0.0, true, ys[j], ys[j + 1], 0.0, h);
+        }
+        if (j == 0)
+        {
+          face(id(i, j), 1, 0.0, true, 0.0, h, xs[i], xs[i + 1]);
+        }
+      }
+    }
+  }
+
+  CellSceneInput input() const
+  {
+    CellSceneInput in;
+    in.mesh = &this->mesh;
+    in.roomOfPolygon = this->roomOfPolygon;
+    in.portals = this->portals;
+    in.roomCount = static_cast<std::int32_t>(this->cells.size());
+    return in;
+  }
+};
+
+/// A tiny box around @p p: boxVisible() of it asks whether a region of the room holds p.
+Box around(const glm::dvec3& p, double half)
+{
+  Box b;
+  b.extend(p - glm::dvec3(half));
+  b.extend(p + glm::dvec3(half));
+  return b;
+}
+
+/// What the sight-line checks went through.
+struct SightLineCount
+{
+  std::size_t crossings = 0; ///< Ray crossings checked.
+  std::size_t subsumed = 0;  ///< Regions the traversals found contained in others.
+  std::size_t merged = 0;    ///< Merges of a room's regions.
+};
+
+/**
+ * From @p views random eyes in the cells, 90-degree views: each of 40 x 40 rays from the eye is
+ * walked through the portals, and beyond each portal it crosses, the room it enters must hold
+ * the ray's point in a region (boxVisible() of a tiny box around it).
+ */
+void expectSightLinesInRegions(const PortalGraph& graph, const std::vector<Box>& cells,
+  std::uint64_t seed, int views, const TraversalOptions& options, const std::string& name,
+  SightLineCount& count)
+{
+  constexpr int kRays = 40; // per side of the view
+  const auto portalsOf = bench::PortalsOfNodes(graph);
+  const double size = graph.buildingBounds().diagonal();
+  std::mt19937_64 rng(seed * 31 + 7);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  PortalTraversal traversal; // reused across views, as a culler does
+  for (int v = 0; v < views && !::testing::Test::HasFailure(); ++v)
+  {
+    const Box& cell = cells[rng() % cells.size()];
+    const glm::dvec3 eye = cell.lo +
+      (cell.hi - cell.lo) * glm::dvec3(0.2 + 0.6 * u(rng), 0.2 + 0.6 * u(rng), 0.3 + 0.4 * u(rng));
+    const double yaw = 6.283185307 * u(rng), pitch = 0.4 * (u(rng) - 0.5);
+    const glm::dvec3 dir(
+      std::cos(yaw) * std::cos(pitch), std::sin(yaw) * std::cos(pitch), std::sin(pitch));
+    PortalView view;
+    view.eye = eye;
+    view.clipFromWorld = glm::perspective(glm::radians(90.0), 1.0, 1e-3 * size, 2.0 * size) *
+      glm::lookAt(eye, eye + dir, glm::dvec3(0, 0, 1));
+    traversal.run(graph, view, options);
+    ASSERT_EQ(traversal.stats().fallback, Fallback::None) << name << ": the eye is in a room";
+    count.subsumed += traversal.stats().regionsSubsumed;
+    count.merged += traversal.stats().regionsMerged;
+    const EyeLocation start = graph.locate(eye, 0.0, OutsidePolicy::ExteriorPortals);
+    const glm::dmat4 worldFromClip = glm::inverse(view.clipFromWorld);
+    for (int i = 0; i < kRays * kRays; ++i)
+    {
+      const double x = -1.0 + 2.0 * ((i % kRays) + 0.5) / kRays;
+      const double y = -1.0 + 2.0 * ((i / kRays) + 0.5) / kRays;
+      const glm::dvec4 far = worldFromClip * glm::dvec4(x, y, 1.0, 1.0);
+      const glm::dvec3 d = glm::normalize(glm::dvec3(far) / far.w - eye);
+      for (const std::int32_t room : start.nodes)
+      {
+        bench::RayWalk(graph, portalsOf, room, eye, d,
+          [&](std::int32_t node, double t)
+          {
+            // A point on the ray just beyond the portal, well inside the view's depth range.
+            const glm::dvec3 p = eye + (t + 1e-4 * size) * d;
+            ++count.crossings;
+            EXPECT_TRUE(traversal.boxVisible(node, around(p, 1e-9 * size)))
+              << name << ", view " << v << ", ray " << i << ": room " << node
+              << " entered at t = " << t << " is outside every region of it";
+            return !::testing::Test::HasFailure();
+          });
+      }
+    }
+  }
+}
+} // namespace
+
+TEST(PortalTraversal, SightLinesThroughMazesLieInARegionOfEachRoomTheyEnter)
+{
+  SightLineCount count;
+  for (const scenes::MazeConfig& config : openMazes())
+  {
+    const scenes::BuildingScene maze = scenes::maze(config);
+    std::vector<Box> cells;
+    for (const auto& room : maze.rooms)
+    {
+      cells.push_back(room.bounds);
+    }
+    expectSightLinesInRegions(PortalGraph::build(cellSceneOf(maze)), cells, config.seed, 16,
+      TraversalOptions(), "maze seed " + std::to_string(config.seed), count);
+  }
+  std::printf("mazes: %zu crossings checked; regions subsumed %zu, merged %zu\n", count.crossings,
+    count.subsumed, count.merged);
+  EXPECT_GT(count.crossings, 20000u) << "the views look through many portals";
+}
+
+TEST(PortalTraversal, SightLinesThroughOpenFloorsLieInARegionOfEachRoomTheyEnter)
+{
+  SightLineCount count;
+  for (const std::uint64_t seed : { 1u, 2u, 3u, 4u, 5u, 6u, 7u, 8u })
+  {
+    const OpenFloor floor(20, 14, seed);
+    const PortalGraph graph = PortalGraph::build(floor.input());
+    // The default bound on regions per room, and a bound of 2 that merges often.
+    for (const std::size_t regions : { 8u, 2u })
+    {
+      TraversalOptions options;
+      options.maxRegionsPerRoom = regions;
+      expectSightLinesInRegions(graph, floor.cells, seed, 12, options,
+        "open floor seed " + std::to_string(seed) + ", " + std::to_string(regions) +
+          " regions per room",
+        count);
+    }
+  }
+  std::printf("open floors: %zu crossings checked; regions subsumed %zu, merged %zu\n",
+    count.crossings, count.subsumed, count.merged);
+  EXPECT_GT(count.crossings, 20000u) << "the views look through many portals";
+  EXPECT_GT(count.subsumed, 1000u) << "regions contained in others: the open floors' point";
+  EXPECT_GT(count.merged, 100u) << "and rooms whose regions are merged";
+}
