@@ -12,6 +12,7 @@
 #include "vtkObjectFactory.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
+#include "vtkStreamingDemandDrivenPipeline.h"
 #include "vtkStringArray.h"
 #include "vtkUnsignedCharArray.h"
 
@@ -22,6 +23,7 @@
 #include <cmath>
 #include <cstring>
 #include <exception>
+#include <vector>
 
 vtkStandardNewMacro(vtkDemoSceneSource);
 
@@ -90,6 +92,74 @@ void ToPolyData(const scenevis::scenes::Scene& scene, vtkPolyData* output)
   }
   output->GetFieldData()->AddArray(names);
   output->GetFieldData()->AddArray(partColors);
+}
+
+/**
+ * Keep only piece @p piece of @p pieces of a scene: whole parts, in contiguous runs of part ids
+ * balanced by polygons (part p goes to the piece its first polygon falls in when the polygons are
+ * counted in part order), with the points they use. Cell data follows the cells; the field data
+ * (part names and colours, indexed by the global PartId) stays whole.
+ */
+void KeepPiece(vtkPolyData* pd, int piece, int pieces)
+{
+  auto* partIds = vtkIdTypeArray::SafeDownCast(pd->GetCellData()->GetArray("PartId"));
+  const vtkIdType cells = pd->GetNumberOfCells();
+  if (!partIds || cells == 0)
+  {
+    return;
+  }
+  vtkIdType parts = 0;
+  for (vtkIdType c = 0; c < cells; ++c)
+  {
+    parts = std::max(parts, partIds->GetValue(c) + 1);
+  }
+  std::vector<vtkIdType> before(static_cast<std::size_t>(parts) + 1, 0);
+  for (vtkIdType c = 0; c < cells; ++c)
+  {
+    ++before[static_cast<std::size_t>(partIds->GetValue(c)) + 1];
+  }
+  for (std::size_t p = 1; p < before.size(); ++p)
+  {
+    before[p] += before[p - 1];
+  }
+  const auto pieceOf = [&](vtkIdType part)
+  { return static_cast<int>(before[static_cast<std::size_t>(part)] * pieces / cells); };
+
+  vtkNew<vtkPolyData> kept;
+  kept->GetCellData()->CopyAllocate(pd->GetCellData());
+  vtkNew<vtkCellArray> polys;
+  vtkNew<vtkPoints> points;
+  points->SetDataType(pd->GetPoints()->GetDataType());
+  std::vector<vtkIdType> newId(static_cast<std::size_t>(pd->GetNumberOfPoints()), -1);
+  vtkIdType npts = 0;
+  const vtkIdType* ids = nullptr;
+  std::vector<vtkIdType> cell;
+  vtkCellArray* in = pd->GetPolys();
+  for (vtkIdType c = 0; c < cells; ++c)
+  {
+    in->GetCellAtId(c, npts, ids);
+    if (pieceOf(partIds->GetValue(c)) != piece)
+    {
+      continue;
+    }
+    cell.assign(ids, ids + npts);
+    for (vtkIdType& id : cell)
+    {
+      vtkIdType& mapped = newId[static_cast<std::size_t>(id)];
+      if (mapped < 0)
+      {
+        mapped = points->InsertNextPoint(pd->GetPoint(id));
+      }
+      id = mapped;
+    }
+    kept->GetCellData()->CopyData(pd->GetCellData(), c, polys->InsertNextCell(npts, cell.data()));
+  }
+  kept->SetPoints(points);
+  kept->SetPolys(polys);
+  kept->GetFieldData()->ShallowCopy(pd->GetFieldData());
+  kept->GetCellData()->SetActiveScalars(
+    pd->GetCellData()->GetScalars() ? pd->GetCellData()->GetScalars()->GetName() : nullptr);
+  pd->ShallowCopy(kept);
 }
 } // namespace
 
@@ -179,10 +249,25 @@ vtkIdType vtkDemoSceneSource::EstimatedTriangleCount() const
 }
 
 //------------------------------------------------------------------------------
+int vtkDemoSceneSource::RequestInformation(
+  vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
+{
+  outputVector->GetInformationObject(0)->Set(CAN_HANDLE_PIECE_REQUEST(), 1);
+  return 1;
+}
+
+//------------------------------------------------------------------------------
 int vtkDemoSceneSource::RequestData(
   vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
 {
   vtkPolyData* output = vtkPolyData::GetData(outputVector);
+  vtkInformation* outInfo = outputVector->GetInformationObject(0);
+  const int piece = outInfo->Has(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER())
+    ? outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER())
+    : 0;
+  const int pieces = outInfo->Has(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES())
+    ? outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES())
+    : 1;
   namespace scenes = scenevis::scenes;
   const vtkIdType estimate = this->EstimatedTriangleCount();
   if (estimate > this->MaximumTriangleCount)
@@ -233,6 +318,10 @@ int vtkDemoSceneSource::RequestData(
       }
       default:
         break;
+    }
+    if (pieces > 1)
+    {
+      KeepPiece(output, piece, pieces);
     }
   }
   catch (const std::exception& e)

@@ -18,6 +18,12 @@
  * - SCENE_BUILDING: Floors x RoomsX x RoomsY rooms with doors, windows, stairs and furniture.
  *
  * Points are double precision (the generators work in double; Origin shifts the CAD assembly).
+ *
+ * Pieces (parallel pipelines, e.g. ParaView's MPI ranks): piece i of n holds whole parts, a
+ * contiguous run of PartIds balanced by polygons, and only the points they use; PartId keeps
+ * its scene-wide value and the field data stays whole. A piece may be empty (more pieces than
+ * parts; a piece number outside [0, n) is empty too). The scene is generated whole on every
+ * piece, then cut.
  */
 
 #ifndef vtkDemoSceneSource_h
@@ -85,6 +91,7 @@ protected:
   vtkDemoSceneSource();
   ~vtkDemoSceneSource() override = default;
 
+  int RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 
   /// The size of the scene the settings ask for, in triangles (an estimate for CAD and building).

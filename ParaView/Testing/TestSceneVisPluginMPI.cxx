@@ -4,7 +4,8 @@
 // serve it), without Python (Debian's python3-paraview conflicts with python3-vtk9).
 //
 // Each scene (the 64 overlapping translucent spheres of "SceneVis Demo Scene", and with
-// --engine the real 2CylinderEngine, opacity 0.4) is produced on rank 0 only and drawn in
+// --engine the real 2CylinderEngine, opacity 0.4) is produced in pieces (the demo source gives
+// each rank whole parts; the engine is read on rank 0 only) and drawn in
 // three views: "SceneVis Ordered Translucency" (SortTranslucentGeometry on), ParaView's render
 // view with 100 depth peels (the reference), and ParaView's render view as it comes (its
 // default translucency). With more than one rank ParaView redistributes the translucent data
@@ -31,6 +32,7 @@
 #include "vtkNew.h"
 #include "vtkPNGReader.h"
 #include "vtkPNGWriter.h"
+#include "vtkPVDataInformation.h"
 #include "vtkPolyData.h"
 #include "vtkProcessModule.h"
 #include "vtkSMParaViewPipelineController.h"
@@ -199,7 +201,7 @@ void RenderScene(vtkSMSessionProxyManager* pxm, vtkSMParaViewPipelineController*
   }
 }
 
-/// Demo scene @p sceneId of the plugin's source (produced on rank 0: it reads no piece request).
+/// Demo scene @p sceneId of the plugin's source, generated in pieces: each rank makes its parts.
 void RunDemoScene(vtkSMSessionProxyManager* pxm, vtkSMParaViewPipelineController* controller,
   int sceneId, const std::string& scene, const Options& options, int ranks)
 {
@@ -212,10 +214,9 @@ void RunDemoScene(vtkSMSessionProxyManager* pxm, vtkSMParaViewPipelineController
   vtkSMPropertyHelper(source, "Scene").Set(sceneId);
   source->UpdateVTKObjects();
   source->UpdatePipeline();
-  auto* output = vtkPolyData::SafeDownCast(
-    vtkAlgorithm::SafeDownCast(source->GetClientSideObject())->GetOutputDataObject(0));
+  // The bounds of every rank's piece together (rank 0's own piece is only part of the scene).
   double bounds[6];
-  output->GetBounds(bounds);
+  source->GetDataInformation(0)->GetBounds(bounds);
   RenderScene(pxm, controller, source, bounds, scene, options, ranks);
 }
 
