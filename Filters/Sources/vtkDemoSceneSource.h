@@ -18,6 +18,8 @@
  * - SCENE_BUILDING: Floors x RoomsX x RoomsY rooms with doors, windows, stairs and furniture.
  *
  * Points are double precision (the generators work in double; Origin shifts the CAD assembly).
+ *
+ * @sa vtkDemoScenePortals.h (the building's portals, for vtkPortalCuller)
  */
 
 #ifndef vtkDemoSceneSource_h
