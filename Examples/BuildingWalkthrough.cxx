@@ -4,11 +4,11 @@
 // visited, props and triangles drawn, cull time).
 //
 //   BuildingWalkthrough [output-dir]
+#include "vtkDemoScenePortals.h"
 #include "vtkPortalCuller.h"
+#include "vtkSceneVisHeadlessWindows.h"
 
 #include "scenevis/Scenes.h"
-#include "scenevis/testing/RenderWindow.h"
-#include "scenevis/testing/Scenes.h"
 
 #include <glm/geometric.hpp>
 
@@ -132,7 +132,7 @@ int main(int argc, char* argv[])
   std::filesystem::create_directories(out);
   const scenes::BuildingScene b = scenes::building(2, 4, 4, 1);
 
-  auto window = scenevis::testing::MakeRenderWindow(480, 360);
+  auto window = scenevis::headless::MakeRenderWindow(480, 360);
   vtkNew<vtkRenderer> renderer;
   renderer->SetBackground(0.55, 0.7, 0.9); // sky, seen through windows
   window->AddRenderer(renderer);
@@ -153,7 +153,7 @@ int main(int argc, char* argv[])
   renderer->AddLight(headlight);
 
   vtkNew<vtkPortalCuller> culler;
-  culler->SetPortals(scenevis::testing::MakePortalPolyData(b));
+  culler->SetPortals(scenevis::MakePortalPolyData(b));
   culler->SetMode(vtkPortalCuller::MODE_EXACT_FRUSTUM);
   renderer->AddCuller(culler);
 

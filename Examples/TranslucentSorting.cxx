@@ -10,8 +10,8 @@
 #include "vtkDemoSceneSource.h"
 #include "vtkOrderedTranslucentPass.h"
 
-#include "scenevis/testing/ImageCompare.h"
-#include "scenevis/testing/RenderWindow.h"
+#include "vtkSceneVisHeadlessWindows.h"
+#include "vtkSceneVisImageCompare.h"
 
 #include <vtkActor.h>
 #include <vtkCamera.h>
@@ -56,7 +56,7 @@ int main(int argc, char* argv[])
   vtkNew<vtkOrderedTranslucentPass> pass;
   renderer->SetPass(pass);
 
-  vtkSmartPointer<vtkRenderWindow> window = scenevis::testing::MakeRenderWindow(600, 600);
+  vtkSmartPointer<vtkRenderWindow> window = scenevis::headless::MakeRenderWindow(600, 600);
   window->AddRenderer(renderer);
   vtkCamera* camera = renderer->GetActiveCamera();
   camera->SetPosition(5.5, 3.7, 7.3);
@@ -68,7 +68,7 @@ int main(int argc, char* argv[])
     camera->Azimuth(frame == 0 ? 0.0 : 30.0);
     renderer->ResetCameraClippingRange();
     const std::string file = prefix + "-" + std::to_string(frame) + ".png";
-    if (!scenevis::testing::WritePng(scenevis::testing::CaptureImage(window), file))
+    if (!scenevis::headless::WritePng(scenevis::headless::CaptureImage(window), file))
     {
       std::cerr << "cannot write " << file << "\n";
       return EXIT_FAILURE;

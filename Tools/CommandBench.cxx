@@ -6,10 +6,10 @@
 #include "SceneLoading.h"
 #include "ViewSetup.h"
 
-#include "scenevis/testing/IdBuffer.h"
-#include "scenevis/testing/ImageCompare.h"
-#include "scenevis/testing/Models.h"
-#include "scenevis/testing/RenderWindow.h"
+#include <vtkSceneVisDataCache.h>
+#include <vtkSceneVisHeadlessWindows.h>
+#include <vtkSceneVisIdBuffer.h>
+#include <vtkSceneVisImageCompare.h>
 
 #include <vtkAxis.h>
 #include <vtkCamera.h>
@@ -111,7 +111,8 @@ BenchRow BenchMethod(const Options& options, const std::string& method, const st
   vtkPolyData* pd, const std::vector<vtkSmartPointer<vtkPolyData>>& parts, vtkRenderWindow* window,
   std::vector<vtkSmartPointer<vtkImageData>>& reference)
 {
-  namespace st = scenevis::testing;
+  namespace headless = scenevis::headless;
+  namespace idbuffer = scenevis::idbuffer;
   BenchRow row;
   row.method = method;
   row.scene = label;
@@ -149,15 +150,15 @@ BenchRow BenchMethod(const Options& options, const std::string& method, const st
       fragments.push_back(static_cast<double>(pipeline.Fragments()));
 
       // Accuracy, untimed: the camera did not move, so nothing is sorted again.
-      vtkSmartPointer<vtkImageData> image = st::CaptureImage(window);
+      vtkSmartPointer<vtkImageData> image = headless::CaptureImage(window);
       if (isReference)
       {
         reference.push_back(image);
       }
       else
       {
-        const st::ImageDifference difference =
-          st::CompareImages(image, reference.at(static_cast<std::size_t>(f)), kBackgroundRgb);
+        const headless::ImageDifference difference =
+          headless::CompareImages(image, reference.at(static_cast<std::size_t>(f)), kBackgroundRgb);
         if (!difference.comparable)
         {
           throw std::runtime_error("cannot compare with the reference: " + difference.problem);
@@ -167,13 +168,13 @@ BenchRow BenchMethod(const Options& options, const std::string& method, const st
       }
       if (vtkSmartPointer<vtkPolyData> drawn = pipeline.DrawnOrder())
       {
-        const st::IdImage painterIds = st::RenderPainterIds(window, drawn, camera);
-        const st::IdImage depthIds = st::RenderVisibleIds(window, drawn, camera);
-        const st::OrderComparison order = st::OrderMatchesDepth(painterIds, depthIds);
+        const idbuffer::IdImage painterIds = idbuffer::RenderPainterIds(window, drawn, camera);
+        const idbuffer::IdImage depthIds = idbuffer::RenderVisibleIds(window, drawn, camera);
+        const idbuffer::OrderComparison order = idbuffer::OrderMatchesDepth(painterIds, depthIds);
         // Without the edge mask: on fine meshes (triangles of a few pixels) nearly every pixel
         // is next to another id, so the masked comparison sees little; every pixel counts here,
         // at the price of a few legitimate differences along intersection lines.
-        const st::OrderComparison unmasked = st::OrderMatchesDepth(
+        const idbuffer::OrderComparison unmasked = idbuffer::OrderMatchesDepth(
           painterIds, depthIds, std::vector<std::uint8_t>(depthIds.ids.size(), std::uint8_t(0)));
         if (!order.problem.empty() || !unmasked.problem.empty())
         {
@@ -265,7 +266,7 @@ void WritePlot(const std::vector<BenchRow>& rows, const std::vector<std::string>
 {
   const int count = static_cast<int>(scenes.size());
   vtkSmartPointer<vtkRenderWindow> window =
-    scenevis::testing::MakeRenderWindow(std::max(1, count) * 520, 900);
+    scenevis::headless::MakeRenderWindow(std::max(1, count) * 520, 900);
   vtkNew<vtkContextView> view;
   view->GetRenderer()->SetBackground(1.0, 1.0, 1.0);
   window->AddRenderer(view->GetRenderer());
@@ -408,9 +409,9 @@ void WritePlot(const std::vector<BenchRow>& rows, const std::vector<std::string>
     chart->SetShowLegend(top);
     chart->GetLegend()->GetLabelProperties()->SetFontSize(13);
   }
-  vtkSmartPointer<vtkImageData> image = scenevis::testing::CaptureImage(window);
+  vtkSmartPointer<vtkImageData> image = scenevis::headless::CaptureImage(window);
   window->RemoveRenderer(view->GetRenderer());
-  if (!scenevis::testing::WritePng(image, path))
+  if (!scenevis::headless::WritePng(image, path))
   {
     throw std::runtime_error("cannot write '" + path + "'");
   }
@@ -424,7 +425,7 @@ int RunBench(const Options& options)
   if (scenes.empty())
   {
     scenes = { "spheres", "cyclic-quads" };
-    if (!scenevis::testing::DataFile("bunny-stl").empty())
+    if (!scenevis::DataFile("bunny-stl").empty())
     {
       scenes.push_back("bunny-stl");
     }
@@ -455,7 +456,7 @@ int RunBench(const Options& options)
             << "\n";
   {
     vtkSmartPointer<vtkRenderWindow> window =
-      scenevis::testing::MakeRenderWindow(options.width, options.height);
+      scenevis::headless::MakeRenderWindow(options.width, options.height);
     for (const std::string& scene : scenes)
     {
       Options sceneOptions = options;

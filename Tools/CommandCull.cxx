@@ -11,8 +11,8 @@
 #include "vtkChunkedPolyDataMapper.h"
 #include "vtkInstancedActor.h"
 
-#include "scenevis/testing/IdBuffer.h"
-#include "scenevis/testing/RenderWindow.h"
+#include <vtkSceneVisHeadlessWindows.h>
+#include <vtkSceneVisIdBuffer.h>
 
 #include <vtkActor.h>
 #include <vtkCamera.h>
@@ -117,13 +117,13 @@ void DescribeExact(std::ostream& json, vtkRenderWindow* window, vtkCamera* camer
   const MethodPipeline& pipeline, const CullSetup& culling,
   const std::unordered_map<vtkProp*, long long>* placementOf)
 {
-  namespace st = scenevis::testing;
+  namespace idbuffer = scenevis::idbuffer;
   const auto start = std::chrono::steady_clock::now();
-  st::IdRenderOptions idOptions;
+  idbuffer::IdRenderOptions idOptions;
   // A fixed clipping range clips what the mode draws too: the exact set must be clipped alike.
   idOptions.cameraClippingRange = fixedClippingRange;
-  const st::IdImage visibleIds = st::RenderIdBuffer(window, pd, camera, idOptions);
-  const std::vector<std::uint32_t> visibleCells = st::VisibleSet(visibleIds);
+  const idbuffer::IdImage visibleIds = idbuffer::RenderIdBuffer(window, pd, camera, idOptions);
+  const std::vector<std::uint32_t> visibleCells = idbuffer::VisibleSet(visibleIds);
   const double exactMs = Milliseconds(start);
 
   // Which cells of the scene were drawn: the chunked mapper's cells, the cells of the actors
@@ -187,7 +187,7 @@ void DescribeExact(std::ostream& json, vtkRenderWindow* window, vtkCamera* camer
   for (std::size_t i = 0; i < visibleIds.ids.size(); ++i)
   {
     const std::uint32_t id = visibleIds.ids[i];
-    if (id == st::kNoId || id >= drawn.size())
+    if (id == idbuffer::kNoId || id >= drawn.size())
       continue;
     ++visiblePixels;
     if (drawn[id])
@@ -246,7 +246,7 @@ int RunCull(const Options& options)
   const bool perCamera = !options.cameras.empty();
   const std::vector<CameraSpec> cameras = CamerasToRun(options);
   vtkSmartPointer<vtkRenderWindow> window =
-    scenevis::testing::MakeRenderWindow(options.width, options.height);
+    scenevis::headless::MakeRenderWindow(options.width, options.height);
   vtkNew<vtkRenderer> renderer;
   window->AddRenderer(renderer);
   double bounds[6];

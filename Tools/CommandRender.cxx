@@ -11,8 +11,8 @@
 #include "SceneLoading.h"
 #include "ViewSetup.h"
 
-#include "scenevis/testing/ImageCompare.h"
-#include "scenevis/testing/RenderWindow.h"
+#include <vtkSceneVisHeadlessWindows.h>
+#include <vtkSceneVisImageCompare.h>
 
 #include <vtkCamera.h>
 #include <vtkImageData.h>
@@ -49,9 +49,9 @@ int RunRender(const Options& options)
     static_cast<double>(scene.compactedBytes);
 
   const auto windowStart = std::chrono::steady_clock::now();
-  const scenevis::testing::Backend backend = scenevis::testing::DefaultBackend();
+  const scenevis::headless::Backend backend = scenevis::headless::DefaultBackend();
   vtkSmartPointer<vtkRenderWindow> window =
-    scenevis::testing::MakeRenderWindow(backend, options.width, options.height);
+    scenevis::headless::MakeRenderWindow(backend, options.width, options.height);
   const double windowMs = Milliseconds(windowStart);
   vtkNew<vtkRenderer> renderer;
   renderer->SetBackground(kBackground[0], kBackground[1], kBackground[2]);
@@ -146,7 +146,7 @@ int RunRender(const Options& options)
     const auto updateStart = std::chrono::steady_clock::now();
     pipeline.Update();
     const auto renderStart = std::chrono::steady_clock::now();
-    vtkSmartPointer<vtkImageData> image = scenevis::testing::CaptureImage(window);
+    vtkSmartPointer<vtkImageData> image = scenevis::headless::CaptureImage(window);
     const double totalMs = Milliseconds(renderStart);
     if (f == 0)
     {
@@ -169,11 +169,11 @@ int RunRender(const Options& options)
     {
       buildMs = pipeline.BuildMs();
     }
-    if (!scenevis::testing::WritePng(image, frame.file))
+    if (!scenevis::headless::WritePng(image, frame.file))
     {
       throw std::runtime_error("cannot write '" + frame.file + "'");
     }
-    if (scenevis::testing::CoveredFraction(image, kBackgroundRgb) <= 0.0)
+    if (scenevis::headless::CoveredFraction(image, kBackgroundRgb) <= 0.0)
     {
       throw std::runtime_error(
         (perCamera ? "camera " + std::to_string(f) + " of " + options.camerasFile + ": "
@@ -210,7 +210,7 @@ int RunRender(const Options& options)
        << "},\n  \"culling\": {\"method\": " << JsonString(plan.cull.method)
        << ", \"reason\": " << JsonString(plan.cull.reason);
   culling.Describe(json);
-  json << "},\n  \"backend\": " << JsonString(scenevis::testing::BackendName(backend))
+  json << "},\n  \"backend\": " << JsonString(scenevis::headless::BackendName(backend))
        << ",\n  \"size\": [" << options.width << ", " << options.height
        << "],\n  \"load_ms\": " << scene.loadMs << ",\n  \"check_ms\": " << scene.checkMs
        << ",\n  \"normals_ms\": " << scene.normalsMs << ",\n  \"window_ms\": " << windowMs
@@ -258,7 +258,7 @@ int RunRender(const Options& options)
             << (translucent ? " (translucent)" : " (opaque)") << "\n";
   std::cout << "  translucency: " << method << " - " << reason << "\n";
   std::cout << "  culling: " << plan.cull.method << " - " << plan.cull.reason << "\n";
-  std::cout << "  back-end: " << scenevis::testing::BackendName(backend) << ", " << options.width
+  std::cout << "  back-end: " << scenevis::headless::BackendName(backend) << ", " << options.width
             << "x" << options.height << "\n";
   std::cout << "  load " << scene.loadMs << " ms, window " << windowMs << " ms" << details.str();
   if (culling.SetupMs() > 0.0)

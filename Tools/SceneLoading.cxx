@@ -9,8 +9,8 @@
 #include "vtkSceneVisModelReader.h"
 
 #include "scenevis/Scenes.h"
-#include "scenevis/testing/Models.h"
-#include "scenevis/testing/Scenes.h"
+#include <vtkDemoScenePortals.h>
+#include <vtkSceneVisDataCache.h>
 
 #include <vtkAbstractArray.h>
 #include <vtkCellArray.h>
@@ -64,7 +64,7 @@ vtkSmartPointer<vtkPolyData> LoadPortals(const std::string& path)
   vtkSmartPointer<vtkPolyData> portals;
   {
     QuietVtkOutput quiet;
-    portals = scenevis::testing::LoadModel(path, &error);
+    portals = LoadModelKeepingNonFinite(path, &error);
   }
   const std::string noCells = "no cells";
   if (!portals && error.size() >= noCells.size() &&
@@ -197,7 +197,7 @@ LoadedScene LoadScene(const Options& options)
     if (demo->GetScene() == vtkDemoSceneSource::SCENE_BUILDING)
     {
       // The same generator call as the source's, for the portals it does not output.
-      loaded.portals = scenevis::testing::MakePortalPolyData(scenevis::scenes::building(
+      loaded.portals = scenevis::MakePortalPolyData(scenevis::scenes::building(
         demo->GetFloors(), demo->GetRoomsX(), demo->GetRoomsY(), demo->GetSeed()));
     }
     if (!options.portals.empty())
@@ -211,7 +211,7 @@ LoadedScene LoadScene(const Options& options)
   std::string description = "file '" + name + "'";
   if (name.find('.') == std::string::npos)
   {
-    const std::string cached = scenevis::testing::DataFile(name);
+    const std::string cached = scenevis::DataFile(name);
     if (cached.empty())
     {
       throw UsageError("--scene '" + name +

@@ -38,13 +38,18 @@ constexpr double kBytesPerPolygon = 44.0;
 constexpr double kBytesPerFileByte = 3.0;
 } // namespace
 
+vtkSmartPointer<vtkPolyData> LoadModelKeepingNonFinite(const std::string& path, std::string* error)
+{
+  return vtkSceneVisModelReader::LoadFile(path, error, false);
+}
+
 vtkSmartPointer<vtkPolyData> LoadModelIsolated(
   const std::string& path, std::string& error, ModelLoader load)
 {
   // VTK's XML reader checks what it reads (a truncated or garbled .vtp is an error, Tool.Truncated*
   // tests): read in this process, which saves writing and reading the model a second time
   // (a third of the time to the first frame of a 48M-triangle .vtp).
-  if (load == scenevis::testing::LoadModel && path.size() > 4 &&
+  if (load == LoadModelKeepingNonFinite && path.size() > 4 &&
     path.compare(path.size() - 4, 4, ".vtp") == 0)
     return load(path, &error);
   return vtkIsolatedRead::Run(

@@ -4,8 +4,6 @@
 #ifndef scenevis_tool_UntrustedFiles_h
 #define scenevis_tool_UntrustedFiles_h
 
-#include "scenevis/testing/Models.h"
-
 #include <vtkLogger.h>
 #include <vtkNew.h>
 #include <vtkOutputWindow.h>
@@ -20,8 +18,8 @@ namespace tool
 {
 
 /// While alive, VTK's output window prints nothing: readers of bad files print multi-line
-/// errors (their XML parsers' too, which LoadModel's error observers cannot see), while the
-/// tool's contract is one line; LoadModel's own message says what went wrong.
+/// errors (their XML parsers' too, which LoadFile's error observer cannot see), while the
+/// tool's contract is one line; LoadFile's own message says what went wrong.
 class QuietVtkOutput
 {
 public:
@@ -53,17 +51,21 @@ private:
   vtkNew<SilentWindow> Silent;
 };
 
+/// The tool's model reading: vtkSceneVisModelReader::LoadFile() with the cells on NaN/Inf points
+/// kept (the tool removes and counts them itself) and the error returned, not printed.
+vtkSmartPointer<vtkPolyData> LoadModelKeepingNonFinite(const std::string& path, std::string* error);
+
 /**
- * LoadModel() in a child process. VTK 9.1's PLY and glTF readers crash on some malformed files
- * (Testing/BadInput lists them); the tool reads files it cannot trust, so a reader crash must cost
- * the child, not the tool: the child writes what it read as an uncompressed .vtp to a temporary
- * file (a few ms per 100k triangles), or its one-line error to a pipe. Without fork, reads in
- * this process; so are .vtp files, whose reader does not crash on bad ones.
+ * LoadModelKeepingNonFinite() (or @p load) in a child process. VTK 9.1's PLY and glTF readers crash
+ * on some malformed files (Testing/BadInput lists them); the tool reads files it cannot trust, so a
+ * reader crash must cost the child, not the tool: the child writes what it read as an uncompressed
+ * .vtp to a temporary file (a few ms per 100k triangles), or its one-line error to a pipe. Without
+ * fork, reads in this process; so are .vtp files, whose reader does not crash on bad ones.
  */
 using ModelLoader = vtkSmartPointer<vtkPolyData> (*)(const std::string&, std::string*);
 
 vtkSmartPointer<vtkPolyData> LoadModelIsolated(
-  const std::string& path, std::string& error, ModelLoader load = scenevis::testing::LoadModel);
+  const std::string& path, std::string& error, ModelLoader load = LoadModelKeepingNonFinite);
 
 /// A cell that names a point the file does not have (a damaged or hand-written file) is an error:
 /// every later step would read out of bounds.

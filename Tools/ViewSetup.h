@@ -5,7 +5,7 @@
 
 #include "CameraFile.h"
 
-#include "scenevis/testing/ImageCompare.h"
+#include <vtkSceneVisImageCompare.h>
 
 class vtkPolyData;
 class vtkRenderer;
@@ -17,7 +17,7 @@ namespace tool
 
 /// The background of every render, exact in 8 bits (image comparisons tell it from the scene).
 constexpr double kBackground[3] = { 26 / 255.0, 26 / 255.0, 31 / 255.0 }; // exact in 8 bits
-const scenevis::testing::Rgb kBackgroundRgb = { 26, 26, 31 };
+const scenevis::headless::Rgb kBackgroundRgb = { 26, 26, 31 };
 
 /// The camera's fixed clipping range (--clipping-range, a camera's "clipping_range"), else one
 /// fitted to the visible props, as after every camera move.

@@ -1,16 +1,27 @@
 // Through the installed SceneVis package: sorts a sphere for a camera (SceneVis::FiltersSorting),
 // reads a VRML part whose material is USEd (SceneVis::IOModels), and renders it offscreen without X
 // through the OSMesa window (SceneVis::RenderingHeadless) with the auto planner attached
-// (SceneVis::RenderingAuto): the frame must show the part's green.
+// (SceneVis::RenderingAuto): the frame must show the part's green. Then the same through the
+// checked window factory and image measures (SceneVis::RenderingHeadless), the part's visible
+// cells by an ID render (SceneVis::RenderingIdBuffer), a demo building's portals
+// (SceneVis::FiltersSources) and the data cache's directory (SceneVis::IOModels).
+#include "scenevis/Scenes.h"
+
 #include <vtkActor.h>
 #include <vtkBSPSortFilter.h>
 #include <vtkCamera.h>
+#include <vtkDemoScenePortals.h>
+#include <vtkImageData.h>
 #include <vtkNew.h>
 #include <vtkPolyData.h>
 #include <vtkPolyDataMapper.h>
 #include <vtkProperty.h>
 #include <vtkRenderWindow.h>
 #include <vtkRenderer.h>
+#include <vtkSceneVisDataCache.h>
+#include <vtkSceneVisHeadlessWindows.h>
+#include <vtkSceneVisIdBuffer.h>
+#include <vtkSceneVisImageCompare.h>
 #include <vtkSceneVisModelReader.h>
 #include <vtkSceneVisOSMesaRenderWindow.h>
 #include <vtkSceneVisPlanner.h>
@@ -110,5 +121,33 @@ int main()
   }
   std::cout << "consumer: rendered " << green << " of " << pixels->GetNumberOfTuples()
             << " pixels green through the installed OSMesa window" << std::endl;
-  return green > pixels->GetNumberOfTuples() / 4 ? EXIT_SUCCESS : EXIT_FAILURE;
+  if (green <= pixels->GetNumberOfTuples() / 4)
+  {
+    return EXIT_FAILURE;
+  }
+
+  vtkSmartPointer<vtkRenderWindow> checked = scenevis::headless::MakeRenderWindow(64, 48);
+  vtkNew<vtkPolyDataMapper> mapperAgain; // mappers keep their buffers in one window's context
+  mapperAgain->SetInputConnection(reader->GetOutputPort());
+  mapperAgain->SetScalarModeToUseCellData();
+  vtkNew<vtkActor> actorAgain;
+  actorAgain->SetMapper(mapperAgain);
+  actorAgain->GetProperty()->LightingOff();
+  vtkNew<vtkRenderer> again;
+  again->AddActor(actorAgain);
+  again->SetActiveCamera(renderer->GetActiveCamera());
+  checked->AddRenderer(again);
+  const double covered = scenevis::headless::CoveredFraction(
+    scenevis::headless::CaptureImage(checked), scenevis::headless::Rgb{ 0, 0, 0 });
+  const std::size_t visible = scenevis::idbuffer::VisibleSet(
+    scenevis::idbuffer::RenderVisibleIds(checked, reader->GetOutput(), again->GetActiveCamera()))
+                                .size();
+  const vtkIdType portals =
+    scenevis::MakePortalPolyData(scenevis::scenes::building(1, 2, 1, 1))->GetNumberOfCells();
+  std::cout << "consumer: " << scenevis::headless::BackendName(scenevis::headless::DefaultBackend())
+            << " window covered " << covered << ", " << visible << " cell(s) visible, " << portals
+            << " portal(s), data cache " << scenevis::DataDirectory() << std::endl;
+  return covered > 0.25 && visible == 1 && portals > 0 && !scenevis::DataDirectory().empty()
+    ? EXIT_SUCCESS
+    : EXIT_FAILURE;
 }

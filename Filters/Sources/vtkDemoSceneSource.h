@@ -24,6 +24,8 @@
  * its scene-wide value and the field data stays whole. A piece may be empty (more pieces than
  * parts; a piece number outside [0, n) is empty too). The scene is generated whole on every
  * piece, then cut.
+ *
+ * @sa vtkDemoScenePortals.h (the building's portals, for vtkPortalCuller)
  */
 
 #ifndef vtkDemoSceneSource_h

@@ -244,7 +244,37 @@ vtkSmartPointer<vtkPolyData> ImportScene(
   result->ShallowCopy(append->GetOutput());
   return result;
 }
+
+/// Swallows the reader's error event: LoadFile() returns the message instead of printing it.
+class IgnoreEvent : public vtkCommand
+{
+public:
+  static IgnoreEvent* New() { return new IgnoreEvent; }
+  void Execute(vtkObject*, unsigned long, void*) override {}
+};
 } // namespace
+
+vtkSmartPointer<vtkPolyData> vtkSceneVisModelReader::LoadFile(
+  const std::string& path, std::string* error, bool removeNonFiniteCells)
+{
+  vtkNew<vtkSceneVisModelReader> reader;
+  vtkNew<IgnoreEvent> quiet;
+  reader->AddObserver(vtkCommand::ErrorEvent, quiet);
+  reader->SetFileName(path.c_str());
+  reader->SetRemoveNonFiniteCells(removeNonFiniteCells);
+  reader->Update();
+  if (*reader->GetErrorMessage())
+  {
+    if (error)
+    {
+      *error = reader->GetErrorMessage();
+    }
+    return nullptr;
+  }
+  auto result = vtkSmartPointer<vtkPolyData>::New();
+  result->ShallowCopy(reader->GetOutput());
+  return result;
+}
 
 std::string vtkSceneVisModelReader::InlineVrmlMaterialUses(const std::string& text)
 {

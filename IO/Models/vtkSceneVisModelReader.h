@@ -55,6 +55,7 @@
 
 #include "SceneVisIOModelsModule.h" // For export macro
 #include "vtkPolyDataAlgorithm.h"
+#include "vtkSmartPointer.h" // For vtkSmartPointer
 
 #include <string> // For std::string
 
@@ -95,6 +96,17 @@ public:
 
   /// Whether the extension of @p fileName is one this reader reads.
   static bool CanReadFile(const char* fileName);
+
+#ifndef __VTK_WRAP__
+  /**
+   * The model in @p path read in one call, as a polydata of its own; nullptr when it cannot be
+   * read, and @p error (if given) then holds the one-line error, which is not printed.
+   * @p removeNonFiniteCells: as SetRemoveNonFiniteCells() (the `scenevis` tool passes false: it
+   * removes such cells itself and says how many).
+   */
+  static vtkSmartPointer<vtkPolyData> LoadFile(
+    const std::string& path, std::string* error = nullptr, bool removeNonFiniteCells = true);
+#endif
 
   /**
    * VRML text with every `material USE NAME` replaced by a copy of the `material DEF NAME

@@ -129,31 +129,6 @@ vtkSmartPointer<vtkPolyData> AppendPolygons(vtkPolyData* a, vtkPolyData* b)
   return result;
 }
 
-vtkSmartPointer<vtkPolyData> MakePortalPolyData(const scenevis::scenes::BuildingScene& building)
-{
-  vtkNew<vtkPoints> points;
-  vtkNew<vtkCellArray> polys;
-  vtkNew<vtkIntArray> a, c;
-  a->SetName("RoomA");
-  c->SetName("RoomB");
-  for (const auto& p : building.portals)
-  {
-    polys->InsertNextCell(static_cast<vtkIdType>(p.polygon.size()));
-    for (const auto& q : p.polygon)
-    {
-      polys->InsertCellPoint(points->InsertNextPoint(q.x, q.y, q.z));
-    }
-    a->InsertNextValue(p.roomA);
-    c->InsertNextValue(p.roomB);
-  }
-  auto pd = vtkSmartPointer<vtkPolyData>::New();
-  pd->SetPoints(points);
-  pd->SetPolys(polys);
-  pd->GetCellData()->AddArray(a);
-  pd->GetCellData()->AddArray(c);
-  return pd;
-}
-
 vtkSmartPointer<vtkPolyData> MakeRoomPolyData(
   const scenevis::scenes::BuildingScene& building, int room, int outsideNode)
 {

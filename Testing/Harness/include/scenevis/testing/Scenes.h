@@ -5,6 +5,7 @@
 #ifndef scenevis_testing_Scenes_h
 #define scenevis_testing_Scenes_h
 
+#include <vtkDemoScenePortals.h>
 #include <vtkSmartPointer.h>
 
 class vtkActor;
@@ -70,9 +71,8 @@ vtkSmartPointer<vtkPolyData> MakeBumpySphere(double radius = 1.5);
 /// The polygons of @p a followed by those of @p b (cell order preserved), in one polydata.
 vtkSmartPointer<vtkPolyData> AppendPolygons(vtkPolyData* a, vtkPolyData* b);
 
-/// The portals of @p building in vtkPortalCuller's format: one polygon per portal, integer cell
-/// arrays RoomA and RoomB.
-vtkSmartPointer<vtkPolyData> MakePortalPolyData(const scenevis::scenes::BuildingScene& building);
+/// The portals of a building in vtkPortalCuller's format (SceneVis::FiltersSources).
+using scenevis::MakePortalPolyData;
 
 /// The polygons of @p building whose room is @p room (all rooms when @p room < -1; -1 is the
 /// outside), with an integer cell array "RoomNode": the polygon's room, or @p outsideNode for the

@@ -30,9 +30,9 @@
 #define scenevis_testing_StrictVtkOutput_h
 
 #include <vtkOutputWindow.h>
+#include <vtkSceneVisRecordingOutputWindow.h>
 #include <vtkSmartPointer.h>
 
-#include <functional>
 #include <mutex>
 #include <string>
 #include <vector>
@@ -42,96 +42,10 @@ namespace scenevis
 namespace testing
 {
 
-/// One message that VTK sent to the output window.
-struct VtkMessage
-{
-  enum class Kind
-  {
-    Error,
-    Warning,        ///< vtkWarningMacro
-    GenericWarning, ///< vtkGenericWarningMacro
-    Text            ///< plain DisplayText (not checked)
-  };
-  Kind kind;
-  std::string text;
-};
-
-/// "error", "warning", "generic warning" or "text".
-const char* KindName(VtkMessage::Kind kind);
-
-} // namespace testing
-} // namespace scenevis
-
-/**
- * @class vtkSceneVisRecordingOutputWindow
- * @brief vtkOutputWindow that records errors and warnings, then passes them on.
- *
- * Messages are passed to Next (normally the output window that was installed before), unless the
- * Filter says the message is consumed. Thread-safe (VTK may report from worker threads).
- */
-class vtkSceneVisRecordingOutputWindow : public vtkOutputWindow
-{
-public:
-  static vtkSceneVisRecordingOutputWindow* New();
-  vtkTypeMacro(vtkSceneVisRecordingOutputWindow, vtkOutputWindow)
-
-    void DisplayText(const char* text) override;
-  void DisplayErrorText(const char* text) override;
-  void DisplayWarningText(const char* text) override;
-  void DisplayGenericWarningText(const char* text) override;
-  void DisplayDebugText(const char* text) override;
-
-  /// The window messages are passed on to (may be null: then they are only recorded).
-  void SetNext(vtkOutputWindow* next) { this->Next = next; }
-
-  /// Returns true for a message that must not be passed on (e.g. an expected error).
-  void SetFilter(std::function<bool(const scenevis::testing::VtkMessage&)> filter);
-
-  std::vector<scenevis::testing::VtkMessage> GetMessages() const;
-  void ClearMessages();
-
-protected:
-  vtkSceneVisRecordingOutputWindow() = default;
-  ~vtkSceneVisRecordingOutputWindow() override = default;
-
-private:
-  vtkSceneVisRecordingOutputWindow(const vtkSceneVisRecordingOutputWindow&) = delete;
-  void operator=(const vtkSceneVisRecordingOutputWindow&) = delete;
-
-  void Record(scenevis::testing::VtkMessage::Kind kind, const char* text);
-
-  mutable std::mutex Mutex;
-  std::vector<scenevis::testing::VtkMessage> Messages;
-  std::function<bool(const scenevis::testing::VtkMessage&)> Filter;
-  vtkSmartPointer<vtkOutputWindow> Next;
-};
-
-namespace scenevis
-{
-namespace testing
-{
-
-/**
- * RAII: while alive, records all VTK messages and passes all of them on to the previously
- * installed output window (so an enclosing StrictVtkOutput still judges them).
- */
-class ScopedVtkOutputRecorder
-{
-public:
-  ScopedVtkOutputRecorder();
-  ~ScopedVtkOutputRecorder();
-  ScopedVtkOutputRecorder(const ScopedVtkOutputRecorder&) = delete;
-  ScopedVtkOutputRecorder& operator=(const ScopedVtkOutputRecorder&) = delete;
-
-  std::vector<VtkMessage> Messages() const;
-  /// Error and warning texts, each prefixed by its kind.
-  std::vector<std::string> ErrorsAndWarnings() const;
-
-private:
-  vtkSmartPointer<vtkSceneVisRecordingOutputWindow> Recorder;
-  vtkSmartPointer<vtkOutputWindow> Previous;
-  int PreviousGlobalWarningDisplay;
-};
+// Recording is SceneVis::RenderingHeadless's (the rendering self-check records with it too).
+using headless::KindName;
+using headless::ScopedVtkOutputRecorder;
+using headless::VtkMessage;
 
 /**
  * RAII guard: while alive, every VTK error or warning must have been declared with ExpectError /
