@@ -10,6 +10,7 @@
 #include "scenevis/OcclusionBuffer.h"
 #include "scenevis/OcclusionOracle.h"
 
+#include "../src/OcclusionFront.h"    // module-private: drawTriangles' batch front end
 #include "../src/OcclusionScanline.h" // module-private: the exact rasterizer's intervals
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -1350,4 +1351,112 @@ TEST(OcclusionScanline, RoundUpIsTheSmallestFloatNotBelow)
     }
     ASSERT_TRUE(same(roundUp(v), reference(v))) << v;
   }
+}
+
+// drawTriangles' batch front end (src/OcclusionFront.h: keepDrawable, SSE2 where available)
+// keeps exactly the triangles that the scalar front end keeps (keepDrawableScalar: triangleSpan,
+// doubleArea and culled, one triangle at a time), in the same order, with the same spans and
+// the same doubled areas bit for bit: random batches of triangles over vertices of every kind
+// (inside and far beyond the viewport, on pixel centres and between them, huge and infinite
+// window coordinates, repeated and collinear vertices), every face culling, several viewports.
+TEST(OcclusionFront, BatchKeepsWhatTheScalarFrontEndKeeps)
+{
+  std::mt19937_64 rng(2026);
+  auto uniform = [&](double a, double b)
+  { return std::uniform_real_distribution<double>(a, b)(rng); };
+  const int sizes[][2] = { { 800, 600 }, { 1, 1 }, { 37, 5 }, { 8, 4 }, { 1920, 1200 } };
+  constexpr double inf = std::numeric_limits<double>::infinity();
+  std::size_t batches = 0, kept = 0, dropped = 0, areaZero = 0, spanEmpty = 0;
+  for (const auto& size : sizes)
+  {
+    const int width = size[0], height = size[1];
+    auto coordinate = [&](int pixels)
+    {
+      switch (rng() % 10)
+      {
+        case 0:
+          return std::floor(uniform(-2.0, pixels + 2.0)) + 0.5; // on a pixel centre
+        case 1:
+          return std::floor(uniform(-2.0, pixels + 2.0)); // between centres
+        case 2:
+          return uniform(-1e7, 1e7); // far off screen
+        case 3:
+          return (rng() % 2 ? 1.0 : -1.0) * (rng() % 2 ? 1e300 : inf); // a vertex near w = 0
+        case 4:
+          return uniform(0.4, 0.6); // around the first centre
+        default:
+          return uniform(-3.0, pixels + 3.0);
+      }
+    };
+    std::vector<glm::dvec3> window(512);
+    std::vector<CentreSpan> centres(window.size());
+    for (std::size_t i = 0; i < window.size(); ++i)
+    {
+      window[i] = glm::dvec3(coordinate(width), coordinate(height), uniform(0.0, 1.0));
+      if (i % 7 == 3)
+      {
+        // On the line through the two previous vertices: zero or nearly zero area.
+        window[i] = window[i - 1] + (window[i - 1] - window[i - 2]) * uniform(-2.0, 2.0);
+      }
+      centres[i] = centreSpan(window[i].x, window[i].y, width, height);
+    }
+    std::vector<std::uint32_t> indices(3 * 4096);
+    for (std::size_t k = 0; k < indices.size(); ++k)
+    {
+      // Some triangles repeat a vertex (zero area); most use nearby vertices (small ones).
+      indices[k] = k % 3 != 0 && rng() % 16 == 0
+        ? indices[k - 1]
+        : static_cast<std::uint32_t>((k / 3 + rng() % 8) % window.size());
+    }
+    for (FaceCulling culling :
+      { FaceCulling::None, FaceCulling::Back, FaceCulling::Front, FaceCulling::Both })
+    {
+      const FrontVertices vertices{ indices.data(), window.data(), centres.data(), width, height,
+        culling };
+      for (std::size_t first = 0; first < indices.size() / 3; first += kFrontBatch)
+      {
+        FrontEntry batch[kFrontBatch], reference[kFrontBatch];
+        const std::size_t count = 1 + rng() % kFrontBatch;
+        for (std::size_t i = 0; i < count; ++i)
+        {
+          batch[i] = FrontEntry{ first + i, rng() % 10 != 0, CentreSpan{ 0, 0, 0, 0 }, 0.0 };
+          reference[i] = batch[i];
+          const std::uint32_t* tri = indices.data() + 3 * (first + i);
+          areaZero += doubleArea(window[tri[0]], window[tri[1]], window[tri[2]]) == 0.0;
+          const CentreSpan s =
+            triangleSpan(centres[tri[0]], centres[tri[1]], centres[tri[2]], width, height);
+          spanEmpty += s.x0 > s.x1 || s.y0 > s.y1;
+        }
+        const std::size_t n = keepDrawable(batch, count, vertices);
+        const std::size_t expected = keepDrawableScalar(reference, count, vertices);
+        ASSERT_EQ(n, expected) << width << "x" << height << " batch at " << first;
+        for (std::size_t i = 0; i < n; ++i)
+        {
+          ASSERT_EQ(batch[i].triangle, reference[i].triangle);
+          ASSERT_EQ(batch[i].front, reference[i].front);
+          if (!batch[i].front)
+          {
+            continue; // clipped: decided later, from its clip coordinates
+          }
+          const CentreSpan& a = batch[i].span;
+          const CentreSpan& b = reference[i].span;
+          ASSERT_TRUE(a.x0 == b.x0 && a.x1 == b.x1 && a.y0 == b.y0 && a.y1 == b.y1)
+            << "triangle " << batch[i].triangle << ": span " << a.x0 << " " << a.x1 << " " << a.y0
+            << " " << a.y1 << ", scalar " << b.x0 << " " << b.x1 << " " << b.y0 << " " << b.y1;
+          ASSERT_EQ(std::memcmp(&batch[i].area2, &reference[i].area2, sizeof(double)), 0)
+            << "triangle " << batch[i].triangle << ": area " << batch[i].area2 << ", scalar "
+            << reference[i].area2;
+        }
+        ++batches;
+        kept += n;
+        dropped += count - n;
+      }
+    }
+  }
+  // Not passed by keeping (or dropping) everything: every reason to drop occurs.
+  EXPECT_GT(kept, 5000u);
+  EXPECT_GT(dropped, 5000u);
+  EXPECT_GT(areaZero, 500u);
+  EXPECT_GT(spanEmpty, 5000u);
+  EXPECT_GT(batches, 1000u);
 }

@@ -186,6 +186,13 @@ struct BufferStats
   std::size_t boxesOccluded = 0;
 };
 
+/// Pixel centres [x0, x1] x [y0, y1] (integers) that a triangle may cover (MaskedDepthBuffer's
+/// front end, src/OcclusionFront.h).
+struct CentreSpan
+{
+  int x0, x1, y0, y1;
+};
+
 class MaskedDepthBuffer
 {
 public:
@@ -289,12 +296,6 @@ public:
   }
 
 private:
-  /// Pixel centres [x0, x1] x [y0, y1] (integers) that a triangle may cover.
-  struct CentreSpan
-  {
-    int x0, x1, y0, y1;
-  };
-  static CentreSpan centreSpan(double x, double y, int width, int height);
   /// The centres of the viewport that a triangle with vertices' spans @p a, @p b, @p c may
   /// cover (empty: x0 > x1 or y0 > y1).
   CentreSpan triangleSpan(const CentreSpan& a, const CentreSpan& b, const CentreSpan& c) const;
