@@ -150,7 +150,7 @@ void MaskedDepthBuffer::drawTrianglesFrom(const glm::dvec4* clip, const ModelVer
   // bit-identical window coordinates in every triangle, which the watertight edge rule relies
   // on; the vertices of skipped clusters are never projected). State: 0 not finite, 1 in front
   // of the near plane (window coordinates valid), 2 finite but behind it (its triangles are
-  // clipped), 3 not projected yet, 7 listed for projection by the current batch (below).
+  // clipped), 3 not projected yet.
   window_.resize(vertexCount);
   centres_.resize(vertexCount);
   vertexState_.assign(vertexCount, 3);
@@ -159,51 +159,47 @@ void MaskedDepthBuffer::drawTrianglesFrom(const glm::dvec4* clip, const ModelVer
     clip_.resize(vertexCount); // grows only: no allocation per call once warm
     clip = clip_.data();
   }
-  // Vertex i's clip coordinates (transformed first for ModelVertices), its window coordinates
-  // and centre span; returns its state.
-  auto project = [&](std::uint32_t i) -> unsigned char
-  {
-    if (model)
-    {
-      // Left to right, as glm's matrix-vector product (see ModelVertices).
-      const glm::dmat4& m = model->clipFromModel;
-      double x, y, z;
-      if (model->xyzFloat)
-      {
-        const float* p = model->xyzFloat + 3 * std::size_t(i);
-        x = p[0], y = p[1], z = p[2];
-      }
-      else
-      {
-        const double* p = model->xyzDouble + 3 * std::size_t(i);
-        x = p[0], y = p[1], z = p[2];
-      }
-      clip_[i] = glm::dvec4(m[0][0] * x + m[1][0] * y + m[2][0] * z + m[3][0],
-        m[0][1] * x + m[1][1] * y + m[2][1] * z + m[3][1],
-        m[0][2] * x + m[1][2] * y + m[2][2] * z + m[3][2],
-        m[0][3] * x + m[1][3] * y + m[2][3] * z + m[3][3]);
-    }
-    const glm::dvec4& v = clip[i];
-    if (!finite(v))
-    {
-      return 0;
-    }
-    if (!(v.z + v.w >= 0.0 && v.w > 0.0))
-    {
-      return 2;
-    }
-    const double inverseW = 1.0 / v.w;
-    window_[i] = glm::dvec3((v.x * inverseW * 0.5 + 0.5) * width_,
-      (v.y * inverseW * 0.5 + 0.5) * height_, v.z * inverseW * 0.5 + 0.5);
-    centres_[i] = centreSpan(window_[i].x, window_[i].y, width_, height_);
-    return 1;
-  };
-  auto state = [&](std::uint32_t i) -> unsigned char
-  {
+  auto state = [&](std::uint32_t i) -> unsigned char {
     unsigned char& s = vertexState_[i];
     if (s == 3)
     {
-      s = project(i);
+      if (model)
+      {
+        // Left to right, as glm's matrix-vector product (see ModelVertices).
+        const glm::dmat4& m = model->clipFromModel;
+        double x, y, z;
+        if (model->xyzFloat)
+        {
+          const float* p = model->xyzFloat + 3 * std::size_t(i);
+          x = p[0], y = p[1], z = p[2];
+        }
+        else
+        {
+          const double* p = model->xyzDouble + 3 * std::size_t(i);
+          x = p[0], y = p[1], z = p[2];
+        }
+        clip_[i] = glm::dvec4(m[0][0] * x + m[1][0] * y + m[2][0] * z + m[3][0],
+          m[0][1] * x + m[1][1] * y + m[2][1] * z + m[3][1],
+          m[0][2] * x + m[1][2] * y + m[2][2] * z + m[3][2],
+          m[0][3] * x + m[1][3] * y + m[2][3] * z + m[3][3]);
+      }
+      const glm::dvec4& v = clip[i];
+      if (!finite(v))
+      {
+        s = 0;
+      }
+      else if (v.z + v.w >= 0.0 && v.w > 0.0)
+      {
+        s = 1;
+        const double inverseW = 1.0 / v.w;
+        window_[i] = glm::dvec3((v.x * inverseW * 0.5 + 0.5) * width_,
+          (v.y * inverseW * 0.5 + 0.5) * height_, v.z * inverseW * 0.5 + 0.5);
+        centres_[i] = centreSpan(window_[i].x, window_[i].y, width_, height_);
+      }
+      else
+      {
+        s = 2;
+      }
     }
     return s;
   };
@@ -292,34 +288,11 @@ void MaskedDepthBuffer::drawTrianglesFrom(const glm::dvec4* clip, const ModelVer
     }
     for (std::size_t first = begin; first < end; first += kFrontBatch)
     {
-      // A batch of triangles: the vertices they use for the first time projected (listed
-      // first, then projected one after the other: no branch per use on whether a vertex is
-      // new), then the span and face tests of all of them at once (keepDrawable), then, in
-      // order, the depth test, the neighbours' facing and the set-up of the few that are left.
+      // A batch of triangles: their vertices' states (each vertex projected at its first use),
+      // then the span and face tests of all of them at once (keepDrawable), then, in order,
+      // the depth test, the neighbours' facing and the set-up of the few that are left.
       FrontEntry batch[kFrontBatch];
       const std::size_t count = std::min(end - first, kFrontBatch);
-      std::uint32_t fresh[3 * kFrontBatch];
-      std::size_t freshCount = 0;
-      for (std::size_t t = first; t < first + count; ++t)
-      {
-        const std::uint32_t* tri = indices + 3 * t;
-        if (tri[0] < vertexCount && tri[1] < vertexCount && tri[2] < vertexCount)
-        {
-          for (int k = 0; k < 3; ++k)
-          {
-            // Arithmetic, not a conditional store (GCC branches on that, mispredicted).
-            unsigned char& s = vertexState_[tri[k]];
-            const unsigned isNew = s == 3 ? 1u : 0u;
-            fresh[freshCount] = tri[k];
-            freshCount += isNew;
-            s = static_cast<unsigned char>(s | (isNew << 2)); // listed (7): not listed again
-          }
-        }
-      }
-      for (std::size_t i = 0; i < freshCount; ++i)
-      {
-        vertexState_[fresh[i]] = project(fresh[i]);
-      }
       std::size_t usable = 0;
       for (std::size_t t = first; t < first + count; ++t)
       {
@@ -327,7 +300,7 @@ void MaskedDepthBuffer::drawTrianglesFrom(const glm::dvec4* clip, const ModelVer
         unsigned s0 = 0, s1 = 0, s2 = 0;
         if (tri[0] < vertexCount && tri[1] < vertexCount && tri[2] < vertexCount)
         {
-          s0 = vertexState_[tri[0]], s1 = vertexState_[tri[1]], s2 = vertexState_[tri[2]];
+          s0 = state(tri[0]), s1 = state(tri[1]), s2 = state(tri[2]);
         }
         batch[usable].triangle = t;
         batch[usable].front = (s0 & s1 & s2) == 1;
