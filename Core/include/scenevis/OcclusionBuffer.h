@@ -45,9 +45,11 @@
  * level (Greene's hierarchical z-buffer: one max depth per block).
  *
  * Cost: per occluder vertex, one projection and its pixel-centre span; per triangle, integer
- * min / max of those spans (most triangles of a detailed mesh cover no pixel centre), its facing,
- * and a test against the depth every tile of its span already has (a second level, one bound
- * per 4 x 4 tiles, answers most of them): a triangle hidden there is dropped before its set-up.
+ * min / max of those spans (most triangles of a detailed mesh cover no pixel centre) and its
+ * facing, decided for batches of 32 triangles at once without a branch per triangle
+ * (src/OcclusionFront.h), then for the rest a test against the depth every tile of its span
+ * already has (a second level, one bound per 4 x 4 tiles, answers most of them): a triangle
+ * hidden there is dropped before its set-up.
  * The others get per row of tiles their four scanlines' intervals of covered centres, and a
  * coverage mask of 32 pixels per tile between those intervals' ends (byte compares with SSE2).
  * Per occludee box, 8 corner projections and one comparison per tile. Memory: 12 bytes per tile
