@@ -76,6 +76,7 @@ public:
       // The crossing of scanline centre y as a + b y, negated for edges inside below it (whose
       // columns are then negated too: [lo, hi] = [-x1, -x0]).
       const double mirror = side_[k] < 0 ? -1.0 : 1.0;
+      above_[k] = _mm_set1_epi32(side_[k] >= 0 ? -1 : 0);
       const double slope = e.dx * inverseDy_[k];
       const double a = (e.px - 0.5) - (e.dx * e.py + signedThreshold_[k]) * inverseDy_[k];
       // The crossing in fixed point (32.32, in 64-bit integers) where it fits: at twice the
@@ -150,7 +151,6 @@ public:
       return;
     }
     __m128i from = _mm_set1_epi32(x0), to = _mm_set1_epi32(x1);
-    const __m128d y01 = _mm_set_pd(y0 + 1.5, y0 + 0.5), y23 = _mm_set_pd(y0 + 3.5, y0 + 2.5);
     // Unrolled: the loop's exit depends on the edges' branches and was mispredicted.
 #if defined(__GNUC__) && !defined(__clang__)
 #pragma GCC unroll 3
@@ -158,16 +158,8 @@ public:
     for (int k = 0; k < 3; ++k)
     {
       alignas(16) int bound[4];
-      if (side_[k] == 0 || delta_[k] >= 1.0)
-      {
-        // Horizontal or nearly so: each scanline by the test itself.
-        for (int j = 0; j < 4; ++j)
-        {
-          bound[j] = (rows >> j) & 1u ? edgeBound(k, y0 + j, x0, x1) : 0;
-          bound[j] = side_[k] < 0 ? -bound[j] : bound[j];
-        }
-      }
-      else if ((fixedEdges_ >> k) & 1u)
+      __m128i b;
+      if ((fixedEdges_ >> k) & 1u)
       {
         // The four crossings in fixed point: whole columns in the high halves, fractions in
         // the low ones; decided where the fraction f is in (near, 2^32 - near), i.e.
@@ -184,13 +176,28 @@ public:
         const int decided =
           _mm_movemask_ps(_mm_castsi128_ps(_mm_cmplt_epi32(flipped, fixed.farUnits)));
         // floor + 1: the first column above the crossing.
-        _mm_store_si128(reinterpret_cast<__m128i*>(bound), _mm_add_epi32(whole, _mm_set1_epi32(1)));
-        for (unsigned undecided = rows & ~static_cast<unsigned>(decided); undecided != 0;
-             undecided &= undecided - 1)
+        b = _mm_add_epi32(whole, _mm_set1_epi32(1));
+        const unsigned undecided = rows & ~static_cast<unsigned>(decided);
+        if (undecided != 0)
         {
-          const int j = lowestBit(undecided);
-          bound[j] = side_[k] * edgeBound(k, y0 + j, x0, x1);
+          _mm_store_si128(reinterpret_cast<__m128i*>(bound), b);
+          for (unsigned left = undecided; left != 0; left &= left - 1)
+          {
+            const int j = lowestBit(left);
+            bound[j] = side_[k] * edgeBound(k, y0 + j, x0, x1);
+          }
+          b = _mm_load_si128(reinterpret_cast<const __m128i*>(bound));
         }
+      }
+      else if (side_[k] == 0 || delta_[k] >= 1.0)
+      {
+        // Horizontal or nearly so: each scanline by the test itself.
+        for (int j = 0; j < 4; ++j)
+        {
+          bound[j] = (rows >> j) & 1u ? edgeBound(k, y0 + j, x0, x1) : 0;
+          bound[j] = side_[k] < 0 ? -bound[j] : bound[j];
+        }
+        b = _mm_load_si128(reinterpret_cast<const __m128i*>(bound));
       }
       else
       {
@@ -198,6 +205,7 @@ public:
         // and shifted by 2^20 to convert by truncation; decided where their fraction is more
         // than delta from a column (as firstInside()).
         const Scan& scan = scan_[k];
+        const __m128d y01 = _mm_set_pd(y0 + 1.5, y0 + 0.5), y23 = _mm_set_pd(y0 + 3.5, y0 + 2.5);
         __m128i below[2];
         int decided = 0;
         for (int h = 0; h < 2; ++h)
@@ -221,12 +229,12 @@ public:
           const int j = lowestBit(undecided);
           bound[j] = side_[k] * edgeBound(k, y0 + j, x0, x1);
         }
+        b = _mm_load_si128(reinterpret_cast<const __m128i*>(bound));
       }
       // Inside from bound on (mirrored: up to -bound); beyond the columns it empties them.
       // Both, masked by the side (a branch on it alternates between a triangle's edges and was
       // mispredicted about once per row).
-      const __m128i b = _mm_load_si128(reinterpret_cast<const __m128i*>(bound));
-      const __m128i above = _mm_set1_epi32(side_[k] >= 0 ? -1 : 0);
+      const __m128i above = above_[k];
       const __m128i greater = _mm_and_si128(_mm_cmpgt_epi32(b, from), above);
       from = _mm_or_si128(_mm_and_si128(greater, b), _mm_andnot_si128(greater, from));
       const __m128i minus = _mm_sub_epi32(_mm_setzero_si128(), b);
@@ -419,6 +427,7 @@ private:
     __m128i step01, step23, nearUnits, farUnits;
   };
   Fixed fixed_[3];
+  __m128i above_[3]; ///< all ones where the edge bounds the first column (side >= 0)
   unsigned fixedEdges_ = 0;                   ///< bit k: edge k in fixed point
   static constexpr double kShift = 1048576.0; // 2^20
 #endif
