@@ -10,6 +10,7 @@
 #include "scenevis/OcclusionBuffer.h"
 #include "scenevis/OcclusionOracle.h"
 
+#include "../src/OcclusionFront.h"    // module-private: drawTriangles' batch front end
 #include "../src/OcclusionScanline.h" // module-private: the exact rasterizer's intervals
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -1310,6 +1311,153 @@ TEST(OcclusionScanline, RowIntervalsAreTheCentresInsideAllThreeEdges)
   EXPECT_GT(nonEmpty, intervals / 4); // not kept by testing empty scanlines only
 }
 
+// rowIntervals() takes most edges' crossings in 32.32 fixed point (src/OcclusionScanline.h),
+// decided where the fraction is farther from a column than the rounding of the double crossing
+// plus the fixed point's truncation; elsewhere, and where the crossing could overflow, the
+// double crossings or the test itself. On a full-HD viewport: edges through a pixel centre (or
+// at the margin from it) at every slope, integer and centre-aligned vertices, nearly horizontal
+// edges around the fixed point's slope limit, vertices far off screen (around its |a| < 2^28
+// limit) and tiny triangles; the intervals of random runs of tiles against the edge tests.
+TEST(OcclusionScanline, FixedPointCrossingsGiveTheEdgeTestsIntervals)
+{
+  constexpr int width = 1920, height = 1200;
+  std::mt19937_64 rng(21);
+  auto uniform = [&](double a, double b)
+  { return std::uniform_real_distribution<double>(a, b)(rng); };
+  const double margin = MaskedDepthBuffer().coverageMargin;
+  std::size_t edgesFixed = 0, edgesOther = 0, checked = 0, nonEmpty = 0;
+  for (int t = 0; t < 60000; ++t)
+  {
+    const double cx = std::floor(uniform(0.0, width)) + 0.5;
+    const double cy = std::floor(uniform(0.0, height)) + 0.5;
+    const double size = t % 5 == 0 ? uniform(20.0, 400.0) : uniform(0.3, 12.0);
+    unsigned outline = static_cast<unsigned>(rng() % 8);
+    glm::dvec3 v[3];
+    const int kind = static_cast<int>(rng() % 6);
+    if (kind <= 1)
+    {
+      // Edge 0 through the centre (cx, cy), or at the coverage margin from it.
+      const double angle = uniform(0.0, 6.283185307179586);
+      const glm::dvec3 d(std::cos(angle), std::sin(angle), 0.0), n(-d.y, d.x, 0.0);
+      const glm::dvec3 on =
+        glm::dvec3(cx, cy, 0.5) + n * ((outline & 1u) ? margin : 0.0) * (rng() % 2 ? 1.0 : -1.0);
+      v[0] = on - d * uniform(0.5, size);
+      v[1] = on + d * uniform(0.5, size);
+      v[2] = on + n * uniform(-size, size) + d * uniform(-size, size);
+    }
+    else if (kind == 2)
+    {
+      // Integer or centre-aligned vertices: crossings exactly on columns.
+      const double half = rng() % 2 ? 0.5 : 0.0;
+      for (glm::dvec3& p : v)
+      {
+        p = glm::dvec3(std::floor(cx + uniform(-size, size)) + half,
+          std::floor(cy + uniform(-size, size)) + half, 0.5);
+      }
+    }
+    else if (kind == 3)
+    {
+      // A nearly horizontal edge: slope |dx / dy| below and above the fixed point's limit,
+      // 2^29 over about twice the extent (some 2^16.4 here).
+      const double slope = std::exp2(uniform(10.0, 36.0)) * (rng() % 2 ? 1.0 : -1.0);
+      const double dx = uniform(0.5, 2.0 * size);
+      v[0] = glm::dvec3(cx - 0.5 * dx, cy - 0.5 * dx / slope, 0.5);
+      v[1] = glm::dvec3(cx + 0.5 * dx, cy + 0.5 * dx / slope, 0.5);
+      v[2] = glm::dvec3(cx + uniform(-size, size), cy + uniform(-size, size), 0.5);
+    }
+    else if (kind == 4)
+    {
+      // A vertex far off screen: the crossings' offset a around 2^28.
+      const double far = std::exp2(uniform(20.0, 31.0));
+      v[0] = glm::dvec3(cx + uniform(-size, size), cy + uniform(-size, size), 0.5);
+      v[1] = glm::dvec3(cx + uniform(-size, size), cy + uniform(-size, size), 0.5);
+      v[2] = glm::dvec3(cx + far * uniform(-1.0, 1.0), cy + far * uniform(-1.0, 1.0), 0.5);
+    }
+    else
+    {
+      for (glm::dvec3& p : v)
+      {
+        p = glm::dvec3(cx + uniform(-size, size), cy + uniform(-size, size), 0.5);
+      }
+    }
+    const double area2 =
+      (v[1].x - v[0].x) * (v[2].y - v[0].y) - (v[1].y - v[0].y) * (v[2].x - v[0].x);
+    if (!(std::abs(area2) > 0.0))
+    {
+      continue;
+    }
+    auto columnSpan = [](double a, double b, double c, int pixels, int& lo, int& hi)
+    {
+      const double low = std::ceil(std::min({ a, b, c }) - 0.5);
+      const double high = std::floor(std::max({ a, b, c }) - 0.5);
+      lo = static_cast<int>(std::max(0.0, low));
+      hi = static_cast<int>(std::min(pixels - 1.0, high));
+    };
+    int x0, x1, y0, y1;
+    columnSpan(v[0].x, v[1].x, v[2].x, width, x0, x1);
+    columnSpan(v[0].y, v[1].y, v[2].y, height, y0, y1);
+    if (x0 > x1 || y0 > y1)
+    {
+      continue;
+    }
+    const double orientation = area2 > 0.0 ? 1.0 : -1.0;
+    const EdgeTest edges[3] = { EdgeTest(v[0], v[1], orientation, outline & 1u, margin),
+      EdgeTest(v[1], v[2], orientation, outline & 2u, margin),
+      EdgeTest(v[2], v[0], orientation, outline & 4u, margin) };
+    double extent = width + height;
+    for (const glm::dvec3& p : v)
+    {
+      extent = std::max({ extent, std::abs(p.x), std::abs(p.y) });
+    }
+    const ScanlineCoverage coverage(edges, extent, x0, x1);
+    const unsigned fixedEdges = coverage.fixedPointEdges();
+    for (int k = 0; k < 3; ++k)
+    {
+      ++((fixedEdges >> k) & 1u ? edgesFixed : edgesOther);
+    }
+    // A few rows of tiles around the centre (all of them for small triangles), each over a
+    // random run of at most 8 of the span's tiles.
+    const int tyCentre = std::min(std::max(static_cast<int>(cy) / 4, y0 / 4), y1 / 4);
+    const int tyFrom = std::max(y0 / 4, tyCentre - 2), tyTo = std::min(y1 / 4, tyCentre + 2);
+    for (int ty = tyFrom; ty <= tyTo; ++ty)
+    {
+      const int tx0 = x0 / 8, tx1 = x1 / 8;
+      const int txFirst = tx0 + static_cast<int>(rng() % (tx1 - tx0 + 1));
+      const int txLast = std::min(tx1, txFirst + static_cast<int>(rng() % 8));
+      const int rx0 = std::max(x0, txFirst * 8), rx1 = std::min(x1, txLast * 8 + 7);
+      int first[4], last[4];
+      coverage.rowIntervals(ty * 4, y0, y1, rx0, rx1, first, last);
+      for (int j = 0; j < 4; ++j)
+      {
+        const int y = ty * 4 + j;
+        int expectFirst = ScanlineCoverage::kEmpty, expectLast = -ScanlineCoverage::kEmpty;
+        if (y >= y0 && y <= y1)
+        {
+          for (int i = rx0; i <= rx1; ++i)
+          {
+            if (edges[0].inside(i + 0.5, y + 0.5) && edges[1].inside(i + 0.5, y + 0.5) &&
+              edges[2].inside(i + 0.5, y + 0.5))
+            {
+              expectFirst = std::min(expectFirst, i);
+              expectLast = i;
+            }
+          }
+        }
+        ++checked;
+        nonEmpty += expectLast >= expectFirst ? 1 : 0;
+        ASSERT_EQ(first[j], expectFirst) << "triangle " << t << " kind " << kind << " y " << y;
+        ASSERT_EQ(last[j], expectLast) << "triangle " << t << " kind " << kind << " y " << y;
+      }
+    }
+  }
+  EXPECT_GT(nonEmpty, checked / 4);
+#ifdef SCENEVIS_OCCLUSION_SSE2
+  // Both paths taken: most edges in fixed point, the steep and far ones not.
+  EXPECT_GT(edgesFixed, 3 * edgesOther);
+  EXPECT_GT(edgesOther, 5000u);
+#endif
+}
+
 // roundUp (src/OcclusionEdge.h: every tile depth bound goes through it) is the smallest float not
 // below its argument, as std::nextafter gives it, for every kind of double.
 TEST(OcclusionScanline, RoundUpIsTheSmallestFloatNotBelow)
@@ -1350,4 +1498,112 @@ TEST(OcclusionScanline, RoundUpIsTheSmallestFloatNotBelow)
     }
     ASSERT_TRUE(same(roundUp(v), reference(v))) << v;
   }
+}
+
+// drawTriangles' batch front end (src/OcclusionFront.h: keepDrawable, SSE2 where available)
+// keeps exactly the triangles that the scalar front end keeps (keepDrawableScalar: triangleSpan,
+// doubleArea and culled, one triangle at a time), in the same order, with the same spans and
+// the same doubled areas bit for bit: random batches of triangles over vertices of every kind
+// (inside and far beyond the viewport, on pixel centres and between them, huge and infinite
+// window coordinates, repeated and collinear vertices), every face culling, several viewports.
+TEST(OcclusionFront, BatchKeepsWhatTheScalarFrontEndKeeps)
+{
+  std::mt19937_64 rng(2026);
+  auto uniform = [&](double a, double b)
+  { return std::uniform_real_distribution<double>(a, b)(rng); };
+  const int sizes[][2] = { { 800, 600 }, { 1, 1 }, { 37, 5 }, { 8, 4 }, { 1920, 1200 } };
+  constexpr double inf = std::numeric_limits<double>::infinity();
+  std::size_t batches = 0, kept = 0, dropped = 0, areaZero = 0, spanEmpty = 0;
+  for (const auto& size : sizes)
+  {
+    const int width = size[0], height = size[1];
+    auto coordinate = [&](int pixels)
+    {
+      switch (rng() % 10)
+      {
+        case 0:
+          return std::floor(uniform(-2.0, pixels + 2.0)) + 0.5; // on a pixel centre
+        case 1:
+          return std::floor(uniform(-2.0, pixels + 2.0)); // between centres
+        case 2:
+          return uniform(-1e7, 1e7); // far off screen
+        case 3:
+          return (rng() % 2 ? 1.0 : -1.0) * (rng() % 2 ? 1e300 : inf); // a vertex near w = 0
+        case 4:
+          return uniform(0.4, 0.6); // around the first centre
+        default:
+          return uniform(-3.0, pixels + 3.0);
+      }
+    };
+    std::vector<glm::dvec3> window(512);
+    std::vector<CentreSpan> centres(window.size());
+    for (std::size_t i = 0; i < window.size(); ++i)
+    {
+      window[i] = glm::dvec3(coordinate(width), coordinate(height), uniform(0.0, 1.0));
+      if (i % 7 == 3)
+      {
+        // On the line through the two previous vertices: zero or nearly zero area.
+        window[i] = window[i - 1] + (window[i - 1] - window[i - 2]) * uniform(-2.0, 2.0);
+      }
+      centres[i] = centreSpan(window[i].x, window[i].y, width, height);
+    }
+    std::vector<std::uint32_t> indices(3 * 4096);
+    for (std::size_t k = 0; k < indices.size(); ++k)
+    {
+      // Some triangles repeat a vertex (zero area); most use nearby vertices (small ones).
+      indices[k] = k % 3 != 0 && rng() % 16 == 0
+        ? indices[k - 1]
+        : static_cast<std::uint32_t>((k / 3 + rng() % 8) % window.size());
+    }
+    for (FaceCulling culling :
+      { FaceCulling::None, FaceCulling::Back, FaceCulling::Front, FaceCulling::Both })
+    {
+      const FrontVertices vertices{ indices.data(), window.data(), centres.data(), width, height,
+        culling };
+      for (std::size_t first = 0; first < indices.size() / 3; first += kFrontBatch)
+      {
+        FrontEntry batch[kFrontBatch], reference[kFrontBatch];
+        const std::size_t count = 1 + rng() % kFrontBatch;
+        for (std::size_t i = 0; i < count; ++i)
+        {
+          batch[i] = FrontEntry{ first + i, rng() % 10 != 0, CentreSpan{ 0, 0, 0, 0 }, 0.0 };
+          reference[i] = batch[i];
+          const std::uint32_t* tri = indices.data() + 3 * (first + i);
+          areaZero += doubleArea(window[tri[0]], window[tri[1]], window[tri[2]]) == 0.0;
+          const CentreSpan s =
+            triangleSpan(centres[tri[0]], centres[tri[1]], centres[tri[2]], width, height);
+          spanEmpty += s.x0 > s.x1 || s.y0 > s.y1;
+        }
+        const std::size_t n = keepDrawable(batch, count, vertices);
+        const std::size_t expected = keepDrawableScalar(reference, count, vertices);
+        ASSERT_EQ(n, expected) << width << "x" << height << " batch at " << first;
+        for (std::size_t i = 0; i < n; ++i)
+        {
+          ASSERT_EQ(batch[i].triangle, reference[i].triangle);
+          ASSERT_EQ(batch[i].front, reference[i].front);
+          if (!batch[i].front)
+          {
+            continue; // clipped: decided later, from its clip coordinates
+          }
+          const CentreSpan& a = batch[i].span;
+          const CentreSpan& b = reference[i].span;
+          ASSERT_TRUE(a.x0 == b.x0 && a.x1 == b.x1 && a.y0 == b.y0 && a.y1 == b.y1)
+            << "triangle " << batch[i].triangle << ": span " << a.x0 << " " << a.x1 << " " << a.y0
+            << " " << a.y1 << ", scalar " << b.x0 << " " << b.x1 << " " << b.y0 << " " << b.y1;
+          ASSERT_EQ(std::memcmp(&batch[i].area2, &reference[i].area2, sizeof(double)), 0)
+            << "triangle " << batch[i].triangle << ": area " << batch[i].area2 << ", scalar "
+            << reference[i].area2;
+        }
+        ++batches;
+        kept += n;
+        dropped += count - n;
+      }
+    }
+  }
+  // Not passed by keeping (or dropping) everything: every reason to drop occurs.
+  EXPECT_GT(kept, 5000u);
+  EXPECT_GT(dropped, 5000u);
+  EXPECT_GT(areaZero, 500u);
+  EXPECT_GT(spanEmpty, 5000u);
+  EXPECT_GT(batches, 1000u);
 }

@@ -1,6 +1,7 @@
 #include "scenevis/OcclusionBuffer.h"
 
 #include "OcclusionEdge.h"
+#include "OcclusionFront.h"
 #include "OcclusionScanline.h"
 #include "OcclusionTileUpdate.h"
 
@@ -26,53 +27,15 @@ bool finite(const glm::dvec4& v)
   return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z) && std::isfinite(v.w);
 }
 
-/// Twice the signed area of window-space triangle abc (positive: counter-clockwise).
-double doubleArea(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c)
-{
-  return (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x);
-}
-
-/// Whether OpenGL draws nothing of a window-space triangle of doubled signed area @p area2:
-/// zero or non-finite area, or a culled face.
-bool culled(double area2, FaceCulling culling)
-{
-  return !(std::abs(area2) > 0.0) || !std::isfinite(area2) ||
-    (culling == FaceCulling::Back && area2 < 0.0) ||
-    (culling == FaceCulling::Front && area2 > 0.0);
-}
-
 } // namespace
 
-/**
- * The pixel centres (i + 1/2, j + 1/2) on either side of window point (x, y): x0 = ceil(x - 1/2)
- * and x1 = floor(x - 1/2) (likewise y), clamped to [-1, size] (enough to clip a triangle's
- * span to the viewport). The span of a triangle's centres is then min x0 ... max x1 of its
- * vertices, in integers, with no rounding per triangle.
- */
-inline MaskedDepthBuffer::CentreSpan MaskedDepthBuffer::centreSpan(
-  double x, double y, int width, int height)
-{
-  // Clamped, the values fit an int: floor and ceil from the truncation (cheaper than std::floor
-  // and std::ceil without SSE4.1).
-  const double sx = std::min(std::max(x - 0.5, -2.0), width + 1.0);
-  const double sy = std::min(std::max(y - 0.5, -2.0), height + 1.0);
-  const int ix = static_cast<int>(sx), iy = static_cast<int>(sy);
-  return { std::max(-1, ix + (sx > ix ? 1 : 0)), std::min(width, ix - (sx < ix ? 1 : 0)),
-    std::max(-1, iy + (sy > iy ? 1 : 0)), std::min(height, iy - (sy < iy ? 1 : 0)) };
-}
-
-// Not inline: inlined into drawTriangles, GCC 12 turns these min / max into branches (measured:
-// 280,000 more mispredicted branches on the four engine-row culls, slower despite fewer
-// instructions); out of line they are conditional moves.
-MaskedDepthBuffer::CentreSpan MaskedDepthBuffer::triangleSpan(
+// Not inline: inlined, GCC 12 turns these min / max into branches (measured: 280,000 more
+// mispredicted branches on the four engine-row culls); out of line they are conditional moves.
+// Only clipped triangles use it: the others go through keepDrawable().
+CentreSpan MaskedDepthBuffer::triangleSpan(
   const CentreSpan& a, const CentreSpan& b, const CentreSpan& c) const
 {
-  // Pairwise: the initializer-list overloads cost four times the instructions here (one call
-  // per triangle reaching the span test).
-  return { std::max(0, std::min(std::min(a.x0, b.x0), c.x0)),
-    std::min(width_ - 1, std::max(std::max(a.x1, b.x1), c.x1)),
-    std::max(0, std::min(std::min(a.y0, b.y0), c.y0)),
-    std::min(height_ - 1, std::max(std::max(a.y1, b.y1), c.y1)) };
+  return occlusion::triangleSpan(a, b, c, width_, height_);
 }
 
 void MaskedDepthBuffer::resize(int width, int height)
@@ -271,6 +234,43 @@ void MaskedDepthBuffer::drawTrianglesFrom(const glm::dvec4* clip, const ModelVer
     }
     return (det > 0.0) - (det < 0.0);
   };
+  // A triangle kept by keepDrawable(): in front of the near plane, it is dropped if behind
+  // every tile of its span, else set up; a clipped one is clipped. Either way its outline edges
+  // are those whose neighbour does not face its way.
+  auto drawKept = [&](const FrontEntry& e)
+  {
+    const std::uint32_t* tri = indices + 3 * e.triangle;
+    if (e.front && hidden(window_[tri[0]], window_[tri[1]], window_[tri[2]], e.span))
+    {
+      ++stats_.trianglesRejected;
+      return;
+    }
+    unsigned outline = 7u;
+    const int faces =
+      neighbors ? (e.front ? (e.area2 > 0.0) - (e.area2 < 0.0) : facing(e.triangle)) : 0;
+    if (faces != 0)
+    {
+      outline = 0u;
+      for (int k = 0; k < 3; ++k)
+      {
+        const std::uint32_t n = neighbors[3 * e.triangle + k];
+        if (n >= triangleCount || facing(n) != faces)
+        {
+          outline |= 1u << k;
+        }
+      }
+    }
+    if (e.front)
+    {
+      drawFrontTriangle(
+        window_[tri[0]], window_[tri[1]], window_[tri[2]], e.area2, e.span, outline);
+    }
+    else
+    {
+      const glm::dvec4 v[3] = { clip[tri[0]], clip[tri[1]], clip[tri[2]] };
+      drawClippedTriangle(v, culling, outline);
+    }
+  };
   const bool clustered = clusters && clusters->boxes && clusters->trianglesPerCluster > 0;
   const std::size_t run = clustered ? clusters->trianglesPerCluster : triangleCount;
   for (std::size_t begin = 0; begin < triangleCount; begin += run)
@@ -286,59 +286,33 @@ void MaskedDepthBuffer::drawTrianglesFrom(const glm::dvec4* clip, const ModelVer
         continue;
       }
     }
-    for (std::size_t t = begin; t < end; ++t)
+    for (std::size_t first = begin; first < end; first += kFrontBatch)
     {
-      const std::uint32_t* tri = indices + 3 * t;
-      // valid(t), with the three states read once (they give the facing case too).
-      if (tri[0] >= vertexCount || tri[1] >= vertexCount || tri[2] >= vertexCount)
+      // A batch of triangles: their vertices' states (each vertex projected at its first use),
+      // then the span and face tests of all of them at once (keepDrawable), then, in order,
+      // the depth test, the neighbours' facing and the set-up of the few that are left.
+      FrontEntry batch[kFrontBatch];
+      const std::size_t count = std::min(end - first, kFrontBatch);
+      std::size_t usable = 0;
+      for (std::size_t t = first; t < first + count; ++t)
       {
-        ++stats_.trianglesRejected;
-        continue;
-      }
-      const unsigned s0 = state(tri[0]), s1 = state(tri[1]), s2 = state(tri[2]);
-      if (s0 == 0 || s1 == 0 || s2 == 0)
-      {
-        ++stats_.trianglesRejected;
-        continue;
-      }
-      const bool front = (s0 & s1 & s2) == 1;
-      // Pixels whose centres can be inside (most triangles of a detailed mesh have none), then
-      // the face: both from what was computed per vertex (and per triangle for the facing).
-      CentreSpan span;
-      double area2 = 0.0;
-      if (front)
-      {
-        span = triangleSpan(centres_[tri[0]], centres_[tri[1]], centres_[tri[2]]);
-        area2 = doubleArea(window_[tri[0]], window_[tri[1]], window_[tri[2]]);
-        if (span.x0 > span.x1 || span.y0 > span.y1 || culled(area2, culling) ||
-          hidden(window_[tri[0]], window_[tri[1]], window_[tri[2]], span))
+        const std::uint32_t* tri = indices + 3 * t;
+        unsigned s0 = 0, s1 = 0, s2 = 0;
+        if (tri[0] < vertexCount && tri[1] < vertexCount && tri[2] < vertexCount)
         {
-          ++stats_.trianglesRejected;
-          continue;
+          s0 = state(tri[0]), s1 = state(tri[1]), s2 = state(tri[2]);
         }
+        batch[usable].triangle = t;
+        batch[usable].front = (s0 & s1 & s2) == 1;
+        usable += (s0 != 0 && s1 != 0 && s2 != 0) ? 1 : 0;
       }
-      unsigned outline = 7u;
-      const int faces = neighbors ? (front ? (area2 > 0.0) - (area2 < 0.0) : facing(t)) : 0;
-      if (faces != 0)
+      const FrontVertices vertices{ indices, window_.data(), centres_.data(), width_, height_,
+        culling };
+      const std::size_t kept = keepDrawable(batch, usable, vertices);
+      stats_.trianglesRejected += count - kept;
+      for (std::size_t i = 0; i < kept; ++i)
       {
-        outline = 0u;
-        for (int k = 0; k < 3; ++k)
-        {
-          const std::uint32_t n = neighbors[3 * t + k];
-          if (n >= triangleCount || facing(n) != faces)
-          {
-            outline |= 1u << k;
-          }
-        }
-      }
-      if (front)
-      {
-        drawFrontTriangle(window_[tri[0]], window_[tri[1]], window_[tri[2]], area2, span, outline);
-      }
-      else
-      {
-        const glm::dvec4 v[3] = { clip[tri[0]], clip[tri[1]], clip[tri[2]] };
-        drawClippedTriangle(v, culling, outline);
+        drawKept(batch[i]);
       }
     }
   }

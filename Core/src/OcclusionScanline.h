@@ -76,11 +76,37 @@ public:
       // The crossing of scanline centre y as a + b y, negated for edges inside below it (whose
       // columns are then negated too: [lo, hi] = [-x1, -x0]).
       const double mirror = side_[k] < 0 ? -1.0 : 1.0;
+      above_[k] = _mm_set1_epi32(side_[k] >= 0 ? -1 : 0);
       const double slope = e.dx * inverseDy_[k];
       const double a = (e.px - 0.5) - (e.dx * e.py + signedThreshold_[k]) * inverseDy_[k];
-      const double lo = side_[k] < 0 ? -x1 : x0, hi = side_[k] < 0 ? -x0 : x1;
-      scan_[k] = { _mm_set1_pd(mirror * a), _mm_set1_pd(mirror * slope), _mm_set1_pd(lo - 1.5),
-        _mm_set1_pd(hi + 1.5 + kShift), _mm_set1_pd(delta_[k]), _mm_set1_pd(1.0 - delta_[k]) };
+      // The crossing in fixed point (32.32, in 64-bit integers) where it fits: at twice the
+      // scanline centre yy = 2 y + 1 it is fixA + yy fixB, fixA and fixB truncated from a 2^32
+      // and b 2^31. Against a + b y in real arithmetic that errs by less than 1 + |yy| units of
+      // 2^-32, and a + b y (a, b the doubles above) lies as close to the test's boundary as
+      // delta says: delta bounds the rounding of a and b and of the product and sum that the
+      // fixed point does not round. So columns more than delta + (1 + |yy|) 2^-32 from it are
+      // decided as in firstInside(), the others by the test. Used where |a| < 2^28 and
+      // |b| (2 extent + 9) < 2^29 (every scanline asked has |y| <= extent + 4): no overflow,
+      // whole columns in 32 bits (delta < 1/4 already keeps |b| extent below 2^27), and where
+      // near < 2^29 fits the 32-bit compare.
+      const double yyMax = 2.0 * extent + 9.0;
+      const double nearUnits = delta_[k] * 4294967296.0 + yyMax + 3.0;
+      if (side_[k] != 0 && delta_[k] < 1.0 && std::abs(a) < 268435456.0 &&
+        std::abs(slope) * yyMax < 536870912.0 && nearUnits < 536870912.0)
+      {
+        const std::int64_t fixA = static_cast<std::int64_t>(mirror * a * 4294967296.0);
+        const std::int64_t fixB = static_cast<std::int64_t>(mirror * slope * 2147483648.0);
+        const int fixNear = static_cast<int>(nearUnits);
+        fixed_[k] = { fixA, fixB, _mm_set_epi64x(2 * fixB, 0), _mm_set_epi64x(6 * fixB, 4 * fixB),
+          _mm_set1_epi32(fixNear + 1), _mm_set1_epi32(2147483647 - 2 * fixNear) };
+        fixedEdges_ |= 1u << k;
+      }
+      else
+      {
+        const double lo = side_[k] < 0 ? -x1 : x0, hi = side_[k] < 0 ? -x0 : x1;
+        scan_[k] = { _mm_set1_pd(mirror * a), _mm_set1_pd(mirror * slope), _mm_set1_pd(lo - 1.5),
+          _mm_set1_pd(hi + 1.5 + kShift), _mm_set1_pd(delta_[k]), _mm_set1_pd(1.0 - delta_[k]) };
+      }
 #else
       (void)x0, (void)x1;
 #endif
@@ -125,7 +151,6 @@ public:
       return;
     }
     __m128i from = _mm_set1_epi32(x0), to = _mm_set1_epi32(x1);
-    const __m128d y01 = _mm_set_pd(y0 + 1.5, y0 + 0.5), y23 = _mm_set_pd(y0 + 3.5, y0 + 2.5);
     // Unrolled: the loop's exit depends on the edges' branches and was mispredicted.
 #if defined(__GNUC__) && !defined(__clang__)
 #pragma GCC unroll 3
@@ -133,7 +158,38 @@ public:
     for (int k = 0; k < 3; ++k)
     {
       alignas(16) int bound[4];
-      if (side_[k] == 0 || delta_[k] >= 1.0)
+      __m128i b;
+      if ((fixedEdges_ >> k) & 1u)
+      {
+        // The four crossings in fixed point: whole columns in the high halves, fractions in
+        // the low ones; decided where the fraction f is in (near, 2^32 - near), i.e.
+        // f - near - 1 < 2^32 - 2 near - 1 unsigned (signed after flipping the top bit).
+        const Fixed& fixed = fixed_[k];
+        const __m128i base =
+          _mm_set1_epi64x(fixed.a + (2 * static_cast<std::int64_t>(y0) + 1) * fixed.b);
+        const __m128 c01 = _mm_castsi128_ps(_mm_add_epi64(base, fixed.step01));
+        const __m128 c23 = _mm_castsi128_ps(_mm_add_epi64(base, fixed.step23));
+        const __m128i whole = _mm_castps_si128(_mm_shuffle_ps(c01, c23, 0xDD));
+        const __m128i fraction = _mm_castps_si128(_mm_shuffle_ps(c01, c23, 0x88));
+        const __m128i flipped = _mm_xor_si128(
+          _mm_sub_epi32(fraction, fixed.nearUnits), _mm_set1_epi32(static_cast<int>(0x80000000u)));
+        const int decided =
+          _mm_movemask_ps(_mm_castsi128_ps(_mm_cmplt_epi32(flipped, fixed.farUnits)));
+        // floor + 1: the first column above the crossing.
+        b = _mm_add_epi32(whole, _mm_set1_epi32(1));
+        const unsigned undecided = rows & ~static_cast<unsigned>(decided);
+        if (undecided != 0)
+        {
+          _mm_store_si128(reinterpret_cast<__m128i*>(bound), b);
+          for (unsigned left = undecided; left != 0; left &= left - 1)
+          {
+            const int j = lowestBit(left);
+            bound[j] = side_[k] * edgeBound(k, y0 + j, x0, x1);
+          }
+          b = _mm_load_si128(reinterpret_cast<const __m128i*>(bound));
+        }
+      }
+      else if (side_[k] == 0 || delta_[k] >= 1.0)
       {
         // Horizontal or nearly so: each scanline by the test itself.
         for (int j = 0; j < 4; ++j)
@@ -141,6 +197,7 @@ public:
           bound[j] = (rows >> j) & 1u ? edgeBound(k, y0 + j, x0, x1) : 0;
           bound[j] = side_[k] < 0 ? -bound[j] : bound[j];
         }
+        b = _mm_load_si128(reinterpret_cast<const __m128i*>(bound));
       }
       else
       {
@@ -148,6 +205,7 @@ public:
         // and shifted by 2^20 to convert by truncation; decided where their fraction is more
         // than delta from a column (as firstInside()).
         const Scan& scan = scan_[k];
+        const __m128d y01 = _mm_set_pd(y0 + 1.5, y0 + 0.5), y23 = _mm_set_pd(y0 + 3.5, y0 + 2.5);
         __m128i below[2];
         int decided = 0;
         for (int h = 0; h < 2; ++h)
@@ -171,12 +229,12 @@ public:
           const int j = lowestBit(undecided);
           bound[j] = side_[k] * edgeBound(k, y0 + j, x0, x1);
         }
+        b = _mm_load_si128(reinterpret_cast<const __m128i*>(bound));
       }
       // Inside from bound on (mirrored: up to -bound); beyond the columns it empties them.
       // Both, masked by the side (a branch on it alternates between a triangle's edges and was
       // mispredicted about once per row).
-      const __m128i b = _mm_load_si128(reinterpret_cast<const __m128i*>(bound));
-      const __m128i above = _mm_set1_epi32(side_[k] >= 0 ? -1 : 0);
+      const __m128i above = above_[k];
       const __m128i greater = _mm_and_si128(_mm_cmpgt_epi32(b, from), above);
       from = _mm_or_si128(_mm_and_si128(greater, b), _mm_andnot_si128(greater, from));
       const __m128i minus = _mm_sub_epi32(_mm_setzero_si128(), b);
@@ -249,6 +307,16 @@ public:
       }
     }
     return mask;
+  }
+
+  /// Bit k: edge k's crossings in fixed point in rowIntervals() (0 without SSE2).
+  unsigned fixedPointEdges() const
+  {
+#ifdef SCENEVIS_OCCLUSION_SSE2
+    return fixedEdges_;
+#else
+    return 0u;
+#endif
   }
 
 private:
@@ -351,6 +419,16 @@ private:
     __m128d a, b, low, high, delta, upper;
   };
   Scan scan_[3];
+  /// Per edge where it fits, the crossing in fixed point (see the constructor): a, b, the
+  /// offsets of scanlines 0 .. 3 from the first, near + 1 and 2^31 - 2 near - 1.
+  struct Fixed
+  {
+    std::int64_t a, b;
+    __m128i step01, step23, nearUnits, farUnits;
+  };
+  Fixed fixed_[3];
+  __m128i above_[3]; ///< all ones where the edge bounds the first column (side >= 0)
+  unsigned fixedEdges_ = 0;                   ///< bit k: edge k in fixed point
   static constexpr double kShift = 1048576.0; // 2^20
 #endif
 };

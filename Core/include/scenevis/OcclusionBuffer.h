@@ -45,9 +45,11 @@
  * level (Greene's hierarchical z-buffer: one max depth per block).
  *
  * Cost: per occluder vertex, one projection and its pixel-centre span; per triangle, integer
- * min / max of those spans (most triangles of a detailed mesh cover no pixel centre), its facing,
- * and a test against the depth every tile of its span already has (a second level, one bound
- * per 4 x 4 tiles, answers most of them): a triangle hidden there is dropped before its set-up.
+ * min / max of those spans (most triangles of a detailed mesh cover no pixel centre) and its
+ * facing, decided for batches of 32 triangles at once without a branch per triangle
+ * (src/OcclusionFront.h), then for the rest a test against the depth every tile of its span
+ * already has (a second level, one bound per 4 x 4 tiles, answers most of them): a triangle
+ * hidden there is dropped before its set-up.
  * The others get per row of tiles their four scanlines' intervals of covered centres, and a
  * coverage mask of 32 pixels per tile between those intervals' ends (byte compares with SSE2).
  * Per occludee box, 8 corner projections and one comparison per tile. Memory: 12 bytes per tile
@@ -62,7 +64,9 @@
  *   taken as is where the crossing is farther from a pixel column than a bound on the rounding
  *   of both the crossing and the edge function (1e-9 of the coordinates, millions of times the
  *   true bound), else found by evaluating the edge function at the columns around it (rare:
- *   crossings within that bound of a centre, nearly horizontal edges). So every centre claimed
+ *   crossings within that bound of a centre, nearly horizontal edges). With SSE2 most edges'
+ *   crossings are taken in 32.32 fixed point (four scanlines by two 64-bit adds), the bound
+ *   widened by the fixed point's truncation. So every centre claimed
  *   is one the edge function in double puts inside by the margin on outline edges, and on an
  *   interior edge the two triangles, which evaluate the same canonical function with opposite
  *   signs, give every centre to exactly one of them (the tie rule). A tile's 32-bit mask is a
@@ -186,6 +190,13 @@ struct BufferStats
   std::size_t boxesOccluded = 0;
 };
 
+/// Pixel centres [x0, x1] x [y0, y1] (integers) that a triangle may cover (MaskedDepthBuffer's
+/// front end, src/OcclusionFront.h).
+struct CentreSpan
+{
+  int x0, x1, y0, y1;
+};
+
 class MaskedDepthBuffer
 {
 public:
@@ -289,12 +300,6 @@ public:
   }
 
 private:
-  /// Pixel centres [x0, x1] x [y0, y1] (integers) that a triangle may cover.
-  struct CentreSpan
-  {
-    int x0, x1, y0, y1;
-  };
-  static CentreSpan centreSpan(double x, double y, int width, int height);
   /// The centres of the viewport that a triangle with vertices' spans @p a, @p b, @p c may
   /// cover (empty: x0 > x1 or y0 > y1).
   CentreSpan triangleSpan(const CentreSpan& a, const CentreSpan& b, const CentreSpan& c) const;
