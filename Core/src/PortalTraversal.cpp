@@ -357,20 +357,25 @@ const PortalTraversal::ClippedPortal& PortalTraversal::clippedPortal(std::uint32
     return c;
   }
   c.stamp = this->Frame;
-  std::vector<glm::dvec3>* a = &this->ClipA;
-  std::vector<glm::dvec3>* b = &this->ClipB;
-  *a = this->Graph->portals()[index].hull;
-  geometry::clipPolygon(*a, this->FrontPlane, this->PlaneSlack, *b);
-  std::swap(a, b);
-  if (a->size() >= 3)
+  // The hull itself until a plane cuts it (most portals lie wholly between the eye and far
+  // planes), then ClipA and ClipB in turn.
+  const std::vector<glm::dvec3>& hull = this->Graph->portals()[index].hull;
+  const glm::dvec3* poly = hull.data();
+  std::size_t count = hull.size();
+  for (const glm::dvec4* plane : { &this->FrontPlane, &this->ViewFrustum.planes[culling::kFar] })
   {
-    geometry::clipPolygon(*a, this->ViewFrustum.planes[culling::kFar], this->PlaneSlack, *b);
-    std::swap(a, b);
+    if (count >= 3 && !geometry::allKept(poly, count, *plane, this->PlaneSlack))
+    {
+      std::vector<glm::dvec3>& out = poly == this->ClipA.data() ? this->ClipB : this->ClipA;
+      geometry::clipPolygon(poly, count, *plane, this->PlaneSlack, out);
+      poly = out.data();
+      count = out.size();
+    }
   }
   c.first = static_cast<std::uint32_t>(this->ClippedVertices.size());
-  c.count = a->size() >= 3 ? static_cast<std::uint32_t>(a->size()) : 0;
-  this->ClippedVertices.insert(this->ClippedVertices.end(), a->begin(), a->begin() + c.count);
-  c.rect = this->ndcBounds(a->data(), c.count);
+  c.count = count >= 3 ? static_cast<std::uint32_t>(count) : 0;
+  this->ClippedVertices.insert(this->ClippedVertices.end(), poly, poly + c.count);
+  c.rect = this->ndcBounds(poly, c.count);
   return c;
 }
 
