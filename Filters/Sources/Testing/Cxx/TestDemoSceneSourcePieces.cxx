@@ -4,6 +4,8 @@
 // empty pieces, not a crash.
 #include "vtkDemoSceneSource.h"
 
+#include "scenevis/testing/Expect.h"
+
 #include "vtkCellArray.h"
 #include "vtkCellData.h"
 #include "vtkFieldData.h"
@@ -22,17 +24,6 @@
 
 namespace
 {
-int failures = 0;
-#define EXPECT(cond)                                                                               \
-  do                                                                                               \
-  {                                                                                                \
-    if (!(cond))                                                                                   \
-    {                                                                                              \
-      std::cerr << __FILE__ << ":" << __LINE__ << ": expected " #cond << std::endl;                \
-      ++failures;                                                                                  \
-    }                                                                                              \
-  } while (false)
-
 /// One polygon as a value: its part, colour, room and point coordinates, in order.
 using Polygon = std::vector<double>;
 
@@ -44,8 +35,8 @@ std::vector<Polygon> Polygons(vtkPolyData* pd)
   auto* rooms = vtkIntArray::SafeDownCast(pd->GetCellData()->GetArray("RoomId"));
   if (pd->GetNumberOfCells() > 0 && (!parts || !colors))
   {
-    ++failures;
     std::cerr << "a piece lost PartId or its colours\n";
+    ++scenevis::testing::ExpectFailures();
     return out;
   }
   vtkIdType npts = 0;
@@ -93,29 +84,30 @@ void CheckPieces(vtkDemoSceneSource* source, const char* scene, int pieces)
         used[static_cast<std::size_t>(ids[k])] = 1;
       }
     }
-    EXPECT(std::all_of(used.begin(), used.end(), [](char u) { return u == 1; }));
+    SCENEVIS_EXPECT(std::all_of(used.begin(), used.end(), [](char u) { return u == 1; }));
     // The part names and colours stay whole on every piece.
-    EXPECT(pd->GetFieldData()->GetAbstractArray("PartNames") &&
+    SCENEVIS_EXPECT(pd->GetFieldData()->GetAbstractArray("PartNames") &&
       pd->GetFieldData()->GetAbstractArray("PartNames")->GetNumberOfTuples() == parts);
     const std::vector<Polygon> mine = Polygons(pd);
     for (const Polygon& p : mine)
     {
       // Whole parts: a part is on one piece only.
       const auto at = pieceOfPart.emplace(p[0], piece).first;
-      EXPECT(at->second == piece);
+      SCENEVIS_EXPECT(at->second == piece);
     }
     largest = std::max(largest, mine.size());
     together.insert(together.end(), mine.begin(), mine.end());
   }
   std::sort(whole.begin(), whole.end());
   std::sort(together.begin(), together.end());
-  EXPECT(together == whole);
+  SCENEVIS_EXPECT(together == whole);
   std::cout << scene << ", " << pieces << " pieces: " << whole.size() << " polygons, " << parts
             << " parts, largest piece " << largest << "\n";
   if (parts >= 8 * pieces)
   {
     // Balanced by polygons: no piece holds much more than its share.
-    EXPECT(static_cast<double>(largest) <= 1.5 * static_cast<double>(whole.size()) / pieces);
+    SCENEVIS_EXPECT(
+      static_cast<double>(largest) <= 1.5 * static_cast<double>(whole.size()) / pieces);
   }
 }
 } // namespace
@@ -128,18 +120,18 @@ int TestDemoSceneSourcePieces(int, char*[])
   source->SetFloors(2);
   for (const char* scene : { "spheres", "cad", "building", "triangles" })
   {
-    EXPECT(source->SetSceneByName(scene));
+    SCENEVIS_EXPECT(source->SetSceneByName(scene));
     for (const int pieces : { 1, 2, 3, 7 })
     {
       CheckPieces(source, scene, pieces);
     }
   }
   // More pieces than parts: the two triangles' scene has two parts; most pieces are empty.
-  EXPECT(source->SetSceneByName("triangles"));
+  SCENEVIS_EXPECT(source->SetSceneByName("triangles"));
   source->UpdatePiece(4, 5, 0);
-  EXPECT(source->GetOutput()->GetNumberOfCells() <= 1);
+  SCENEVIS_EXPECT(source->GetOutput()->GetNumberOfCells() <= 1);
   // A piece number out of range is empty.
   source->UpdatePiece(5, 5, 0);
-  EXPECT(source->GetOutput()->GetNumberOfCells() == 0);
-  return failures == 0 ? 0 : 1;
+  SCENEVIS_EXPECT(source->GetOutput()->GetNumberOfCells() == 0);
+  return scenevis::testing::ExpectFailures() == 0 ? 0 : 1;
 }
