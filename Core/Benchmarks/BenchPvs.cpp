@@ -56,6 +56,28 @@ using namespace scenevis::portals;
 
 namespace
 {
+/// A fingerprint of an exact traversal's result: the rooms reached and every region rectangle,
+/// bit for bit (to show that a faster traversal gives the same answer), chained onto @p h.
+std::uint64_t TraversalFingerprint(const PortalTraversal& t, std::uint64_t h)
+{
+  const auto mix = [&h](std::uint64_t v) { h ^= v + 0x9e3779b97f4a7c15ull + (h << 6) + (h >> 2); };
+  std::vector<std::int32_t> nodes = t.visibleNodes();
+  std::sort(nodes.begin(), nodes.end());
+  for (const std::int32_t n : nodes)
+  {
+    mix(static_cast<std::uint64_t>(n));
+    for (const glm::dvec4& r : t.regionRectangles(n))
+    {
+      for (int k = 0; k < 4; ++k)
+      {
+        std::uint64_t bits = 0;
+        std::memcpy(&bits, &r[k], sizeof bits);
+        mix(bits);
+      }
+    }
+  }
+  return h;
+}
 using Clock = std::chrono::steady_clock;
 /// --max-steps: flow steps per source portal before its flow closes its branches.
 std::size_t maxStepsPerPortal = scenevis::portals::PvsOptions().maxFlowStepsPerPortal;
@@ -191,6 +213,7 @@ int benchSceneFile(const std::string& scene, const std::string& portalsFile,
   std::size_t exactRooms = 0, pvsRooms = 0, outsidePvs = 0, fallbacks = 0;
   std::size_t outsideRegions = 0, outsideBelowPixel = 0, outsideSeenByRay = 0;
   std::size_t rayRooms = 0, rayMisses = 0;
+  std::uint64_t fingerprint = 0;
   const auto portalsOf = bench::PortalsOfNodes(graph);
   double largestOutside = 0.0;
   PortalTraversal t;
@@ -219,6 +242,7 @@ int benchSceneFile(const std::string& scene, const std::string& portalsFile,
     fallbacks += t.stats().fallback == Fallback::None ? 0 : 1;
     std::vector<std::int32_t> reached = t.visibleNodes();
     exactRooms += reached.size();
+    fingerprint = TraversalFingerprint(t, fingerprint);
     for (std::size_t r = 0; r < std::max<std::size_t>(repeats, 1); ++r)
     {
       auto s = Clock::now();
@@ -308,14 +332,17 @@ int benchSceneFile(const std::string& scene, const std::string& portalsFile,
   if (!cameras.empty())
   {
     const double n = static_cast<double>(cameras.size());
-    std::printf("traversal from %zu cameras (%zu runs each; per camera the median): exact frustum "
-                "narrowing median %.3f ms, 90th percentile %.3f ms, max %.3f ms, %.1f nodes "
-                "reached; portal-flow PVS lookup median %.3f ms, %.1f nodes; %zu frustum-only "
-                "fallbacks; rooms the exact traversal reaches outside the PVS: %zu (through %zu regions, "
-                "%zu of them narrower than a pixel of 1024x1024; the widest %.2f pixels; %zu of these rooms "
-                "reached by a ray from the eye through portals: PVS misses)\n",
+    std::printf(
+      "traversal from %zu cameras (%zu runs each; per camera the median): exact frustum "
+      "narrowing median %.3f ms, 90th percentile %.3f ms, max %.3f ms, %.1f nodes "
+      "reached (result fingerprint %016llx); portal-flow PVS lookup median %.3f ms, %.1f nodes; "
+      "%zu frustum-only "
+      "fallbacks; rooms the exact traversal reaches outside the PVS: %zu (through %zu regions, "
+      "%zu of them narrower than a pixel of 1024x1024; the widest %.2f pixels; %zu of these rooms "
+      "reached by a ray from the eye through portals: PVS misses)\n",
       cameras.size(), std::max<std::size_t>(repeats, 1), median(exactMs), percentile(exactMs, 0.9),
-      percentile(exactMs, 1.0), static_cast<double>(exactRooms) / n, median(pvsMs),
+      percentile(exactMs, 1.0), static_cast<double>(exactRooms) / n,
+      static_cast<unsigned long long>(fingerprint), median(pvsMs),
       static_cast<double>(pvsRooms) / n, fallbacks, outsidePvs, outsideRegions, outsideBelowPixel,
       largestOutside, outsideSeenByRay);
   }
