@@ -17,7 +17,8 @@
 //   spans lie in [-1, size], no overflow) so that one max serves all four lanes.
 // - The doubled area is the same IEEE operations on the same operands in the same order
 //   ((b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x)), two products in one register:
-//   bit for bit doubleArea() (the core is built without floating-point contraction: no FMA).
+//   bit for bit doubleArea() (the core and its tests are built with -ffp-contract=off: no FMA
+//   fuses the products, whatever the target CPU; Core/CMakeLists.txt).
 // - culled() itself then decides the face, from that area.
 
 #include "scenevis/OcclusionBuffer.h"
