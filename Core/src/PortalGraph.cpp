@@ -3,6 +3,7 @@
 #include "scenevis/PortalGeometry.h"
 #include "scenevis/Scenes.h"
 
+#include <glm/common.hpp>
 #include <glm/geometric.hpp>
 
 #include <algorithm>
@@ -458,6 +459,17 @@ PortalGraph PortalGraph::build(const CellSceneInput& input, PortalGraphReport* r
     bp.plane = glm::dvec4(n, -glm::dot(n, c));
     const glm::dvec3 a = glm::abs(n);
     bp.axis = a.x >= a.y && a.x >= a.z ? 0 : (a.y >= a.z ? 1 : 2);
+    const int ax = bp.axis == 0 ? 1 : 0;
+    const int ay = bp.axis == 2 ? 1 : 2;
+    const glm::dvec3* kept = g.PolygonPoints.data() + bp.first;
+    bp.lo = bp.hi = glm::dvec2(kept[0][ax], kept[0][ay]);
+    for (std::size_t k = 1; k < count; ++k)
+    {
+      const glm::dvec2 q(kept[k][ax], kept[k][ay]);
+      bp.lo = glm::min(bp.lo, q);
+      bp.hi = glm::max(bp.hi, q);
+    }
+    bp.xBeyond = bp.hi.x + 1e-9 * (std::abs(bp.hi.x) + (bp.hi.x - bp.lo.x));
     g.Polygons.push_back(bp);
     return true;
   };
@@ -660,6 +672,10 @@ int PortalGraph::parity(std::int32_t room, const glm::dvec3& p, const glm::dvec3
     // Crossing-number test in the plane of the two non-dominant axes.
     const int ax = bp.axis == 0 ? 1 : 0;
     const int ay = bp.axis == 2 ? 1 : 2;
+    if (q[ay] < bp.lo.y || q[ay] >= bp.hi.y || q[ax] > bp.xBeyond)
+    {
+      continue; // no edge the loop below would count (see BoundaryPolygon)
+    }
     bool in = false;
     const glm::dvec3* pts = this->PolygonPoints.data() + bp.first;
     for (std::uint32_t k = 0, j = bp.count - 1; k < bp.count; j = k++)

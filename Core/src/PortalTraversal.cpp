@@ -394,38 +394,75 @@ void PortalTraversal::buildExits(const PortalGraph& graph)
   }
 }
 
-void PortalTraversal::crossPortal(const Exit& exit, std::uint32_t from, const Region& parent)
+PortalTraversal::ExitGate PortalTraversal::exitGate(const Region& parent) const
 {
-  ++this->Stats.portalsTested;
-  const std::uint32_t index = exit.portal;
-  const std::int32_t to = exit.to;
-  const double slack = this->PlaneSlack;
-  const culling::Frustum& f = this->ViewFrustum;
+  ExitGate g;
+  if (parent.via >= 0)
+  {
+    g.planes[g.count++] = parent.entry;
+    g.entryFirst = true;
+  }
+  g.planes[g.count++] = this->ViewFrustum.planes[culling::kFar];
+  g.planes[g.count++] = this->FrontPlane;
+  for (std::uint32_t p = parent.firstPlane; p < parent.firstPlane + 4; ++p)
+  {
+    g.planes[g.count++] = this->Planes[p];
+  }
+  g.slack = this->PlaneSlack;
+  return g;
+}
 
-  // The rays of the parent crossed its entry portal's plane away from the eye, once: that
-  // portal again, or one wholly on the eye's side of its plane, is out of their reach.
-  const glm::dvec3& lo = exit.lo;
-  const glm::dvec3& hi = exit.hi;
-  if (parent.via >= 0 &&
-    (static_cast<std::uint32_t>(parent.via) == index ||
-      culling::pVertexDistance(parent.entry, lo, hi) < -slack))
+int PortalTraversal::ExitGate::firstBeyond(const glm::dvec3& lo, const glm::dvec3& hi) const
+{
+  for (int k = 0; k < this->count; ++k)
   {
-    ++this->Stats.portalsBehind;
-    return;
+    if (culling::pVertexDistance(this->planes[k], lo, hi) < -this->slack)
+    {
+      return k;
+    }
   }
-  // Quick reject by the portal's box.
-  if (culling::pVertexDistance(f.planes[culling::kFar], lo, hi) < -slack ||
-    culling::pVertexDistance(this->FrontPlane, lo, hi) < -slack)
+  return -1;
+}
+
+void PortalTraversal::expand(const Work& w)
+{
+  ++this->Stats.regionsExpanded;
+  // A copy: crossings append to Regions.
+  const Region parent = this->Regions[w.region];
+  const ExitGate gate = this->exitGate(parent);
+  const auto node = static_cast<std::size_t>(w.node);
+  const auto via = static_cast<std::uint32_t>(parent.via); // no portal's index when -1
+  const std::uint32_t end = this->ExitStart[node + 1];
+  this->Stats.portalsTested += end - this->ExitStart[node];
+  for (std::uint32_t e = this->ExitStart[node]; e < end; ++e)
   {
-    return;
-  }
-  for (std::uint32_t p = parent.firstPlane; p < parent.firstPlane + parent.planeCount; ++p)
-  {
-    if (culling::pVertexDistance(this->Planes[p], lo, hi) < -slack)
+    const Exit& exit = this->Exits[e];
+    // The rays of the parent crossed its entry portal's plane away from the eye, once: that
+    // portal again, or one wholly on the eye's side of its plane, is out of their reach.
+    if (exit.portal == via)
+    {
+      ++this->Stats.portalsBehind;
+      continue;
+    }
+    const int beyond = gate.firstBeyond(exit.lo, exit.hi);
+    if (beyond >= 0)
+    {
+      this->Stats.portalsBehind += beyond == 0 && gate.entryFirst ? 1 : 0;
+      continue;
+    }
+    this->crossPortal(exit, w.region, parent);
+    if (this->FrustumOnly)
     {
       return;
     }
   }
+}
+
+void PortalTraversal::crossPortal(const Exit& exit, std::uint32_t from, const Region& parent)
+{
+  const std::uint32_t index = exit.portal;
+  const std::int32_t to = exit.to;
+  const double slack = this->PlaneSlack;
 
   // Edge-on (the eye in the portal's plane; parallel rays along it) or non-planar: no narrowing
   // is possible or safe.
@@ -435,6 +472,14 @@ void PortalTraversal::crossPortal(const Exit& exit, std::uint32_t from, const Re
     : std::abs(geometry::planeDistance(portal.plane, this->View.eye)) <= slack;
   if (!portal.planar || edgeOn)
   {
+    // The parent's region as it is, without clipping: its edge planes are the last test.
+    for (std::uint32_t p = parent.firstPlane + 4; p < parent.firstPlane + parent.planeCount; ++p)
+    {
+      if (culling::pVertexDistance(this->Planes[p], exit.lo, exit.hi) < -slack)
+      {
+        return;
+      }
+    }
     if (this->attach(to, from, true))
     {
       ++this->Stats.portalsTraversed;
@@ -652,18 +697,7 @@ void PortalTraversal::run(const PortalGraph& graph, const PortalView& view,
     {
       continue; // merged into a bigger region since it was queued
     }
-    ++this->Stats.regionsExpanded;
-    // A copy: crossings append to Regions.
-    const Region parent = this->Regions[w.region];
-    const auto node = static_cast<std::size_t>(w.node);
-    for (std::uint32_t e = this->ExitStart[node]; e < this->ExitStart[node + 1]; ++e)
-    {
-      this->crossPortal(this->Exits[e], w.region, parent);
-      if (this->FrustumOnly)
-      {
-        return;
-      }
-    }
+    this->expand(w);
   }
   this->Stats.roomsVisited = this->Visible.size();
 }

@@ -239,7 +239,24 @@ private:
     std::int32_t to;      ///< The node on its other side.
   };
   void buildExits(const PortalGraph& graph);
-  /// Cross @p exit from region @p from (@p parent: a copy of it).
+  /// The planes each exit of one expansion is tested against first, read once per expansion:
+  /// the parent's entry plane (when it has one), the far and front planes, and the parent's four
+  /// rectangle planes. A portal whose box lies wholly beyond one of them (by more than the slack)
+  /// cannot be crossed; the parent's edge planes are left to the clipping, which drops such a
+  /// portal as surely.
+  struct ExitGate
+  {
+    glm::dvec4 planes[7];
+    int count = 0;
+    bool entryFirst = false; ///< planes[0] is the parent's entry plane.
+    double slack = 0.0;
+    /// The first plane the box (@p lo, @p hi) lies wholly beyond (by more than the slack), or -1.
+    int firstBeyond(const glm::dvec3& lo, const glm::dvec3& hi) const;
+  };
+  ExitGate exitGate(const Region& parent) const;
+  /// Cross every exit of the node of @p w that passes the gate of its region.
+  void expand(const Work& w);
+  /// Cross @p exit from region @p from (@p parent: a copy of it); the exit passed the gate.
   void crossPortal(const Exit& exit, std::uint32_t from, const Region& parent);
   /// The portal clipped by the eye and far planes (cached for the frame).
   const ClippedPortal& clippedPortal(std::uint32_t index);
