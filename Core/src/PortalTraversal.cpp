@@ -402,8 +402,6 @@ PortalTraversal::ExitGate PortalTraversal::exitGate(const Region& parent) const
     g.planes[g.count++] = parent.entry;
     g.entryFirst = true;
   }
-  g.planes[g.count++] = this->ViewFrustum.planes[culling::kFar];
-  g.planes[g.count++] = this->FrontPlane;
   for (std::uint32_t p = parent.firstPlane; p < parent.firstPlane + 4; ++p)
   {
     g.planes[g.count++] = this->Planes[p];
@@ -472,7 +470,14 @@ void PortalTraversal::crossPortal(const Exit& exit, std::uint32_t from, const Re
     : std::abs(geometry::planeDistance(portal.plane, this->View.eye)) <= slack;
   if (!portal.planar || edgeOn)
   {
-    // The parent's region as it is, without clipping: its edge planes are the last test.
+    // The parent's region as it is, without clipping: the far, front and edge planes are the
+    // last tests.
+    if (culling::pVertexDistance(this->ViewFrustum.planes[culling::kFar], exit.lo, exit.hi) <
+        -slack ||
+      culling::pVertexDistance(this->FrontPlane, exit.lo, exit.hi) < -slack)
+    {
+      return;
+    }
     for (std::uint32_t p = parent.firstPlane + 4; p < parent.firstPlane + parent.planeCount; ++p)
     {
       if (culling::pVertexDistance(this->Planes[p], exit.lo, exit.hi) < -slack)

@@ -240,13 +240,13 @@ private:
   };
   void buildExits(const PortalGraph& graph);
   /// The planes each exit of one expansion is tested against first, read once per expansion:
-  /// the parent's entry plane (when it has one), the far and front planes, and the parent's four
-  /// rectangle planes. A portal whose box lies wholly beyond one of them (by more than the slack)
-  /// cannot be crossed; the parent's edge planes are left to the clipping, which drops such a
-  /// portal as surely.
+  /// the parent's entry plane (when it has one) and its four rectangle planes. A portal whose box
+  /// lies wholly beyond one of them (by more than the slack) cannot be crossed. The far, front
+  /// and edge planes are left to the clipping, which drops such a portal as surely (tested
+  /// before crossing only where no clipping follows: edge-on and non-planar portals).
   struct ExitGate
   {
-    glm::dvec4 planes[7];
+    glm::dvec4 planes[5];
     int count = 0;
     bool entryFirst = false; ///< planes[0] is the parent's entry plane.
     double slack = 0.0;
