@@ -651,6 +651,32 @@ TEST(PortalTraversal, EyeOnAPortalPlanePassesTheWholeFrustum)
   }
 }
 
+TEST(PortalTraversal, AnEdgeOnPortalIsCrossedOnlyWithinTheFrustum)
+{
+  // Rooms 0 | 1 side by side through a door as high as the wall's top (x = 5, y up to 5), room 2
+  // beyond room 1's top (door at y = 5, x 5.5 to 9.5). The eye in room 0 lies in the plane
+  // y = 5: door 1-2 is edge-on, attached without clipping, so only the box tests before it decide
+  // whether it is crossed; the far plane at 4.9 from the eye (x = 5.4) leaves all of it out.
+  BoxRooms s;
+  s.addRoom({ 0, 0, 0 }, { 5, 5, 3 });
+  s.addRoom({ 5, 0, 0 }, { 10, 5, 3 });
+  s.addRoom({ 5, 5, 0 }, { 10, 10, 3 });
+  s.addPortal(0, 1, 0, 5.0, { 0, 1, 0 }, { 0, 5, 2.5 });
+  s.addPortal(1, 2, 1, 5.0, { 5.5, 0, 0 }, { 9.5, 0, 2.1 });
+  const PortalGraph g = PortalGraph::build(s.finish());
+  const glm::dvec3 eye(0.5, 5.0 - 1e-12, 1.0), ahead(9.0, 5.0 - 1e-12, 1.0);
+  for (const NarrowingMode mode : kModes)
+  {
+    SCOPED_TRACE(mode == NarrowingMode::ExactFrustum ? "exact" : "rectangles");
+    PortalTraversal t;
+    t.run(g, lookAt(eye, ahead, 60.0, 0.001, 200.0), withMode(mode));
+    EXPECT_EQ(t.stats().fallback, Fallback::None);
+    EXPECT_EQ(visibleSet(t), (std::set<std::int32_t>{ 0, 1, 2 })) << "far plane at 200";
+    t.run(g, lookAt(eye, ahead, 60.0, 0.001, 4.9), withMode(mode));
+    EXPECT_EQ(visibleSet(t), (std::set<std::int32_t>{ 0, 1 })) << "far plane at 4.9";
+  }
+}
+
 TEST(PortalTraversal, PortalPartlyBehindTheEyeIsClippedAtTheEyePlane)
 {
   BoxRooms s = corridor();
