@@ -153,15 +153,16 @@ void MaskedDepthBuffer::drawTrianglesFrom(const glm::dvec4* clip, const ModelVer
   // clipped), 3 not projected yet.
   window_.resize(vertexCount);
   centres_.resize(vertexCount);
-  vertexState_.assign(vertexCount, 3);
+  vertexState_.assign(vertexCount, kVertexUnseen);
   if (model)
   {
     clip_.resize(vertexCount); // grows only: no allocation per call once warm
     clip = clip_.data();
   }
-  auto state = [&](std::uint32_t i) -> unsigned char {
-    unsigned char& s = vertexState_[i];
-    if (s == 3)
+  auto state = [&](std::uint32_t i) -> unsigned
+  {
+    VertexState& s = vertexState_[i];
+    if (s == kVertexUnseen)
     {
       if (model)
       {
@@ -186,11 +187,11 @@ void MaskedDepthBuffer::drawTrianglesFrom(const glm::dvec4* clip, const ModelVer
       const glm::dvec4& v = clip[i];
       if (!finite(v))
       {
-        s = 0;
+        s = kVertexNotFinite;
       }
       else if (v.z + v.w >= 0.0 && v.w > 0.0)
       {
-        s = 1;
+        s = kVertexFront;
         const double inverseW = 1.0 / v.w;
         window_[i] = glm::dvec3((v.x * inverseW * 0.5 + 0.5) * width_,
           (v.y * inverseW * 0.5 + 0.5) * height_, v.z * inverseW * 0.5 + 0.5);
@@ -198,7 +199,7 @@ void MaskedDepthBuffer::drawTrianglesFrom(const glm::dvec4* clip, const ModelVer
       }
       else
       {
-        s = 2;
+        s = kVertexBehind;
       }
     }
     return s;

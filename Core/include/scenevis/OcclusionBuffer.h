@@ -351,7 +351,17 @@ private:
   std::vector<glm::dvec4> clip_; // ModelVertices transformed (valid where vertexState_ != 3)
   std::vector<glm::dvec3> window_;
   std::vector<CentreSpan> centres_;
-  std::vector<unsigned char> vertexState_;
+  /// A vertex's state in drawTriangles (see drawTrianglesFrom): one byte, but not a character
+  /// type, so that storing it does not make the compiler assume that any member (the scratch
+  /// vectors' pointers, the viewport) may have changed and load them again.
+  enum VertexState : std::uint8_t
+  {
+    kVertexNotFinite = 0,
+    kVertexFront = 1,  ///< in front of the near plane: window coordinates valid
+    kVertexBehind = 2, ///< finite, behind the near plane: its triangles are clipped
+    kVertexUnseen = 3  ///< not projected yet
+  };
+  std::vector<VertexState> vertexState_;
   glm::dmat4 clipFromWorld_{ 1.0 };
   /// World-space corners of the near plane's rectangle (a box holding one reaches the eye's
   /// near plane on screen: never occluded); valid only if nearCornersValid_.
