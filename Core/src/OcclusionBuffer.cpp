@@ -245,24 +245,26 @@ void MaskedDepthBuffer::drawTrianglesFrom(const glm::dvec4* clip, const ModelVer
     }
     return s;
   };
-  auto valid = [&](std::size_t t) {
-    const std::uint32_t* tri = indices + 3 * t;
-    return indicesInRange(tri, vertexCount) && state(tri[0]) != 0 && state(tri[1]) != 0 &&
-      state(tri[2]) != 0;
-  };
   // Facing: an edge is inside the occluder only if the neighbour across it faces the same way.
   // In front of the near plane it is the sign of the window-space area; otherwise the sign of
   // det[x y w] (the same orientation, homogeneous). Where the two disagree (near-degenerate
   // triangles) an edge merely becomes an outline edge. Asked only of the neighbours of
   // triangles that are drawn (most are rejected first).
-  auto facing = [&](std::size_t t) -> int {
-    if (!valid(t))
+  auto facing = [&](std::size_t t) -> int
+  {
+    const std::uint32_t* tri = indices + 3 * t;
+    if (!indicesInRange(tri, vertexCount))
     {
       return 0;
     }
-    const std::uint32_t* tri = indices + 3 * t;
+    // Each state once (projecting a vertex not seen yet; the same states in any order).
+    const unsigned s0 = state(tri[0]), s1 = state(tri[1]), s2 = state(tri[2]);
+    if (s0 == kVertexNotFinite || s1 == kVertexNotFinite || s2 == kVertexNotFinite)
+    {
+      return 0;
+    }
     double det;
-    if (vertexState_[tri[0]] == 1 && vertexState_[tri[1]] == 1 && vertexState_[tri[2]] == 1)
+    if ((s0 & s1 & s2) == kVertexFront) // all three in front (states 1 or 2 here)
     {
       det = doubleArea(window_[tri[0]], window_[tri[1]], window_[tri[2]]);
     }
