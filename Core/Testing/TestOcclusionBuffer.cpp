@@ -279,12 +279,17 @@ TEST_P(OcclusionBuffer, BadInputIsRejectedNotDrawn)
 {
   MaskedDepthBuffer buffer = bufferFor(kFront);
   const double nan = std::numeric_limits<double>::quiet_NaN();
+  const double inf = std::numeric_limits<double>::infinity();
+  // Vertices 5-7 are not finite in w, z or w only: taken as finite, each would make a drawable
+  // triangle with vertices 1 and 2 (w = inf projects to the centre; z = inf is in front).
   std::vector<glm::dvec4> clip = { { 0, 0, 0.5, 1 }, { 1, 0, 0.5, 1 }, { 0, 1, 0.5, 1 },
-    { nan, 0, 0, 1 }, { 0, 0, -5, -1 } };
+    { nan, 0, 0, 1 }, { 0, 0, -5, -1 }, { 0, 0, 0.5, inf }, { 0, 0, inf, 1 }, { 0, 0, 0.5, nan } };
   std::vector<std::uint32_t> indices = { 0, 1, 1, /*degenerate*/ 0, 1, 3, /*NaN*/ 0, 1, 9,
-    /*out of range*/ 4, 4, 4 /*behind*/ };
-  buffer.drawTriangles(clip.data(), clip.size(), indices.data(), 4);
-  EXPECT_EQ(buffer.stats().trianglesRejected, 4u);
+    /*out of range*/ 4, 4, 4 /*behind*/, 1, 2, 5, /*w = inf*/ 1, 2, 6, /*z = inf*/ 1, 2,
+    7 /*w = NaN*/ };
+  buffer.drawTriangles(clip.data(), clip.size(), indices.data(), 7);
+  EXPECT_EQ(buffer.stats().trianglesRejected, 7u);
+  EXPECT_EQ(buffer.stats().tilesUpdated, 0u);
   EXPECT_FALSE(buffer.boxOccluded({ nan, 0, 0 }, { 1, 1, 1 }));
   EXPECT_FALSE(buffer.boxOccluded({ 1, 1, 1 }, { 0, 0, 0 })); // empty
   MaskedDepthBuffer empty;
