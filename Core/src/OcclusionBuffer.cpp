@@ -632,14 +632,16 @@ void MaskedDepthBuffer::drawFrontTriangle(const glm::dvec3& a, const glm::dvec3&
   }
 }
 
-bool MaskedDepthBuffer::hidden(
+// hidden() and behindTiles() are used in this file only: inline, so that the test each front
+// triangle gets before its set-up (and each cluster before its triangles) is not a call.
+inline bool MaskedDepthBuffer::hidden(
   const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c, const CentreSpan& span)
 {
   return behindTiles(tileColumn(span.x0), tileRow(span.y0), tileColumn(span.x1), tileRow(span.y1),
     std::min({ a.z, b.z, c.z }) + depthMargin);
 }
 
-bool MaskedDepthBuffer::behindTiles(int tx0, int ty0, int tx1, int ty1, double depth)
+inline bool MaskedDepthBuffer::behindTiles(int tx0, int ty0, int tx1, int ty1, double depth)
 {
   // Tile indices are never negative: the block bounds once, by shifts.
   static_assert(kBlockTiles == 4, "blocks of 4 x 4 tiles");
