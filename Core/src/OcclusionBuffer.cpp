@@ -183,6 +183,10 @@ void MaskedDepthBuffer::drawTrianglesFrom(const glm::dvec4* clip, const ModelVer
   window_.resize(vertexCount);
   centres_.resize(vertexCount);
   vertexState_.assign(vertexCount, kVertexUnseen);
+  if (neighbors)
+  {
+    facing_.assign(triangleCount, TriangleFacing::Unknown);
+  }
   if (model)
   {
     clip_.resize(vertexCount); // grows only: no allocation per call once warm
@@ -252,6 +256,15 @@ void MaskedDepthBuffer::drawTrianglesFrom(const glm::dvec4* clip, const ModelVer
   // triangles that are drawn (most are rejected first).
   auto facing = [&](std::size_t t) -> int
   {
+    // Most neighbours went through keepDrawable() already (in this batch or an earlier one),
+    // which recorded the sign of the same doubled area, bit for bit doubleArea() below: one
+    // byte read instead of the neighbour's indices, states and window coordinates, which lie
+    // at random places in memory.
+    const TriangleFacing known = facing_[t];
+    if (known != TriangleFacing::Unknown)
+    {
+      return static_cast<int>(known);
+    }
     const std::uint32_t* tri = indices + 3 * t;
     if (!indicesInRange(tri, vertexCount))
     {
@@ -351,7 +364,7 @@ void MaskedDepthBuffer::drawTrianglesFrom(const glm::dvec4* clip, const ModelVer
         usable += (s0 != 0 && s1 != 0 && s2 != 0) ? 1 : 0;
       }
       const FrontVertices vertices{ indices, window_.data(), centres_.data(), width_, height_,
-        culling };
+        culling, neighbors ? facing_.data() : nullptr };
       const std::size_t kept = keepDrawable(batch, usable, vertices);
       stats_.trianglesRejected += count - kept;
       for (std::size_t i = 0; i < kept; ++i)

@@ -197,6 +197,17 @@ struct CentreSpan
   int x0, x1, y0, y1;
 };
 
+/// Which way a triangle faces as MaskedDepthBuffer's neighbour test sees it (the sign of its
+/// doubled window area; None: degenerate or not finite), or not known yet (front end,
+/// src/OcclusionFront.h). One byte, not a character type (see MaskedDepthBuffer::VertexState).
+enum class TriangleFacing : std::int8_t
+{
+  Back = -1,
+  None = 0,
+  Front = 1,
+  Unknown = 2
+};
+
 class MaskedDepthBuffer
 {
 public:
@@ -362,6 +373,9 @@ private:
     kVertexUnseen = 3  ///< not projected yet
   };
   std::vector<VertexState> vertexState_;
+  /// Per triangle of the current drawTriangles() call with neighbours: its facing where the
+  /// front end has found it (TriangleFacing::Unknown elsewhere).
+  std::vector<TriangleFacing> facing_;
   glm::dmat4 clipFromWorld_{ 1.0 };
   /// World-space corners of the near plane's rectangle (a box holding one reaches the eye's
   /// near plane on screen: never occluded); valid only if nearCornersValid_.
