@@ -277,7 +277,8 @@ void MaskedDepthBuffer::drawTrianglesFrom(const glm::dvec4* clip, const ModelVer
       return 0;
     }
     double det;
-    if ((s0 & s1 & s2) == kVertexFront) // all three in front (states 1 or 2 here)
+    // The states are 1 (front) or 2 (behind) here: their bitwise and is 1 only if all are 1.
+    if ((s0 & s1 & s2) == kVertexFront)
     {
       det = doubleArea(window_[tri[0]], window_[tri[1]], window_[tri[2]]);
     }
