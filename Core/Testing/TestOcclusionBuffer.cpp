@@ -583,46 +583,6 @@ TEST_P(OcclusionBuffer, TwoPartsSharingAnEdgeHideABoxBehindTheSeam)
   }
 }
 
-// hidden() remembers the tiles it last found behind a triangle and its depth (their z0 only goes
-// down while triangles are drawn): a nearer triangle there is not hidden, and clear() and
-// resize() must forget them, or a triangle drawn into the emptied buffer would still be taken
-// for hidden.
-TEST_P(OcclusionBuffer, ABufferClearedOrResizedForgetsWhatWasHidden)
-{
-  const std::vector<glm::dvec4> clip = { { -3, -3, -0.6, 1 }, { 3, -3, -0.6, 1 }, { 3, 3, -0.6, 1 },
-    { -3, 3, -0.6, 1 }, // a wall over the whole view, window depth 0.2
-    { -0.5, -0.5, 0.6, 1 }, { 0.5, -0.5, 0.6, 1 }, { 0, 0.5, 0.6, 1 },      // behind it: 0.8
-    { -0.5, -0.5, -0.8, 1 }, { 0.5, -0.5, -0.8, 1 }, { 0, 0.5, -0.8, 1 } }; // before it: 0.1
-  const std::vector<std::uint32_t> wall = { 0, 1, 2, 0, 2, 3 }, behind = { 4, 5, 6 },
-                                   before = { 7, 8, 9 };
-  for (int forget = 0; forget < 2; ++forget)
-  {
-    MaskedDepthBuffer buffer;
-    buffer.rasterizer = gRasterizer;
-    buffer.resize(64, 32);
-    buffer.drawTriangles(clip.data(), clip.size(), wall.data(), 2);
-    buffer.drawTriangles(clip.data(), clip.size(), behind.data(), 1);
-    EXPECT_EQ(buffer.stats().trianglesDrawn, 2u);
-    EXPECT_EQ(buffer.stats().trianglesRejected, 1u); // hidden behind the wall
-    // In the same tiles but nearer than the wall: not hidden.
-    buffer.drawTriangles(clip.data(), clip.size(), before.data(), 1);
-    EXPECT_EQ(buffer.stats().trianglesDrawn, 3u);
-    buffer.drawTriangles(clip.data(), clip.size(), behind.data(), 1);
-    EXPECT_EQ(buffer.stats().trianglesRejected, 2u);
-    if (forget == 0)
-    {
-      buffer.clear();
-    }
-    else
-    {
-      buffer.resize(64, 32);
-    }
-    buffer.drawTriangles(clip.data(), clip.size(), behind.data(), 1);
-    EXPECT_EQ(buffer.stats().trianglesDrawn, 1u) << (forget == 0 ? "clear()" : "resize()");
-    EXPECT_GT(buffer.stats().tilesUpdated, 0u);
-  }
-}
-
 // An edge is inside an occluder only if the neighbour across it faces the same way: across a
 // degenerate neighbour (zero area: no facing) it stays an outline edge and keeps the coverage
 // margin, whether the neighbour's facing is computed or read from what the front end found.

@@ -104,7 +104,6 @@ void MaskedDepthBuffer::resize(int width, int height)
     }
   }
   stats_ = BufferStats();
-  lastBehind_ = kNoTiles;
   ++revision_;
 }
 
@@ -128,7 +127,6 @@ void MaskedDepthBuffer::clear()
   std::fill(tiles_.begin(), tiles_.end(), Tile{ kNoOccluder, 0.0f, 0u });
   std::fill(blockZ0_.begin(), blockZ0_.end(), kNoOccluder);
   stats_ = BufferStats();
-  lastBehind_ = kNoTiles;
   ++revision_;
 }
 
@@ -653,24 +651,8 @@ void MaskedDepthBuffer::drawFrontTriangle(const glm::dvec3& a, const glm::dvec3&
 inline bool MaskedDepthBuffer::hidden(
   const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c, const CentreSpan& span)
 {
-  const CentreSpan tiles{ tileColumn(span.x0), tileColumn(span.x1), tileRow(span.y0),
-    tileRow(span.y1) };
-  const double depth = std::min({ a.z, b.z, c.z }) + depthMargin;
-  // No tile's z0 grows until clear(): tiles found behind a depth stay behind it, so a triangle
-  // within the last ones found so and no nearer is behind too, without reading them again
-  // (the same answer; neighbours in a mesh often are).
-  if (tiles.x0 >= lastBehind_.x0 && tiles.x1 <= lastBehind_.x1 && tiles.y0 >= lastBehind_.y0 &&
-    tiles.y1 <= lastBehind_.y1 && depth >= lastBehindDepth_)
-  {
-    return true;
-  }
-  if (!behindTiles(tiles.x0, tiles.y0, tiles.x1, tiles.y1, depth))
-  {
-    return false;
-  }
-  lastBehind_ = tiles;
-  lastBehindDepth_ = depth;
-  return true;
+  return behindTiles(tileColumn(span.x0), tileRow(span.y0), tileColumn(span.x1), tileRow(span.y1),
+    std::min({ a.z, b.z, c.z }) + depthMargin);
 }
 
 inline bool MaskedDepthBuffer::behindTiles(int tx0, int ty0, int tx1, int ty1, double depth)

@@ -383,11 +383,6 @@ private:
   bool nearCornersValid_ = false;
   BufferStats stats_;
   std::uint64_t revision_ = 0;
-  /// The tiles (x0 x1 y0 y1) of the last triangle hidden() found behind them, and its depth
-  /// (see hidden()); none after clear() and resize().
-  static constexpr CentreSpan kNoTiles{ 1, 0, 1, 0 };
-  CentreSpan lastBehind_ = kNoTiles;
-  double lastBehindDepth_ = 0.0;
 };
 
 } // namespace occlusion
