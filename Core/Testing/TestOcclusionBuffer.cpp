@@ -279,12 +279,17 @@ TEST_P(OcclusionBuffer, BadInputIsRejectedNotDrawn)
 {
   MaskedDepthBuffer buffer = bufferFor(kFront);
   const double nan = std::numeric_limits<double>::quiet_NaN();
+  const double inf = std::numeric_limits<double>::infinity();
+  // Vertices 5-7 are not finite in w, z or w only: taken as finite, each would make a drawable
+  // triangle with vertices 1 and 2 (w = inf projects to the centre; z = inf is in front).
   std::vector<glm::dvec4> clip = { { 0, 0, 0.5, 1 }, { 1, 0, 0.5, 1 }, { 0, 1, 0.5, 1 },
-    { nan, 0, 0, 1 }, { 0, 0, -5, -1 } };
+    { nan, 0, 0, 1 }, { 0, 0, -5, -1 }, { 0, 0, 0.5, inf }, { 0, 0, inf, 1 }, { 0, 0, 0.5, nan } };
   std::vector<std::uint32_t> indices = { 0, 1, 1, /*degenerate*/ 0, 1, 3, /*NaN*/ 0, 1, 9,
-    /*out of range*/ 4, 4, 4 /*behind*/ };
-  buffer.drawTriangles(clip.data(), clip.size(), indices.data(), 4);
-  EXPECT_EQ(buffer.stats().trianglesRejected, 4u);
+    /*out of range*/ 4, 4, 4 /*behind*/, 1, 2, 5, /*w = inf*/ 1, 2, 6, /*z = inf*/ 1, 2,
+    7 /*w = NaN*/ };
+  buffer.drawTriangles(clip.data(), clip.size(), indices.data(), 7);
+  EXPECT_EQ(buffer.stats().trianglesRejected, 7u);
+  EXPECT_EQ(buffer.stats().tilesUpdated, 0u);
   EXPECT_FALSE(buffer.boxOccluded({ nan, 0, 0 }, { 1, 1, 1 }));
   EXPECT_FALSE(buffer.boxOccluded({ 1, 1, 1 }, { 0, 0, 0 })); // empty
   MaskedDepthBuffer empty;
@@ -576,6 +581,49 @@ TEST_P(OcclusionBuffer, TwoPartsSharingAnEdgeHideABoxBehindTheSeam)
     EXPECT_EQ(visiblePixels(cam, { { a, b, c }, { a, c, d } }, lo, hi), 0);
     EXPECT_TRUE(buffer.boxOccluded(lo, hi)) << "a box behind the seam at " << t;
   }
+}
+
+// An edge is inside an occluder only if the neighbour across it faces the same way: across a
+// degenerate neighbour (zero area: no facing) it stays an outline edge and keeps the coverage
+// margin, whether the neighbour's facing is computed or read from what the front end found.
+// Triangle A's edge x = 4.5 runs through the centres of pixel column 4: covered only if the edge
+// is inside the occluder (A takes the tie there), never with the margin.
+TEST_P(OcclusionBuffer, ADegenerateNeighbourLeavesTheSharedEdgeAnOutline)
+{
+  const int width = 16, height = 8;
+  // Window coordinates (exact in clip space and back); w = 1, window depth 0.5.
+  auto clipOf = [&](double x, double y)
+  { return glm::dvec4(x / width * 2.0 - 1.0, y / height * 2.0 - 1.0, 0.0, 1.0); };
+  auto column4 = [&](const glm::dvec2& third)
+  {
+    // A = 0 1 2 (counter-clockwise), B = 1 0 3 across A's edge 0 -> 1.
+    const glm::dvec2 window[4] = { { 4.5, 0.0 }, { 4.5, 8.0 }, { -4.0, 4.0 }, third };
+    std::vector<glm::dvec4> clip;
+    std::vector<double> xyz;
+    for (const glm::dvec2& p : window)
+    {
+      clip.push_back(clipOf(p.x, p.y));
+      xyz.insert(xyz.end(), { p.x, p.y, 0.0 });
+    }
+    const std::vector<std::uint32_t> indices = { 0, 1, 2, 1, 0, 3 };
+    const std::vector<std::uint32_t> neighbors =
+      buildTriangleNeighbors(xyz.data(), 4, indices.data(), 2);
+    EXPECT_EQ(neighbors[0], 1u);
+    EXPECT_EQ(neighbors[3], 0u);
+    MaskedDepthBuffer buffer;
+    buffer.rasterizer = gRasterizer;
+    buffer.resize(width, height);
+    buffer.drawTriangles(
+      clip.data(), clip.size(), indices.data(), 2, FaceCulling::None, neighbors.data());
+    const MaskedDepthBuffer::Tile& tile = buffer.tiles()[0]; // pixels x 0-7, y 0-3
+    const std::uint32_t covered = tile.z0 <= 1.0f ? 0xFFFFFFFFu : tile.mask;
+    return covered & 0x10101010u; // pixel column 4 of the four scanlines
+  };
+  // A neighbour facing A's way: the edge is inside, every centre on it goes to A.
+  EXPECT_EQ(column4({ 12.0, 4.0 }), 0x10101010u);
+  // A degenerate neighbour (its third vertex on the edge): outline, the margin keeps column 4.
+  EXPECT_EQ(column4({ 4.5, 4.0 }), 0u);
+  EXPECT_EQ(column4({ 4.5, 20.0 }), 0u);
 }
 
 // Runs of triangles whose model-space box is behind what the buffer has are skipped before their
@@ -1514,6 +1562,7 @@ TEST(OcclusionFront, BatchKeepsWhatTheScalarFrontEndKeeps)
   const int sizes[][2] = { { 800, 600 }, { 1, 1 }, { 37, 5 }, { 8, 4 }, { 1920, 1200 } };
   constexpr double inf = std::numeric_limits<double>::infinity();
   std::size_t batches = 0, kept = 0, dropped = 0, areaZero = 0, spanEmpty = 0;
+  std::size_t facings[4] = {}; // Back, None, Front, Unknown
   for (const auto& size : sizes)
   {
     const int width = size[0], height = size[1];
@@ -1555,19 +1604,28 @@ TEST(OcclusionFront, BatchKeepsWhatTheScalarFrontEndKeeps)
         ? indices[k - 1]
         : static_cast<std::uint32_t>((k / 3 + rng() % 8) % window.size());
     }
+    // The facing both record for every front triangle, kept or not (drawTriangles' neighbour
+    // test reads it instead of computing the sign of the same area again).
+    std::vector<TriangleFacing> batchFacing(indices.size() / 3, TriangleFacing::Unknown);
+    std::vector<TriangleFacing> scalarFacing(batchFacing);
     for (FaceCulling culling :
       { FaceCulling::None, FaceCulling::Back, FaceCulling::Front, FaceCulling::Both })
     {
       const FrontVertices vertices{ indices.data(), window.data(), centres.data(), width, height,
-        culling };
+        culling, batchFacing.data() };
+      FrontVertices scalarVertices = vertices;
+      scalarVertices.facing = scalarFacing.data();
       for (std::size_t first = 0; first < indices.size() / 3; first += kFrontBatch)
       {
         FrontEntry batch[kFrontBatch], reference[kFrontBatch];
+        bool front[kFrontBatch];
         const std::size_t count = 1 + rng() % kFrontBatch;
         for (std::size_t i = 0; i < count; ++i)
         {
           batch[i] = FrontEntry{ first + i, rng() % 10 != 0, CentreSpan{ 0, 0, 0, 0 }, 0.0 };
           reference[i] = batch[i];
+          front[i] = batch[i].front;
+          batchFacing[first + i] = scalarFacing[first + i] = TriangleFacing::Unknown;
           const std::uint32_t* tri = indices.data() + 3 * (first + i);
           areaZero += doubleArea(window[tri[0]], window[tri[1]], window[tri[2]]) == 0.0;
           const CentreSpan s =
@@ -1575,8 +1633,20 @@ TEST(OcclusionFront, BatchKeepsWhatTheScalarFrontEndKeeps)
           spanEmpty += s.x0 > s.x1 || s.y0 > s.y1;
         }
         const std::size_t n = keepDrawable(batch, count, vertices);
-        const std::size_t expected = keepDrawableScalar(reference, count, vertices);
+        const std::size_t expected = keepDrawableScalar(reference, count, scalarVertices);
         ASSERT_EQ(n, expected) << width << "x" << height << " batch at " << first;
+        for (std::size_t i = 0; i < count; ++i)
+        {
+          const std::uint32_t* tri = indices.data() + 3 * (first + i);
+          const double area2 = doubleArea(window[tri[0]], window[tri[1]], window[tri[2]]);
+          const TriangleFacing facing = front[i]
+            ? (area2 > 0.0 ? TriangleFacing::Front
+                           : (area2 < 0.0 ? TriangleFacing::Back : TriangleFacing::None))
+            : TriangleFacing::Unknown;
+          ASSERT_EQ(batchFacing[first + i], facing) << "triangle " << first + i;
+          ASSERT_EQ(scalarFacing[first + i], facing) << "triangle " << first + i;
+          facings[static_cast<int>(facing) + 1] += 1;
+        }
         for (std::size_t i = 0; i < n; ++i)
         {
           ASSERT_EQ(batch[i].triangle, reference[i].triangle);
@@ -1606,4 +1676,8 @@ TEST(OcclusionFront, BatchKeepsWhatTheScalarFrontEndKeeps)
   EXPECT_GT(areaZero, 500u);
   EXPECT_GT(spanEmpty, 5000u);
   EXPECT_GT(batches, 1000u);
+  for (std::size_t n : facings)
+  {
+    EXPECT_GT(n, 500u); // every facing recorded (Unknown: the clipped ones)
+  }
 }

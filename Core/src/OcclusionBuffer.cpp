@@ -24,7 +24,36 @@ constexpr float kNoOccluder = std::numeric_limits<float>::infinity();
 
 bool finite(const glm::dvec4& v)
 {
+#ifdef SCENEVIS_OCCLUSION_SSE2
+  // x - x is 0 for every finite x and NaN for infinities and NaN: four tests in two compares.
+  const __m128d xy = _mm_loadu_pd(&v.x), zw = _mm_loadu_pd(&v.z);
+  const __m128d zero = _mm_setzero_pd();
+  return _mm_movemask_pd(_mm_and_pd(
+           _mm_cmpeq_pd(_mm_sub_pd(xy, xy), zero), _mm_cmpeq_pd(_mm_sub_pd(zw, zw), zero))) == 3;
+#else
   return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z) && std::isfinite(v.w);
+#endif
+}
+
+/// Whether a triangle's three vertex indices are below @p vertexCount (one compare, no branch
+/// per index).
+bool indicesInRange(const std::uint32_t* tri, std::size_t vertexCount)
+{
+  return std::max(std::max(tri[0], tri[1]), tri[2]) < vertexCount;
+}
+
+/// The tile column of pixel column @p x and the tile row of pixel row @p y, for x, y >= 0 (or
+/// multiples of the tile size, as an empty row's -ScanlineCoverage::kEmpty): there a shift is
+/// the division, which for an int the compiler must also round towards 0 for negatives.
+static_assert(MaskedDepthBuffer::kTileWidth == 8 && MaskedDepthBuffer::kTileHeight == 4,
+  "tiles of 8 x 4 pixels");
+constexpr int tileColumn(int x)
+{
+  return x >> 3;
+}
+constexpr int tileRow(int y)
+{
+  return y >> 2;
 }
 
 } // namespace
@@ -153,15 +182,20 @@ void MaskedDepthBuffer::drawTrianglesFrom(const glm::dvec4* clip, const ModelVer
   // clipped), 3 not projected yet.
   window_.resize(vertexCount);
   centres_.resize(vertexCount);
-  vertexState_.assign(vertexCount, 3);
+  vertexState_.assign(vertexCount, kVertexUnseen);
+  if (neighbors)
+  {
+    facing_.assign(triangleCount, TriangleFacing::Unknown);
+  }
   if (model)
   {
     clip_.resize(vertexCount); // grows only: no allocation per call once warm
     clip = clip_.data();
   }
-  auto state = [&](std::uint32_t i) -> unsigned char {
-    unsigned char& s = vertexState_[i];
-    if (s == 3)
+  auto state = [&](std::uint32_t i) -> unsigned
+  {
+    VertexState& s = vertexState_[i];
+    if (s == kVertexUnseen)
     {
       if (model)
       {
@@ -186,41 +220,65 @@ void MaskedDepthBuffer::drawTrianglesFrom(const glm::dvec4* clip, const ModelVer
       const glm::dvec4& v = clip[i];
       if (!finite(v))
       {
-        s = 0;
+        s = kVertexNotFinite;
       }
       else if (v.z + v.w >= 0.0 && v.w > 0.0)
       {
-        s = 1;
+        s = kVertexFront;
         const double inverseW = 1.0 / v.w;
+#ifdef SCENEVIS_OCCLUSION_SSE2
+        // x and y in one register: the same operations in the same order as below.
+        const __m128d xy = _mm_mul_pd(
+          _mm_add_pd(
+            _mm_mul_pd(_mm_mul_pd(_mm_loadu_pd(&v.x), _mm_set1_pd(inverseW)), _mm_set1_pd(0.5)),
+            _mm_set1_pd(0.5)),
+          _mm_set_pd(height_, width_));
+        glm::dvec3& w = window_[i];
+        _mm_storeu_pd(&w.x, xy);
+        w.z = v.z * inverseW * 0.5 + 0.5;
+#else
         window_[i] = glm::dvec3((v.x * inverseW * 0.5 + 0.5) * width_,
           (v.y * inverseW * 0.5 + 0.5) * height_, v.z * inverseW * 0.5 + 0.5);
+#endif
         centres_[i] = centreSpan(window_[i].x, window_[i].y, width_, height_);
       }
       else
       {
-        s = 2;
+        s = kVertexBehind;
       }
     }
     return s;
-  };
-  auto valid = [&](std::size_t t) {
-    const std::uint32_t* tri = indices + 3 * t;
-    return tri[0] < vertexCount && tri[1] < vertexCount && tri[2] < vertexCount &&
-      state(tri[0]) != 0 && state(tri[1]) != 0 && state(tri[2]) != 0;
   };
   // Facing: an edge is inside the occluder only if the neighbour across it faces the same way.
   // In front of the near plane it is the sign of the window-space area; otherwise the sign of
   // det[x y w] (the same orientation, homogeneous). Where the two disagree (near-degenerate
   // triangles) an edge merely becomes an outline edge. Asked only of the neighbours of
   // triangles that are drawn (most are rejected first).
-  auto facing = [&](std::size_t t) -> int {
-    if (!valid(t))
+  auto facing = [&](std::size_t t) -> int
+  {
+    // Most neighbours went through keepDrawable() already (in this batch or an earlier one),
+    // which recorded the sign of the same doubled area, bit for bit doubleArea() below: one
+    // byte read instead of the neighbour's indices, states and window coordinates, which lie
+    // at random places in memory.
+    const TriangleFacing known = facing_[t];
+    if (known != TriangleFacing::Unknown)
+    {
+      return static_cast<int>(known);
+    }
+    const std::uint32_t* tri = indices + 3 * t;
+    if (!indicesInRange(tri, vertexCount))
     {
       return 0;
     }
-    const std::uint32_t* tri = indices + 3 * t;
+    // Each state once (projecting a vertex not seen yet; the same states in any order).
+    const unsigned s0 = state(tri[0]), s1 = state(tri[1]), s2 = state(tri[2]);
+    if (s0 == kVertexNotFinite || s1 == kVertexNotFinite || s2 == kVertexNotFinite)
+    {
+      return 0;
+    }
     double det;
-    if (vertexState_[tri[0]] == 1 && vertexState_[tri[1]] == 1 && vertexState_[tri[2]] == 1)
+    // The states are 1 (front) or 2 (behind) here: their bitwise and is 1 only if all are 1.
+    if ((s0 & s1 & s2) == kVertexFront)
     {
       det = doubleArea(window_[tri[0]], window_[tri[1]], window_[tri[2]]);
     }
@@ -298,7 +356,7 @@ void MaskedDepthBuffer::drawTrianglesFrom(const glm::dvec4* clip, const ModelVer
       {
         const std::uint32_t* tri = indices + 3 * t;
         unsigned s0 = 0, s1 = 0, s2 = 0;
-        if (tri[0] < vertexCount && tri[1] < vertexCount && tri[2] < vertexCount)
+        if (indicesInRange(tri, vertexCount))
         {
           s0 = state(tri[0]), s1 = state(tri[1]), s2 = state(tri[2]);
         }
@@ -307,7 +365,7 @@ void MaskedDepthBuffer::drawTrianglesFrom(const glm::dvec4* clip, const ModelVer
         usable += (s0 != 0 && s1 != 0 && s2 != 0) ? 1 : 0;
       }
       const FrontVertices vertices{ indices, window_.data(), centres_.data(), width_, height_,
-        culling };
+        culling, neighbors ? facing_.data() : nullptr };
       const std::size_t kept = keepDrawable(batch, usable, vertices);
       stats_.trianglesRejected += count - kept;
       for (std::size_t i = 0; i < kept; ++i)
@@ -367,8 +425,7 @@ bool MaskedDepthBuffer::boxBehindTiles(const glm::dmat4& clipFromModel, const do
   {
     return true; // no centre on screen: every triangle of the box has an empty span
   }
-  return behindTiles(
-    sx0 / kTileWidth, sy0 / kTileHeight, sx1 / kTileWidth, sy1 / kTileHeight, zNear);
+  return behindTiles(tileColumn(sx0), tileRow(sy0), tileColumn(sx1), tileRow(sy1), zNear);
 }
 
 std::vector<double> buildTriangleClusters(const double* xyz, std::size_t pointCount,
@@ -516,8 +573,8 @@ void MaskedDepthBuffer::drawFrontTriangle(const glm::dvec3& a, const glm::dvec3&
     return;
   }
   const double orientation = area2 > 0.0 ? 1.0 : -1.0;
-  const int tx0 = span.x0 / kTileWidth, tx1 = span.x1 / kTileWidth;
-  const int ty0 = span.y0 / kTileHeight, ty1 = span.y1 / kTileHeight;
+  const int tx0 = tileColumn(span.x0), tx1 = tileColumn(span.x1);
+  const int ty0 = tileRow(span.y0), ty1 = tileRow(span.y1);
   const double zNearVertex = std::min({ a.z, b.z, c.z }) + depthMargin;
   const double extent = std::max({ std::abs(a.x), std::abs(a.y), std::abs(b.x), std::abs(b.y),
     std::abs(c.x), std::abs(c.y), static_cast<double>(width_ + height_) });
@@ -553,8 +610,8 @@ void MaskedDepthBuffer::drawFrontTriangle(const glm::dvec3& a, const glm::dvec3&
     const int rowFirst = std::min({ first[0], first[1], first[2], first[3] });
     const int rowLast = std::max({ last[0], last[1], last[2], last[3] });
     const double y0 = ty * kTileHeight + 0.5;
-    const int txEnd = rowLast / kTileWidth;
-    for (int tx = rowFirst / kTileWidth; tx <= txEnd; ++tx)
+    const int txEnd = tileColumn(rowLast);
+    for (int tx = tileColumn(rowFirst); tx <= txEnd; ++tx)
     {
       Tile& tile = row[tx];
       if (zNearVertex >= static_cast<double>(tile.z0))
@@ -589,14 +646,16 @@ void MaskedDepthBuffer::drawFrontTriangle(const glm::dvec3& a, const glm::dvec3&
   }
 }
 
-bool MaskedDepthBuffer::hidden(
+// hidden() and behindTiles() are used in this file only: inline, so that the test each front
+// triangle gets before its set-up (and each cluster before its triangles) is not a call.
+inline bool MaskedDepthBuffer::hidden(
   const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c, const CentreSpan& span)
 {
-  return behindTiles(span.x0 / kTileWidth, span.y0 / kTileHeight, span.x1 / kTileWidth,
-    span.y1 / kTileHeight, std::min({ a.z, b.z, c.z }) + depthMargin);
+  return behindTiles(tileColumn(span.x0), tileRow(span.y0), tileColumn(span.x1), tileRow(span.y1),
+    std::min({ a.z, b.z, c.z }) + depthMargin);
 }
 
-bool MaskedDepthBuffer::behindTiles(int tx0, int ty0, int tx1, int ty1, double depth)
+inline bool MaskedDepthBuffer::behindTiles(int tx0, int ty0, int tx1, int ty1, double depth)
 {
   // Tile indices are never negative: the block bounds once, by shifts.
   static_assert(kBlockTiles == 4, "blocks of 4 x 4 tiles");

@@ -20,6 +20,8 @@
 //   bit for bit doubleArea() (the core and its tests are built with -ffp-contract=off: no FMA
 //   fuses the products, whatever the target CPU; Core/CMakeLists.txt).
 // - culled() itself then decides the face, from that area.
+// - The facing recorded for drawTriangles' neighbour test (FrontVertices::facing) is facingOf()
+//   that area, in both versions.
 
 #include "scenevis/OcclusionBuffer.h"
 
@@ -103,7 +105,16 @@ struct FrontVertices
   const CentreSpan* centres;    ///< centreSpan() of each vertex
   int width, height;            ///< viewport
   FaceCulling culling;
+  /// If set, facing[triangle] of every front triangle of the batch, kept or not, is set to
+  /// facingOf() its doubled area (what drawTriangles' neighbour test would compute for it).
+  TriangleFacing* facing = nullptr;
 };
+
+/// The facing of a triangle of doubled signed area @p area2 (NaN: None).
+inline TriangleFacing facingOf(double area2)
+{
+  return static_cast<TriangleFacing>((area2 > 0.0 ? 1 : 0) - (area2 < 0.0 ? 1 : 0));
+}
 
 /// keepDrawable() one triangle at a time with triangleSpan(), doubleArea() and culled(): the
 /// reference (and the path without SSE2).
@@ -122,6 +133,10 @@ inline std::size_t keepDrawableScalar(
         triangleSpan(v.centres[tri[0]], v.centres[tri[1]], v.centres[tri[2]], v.width, v.height);
       e.area2 = doubleArea(v.window[tri[0]], v.window[tri[1]], v.window[tri[2]]);
       keep = e.span.x0 <= e.span.x1 && e.span.y0 <= e.span.y1 && !culled(e.area2, v.culling);
+      if (v.facing)
+      {
+        v.facing[e.triangle] = facingOf(e.area2);
+      }
     }
     entries[kept] = e;
     kept += keep ? 1 : 0;
@@ -200,6 +215,10 @@ inline std::size_t keepDrawable(FrontEntry* entries, std::size_t count, const Fr
     const __m128d products = _mm_mul_pd(ab, _mm_shuffle_pd(ac, ac, 1));
     e.area2 = _mm_cvtsd_f64(_mm_sub_sd(products, _mm_unpackhi_pd(products, products)));
 
+    if (v.facing && e.front)
+    {
+      v.facing[e.triangle] = facingOf(e.area2);
+    }
     const bool keep = !e.front || (emptyBits == 0 && !culled(e.area2, v.culling));
     entries[kept] = e;
     kept += keep ? 1 : 0;

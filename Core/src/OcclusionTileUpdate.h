@@ -14,7 +14,9 @@ namespace occlusion
 
 inline void MaskedDepthBuffer::lowerBlock(int tx, int ty, float oldZ0)
 {
-  float& bound = blockZ0_[static_cast<std::size_t>(ty / kBlockTiles) * blocksX_ + tx / kBlockTiles];
+  // Tile indices are never negative: the block by shifts.
+  static_assert(kBlockTiles == 4, "blocks of 4 x 4 tiles");
+  float& bound = blockZ0_[static_cast<std::size_t>(ty >> 2) * blocksX_ + (tx >> 2)];
   if (oldZ0 >= bound)
   {
     // The block's largest z0 may have gone down: found again when the block is next read (a

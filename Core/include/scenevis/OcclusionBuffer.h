@@ -197,6 +197,17 @@ struct CentreSpan
   int x0, x1, y0, y1;
 };
 
+/// Which way a triangle faces as MaskedDepthBuffer's neighbour test sees it (the sign of its
+/// doubled window area; None: degenerate or not finite), or not known yet (front end,
+/// src/OcclusionFront.h). One byte, not a character type (see MaskedDepthBuffer::VertexState).
+enum class TriangleFacing : std::int8_t
+{
+  Back = -1,
+  None = 0,
+  Front = 1,
+  Unknown = 2
+};
+
 class MaskedDepthBuffer
 {
 public:
@@ -351,7 +362,20 @@ private:
   std::vector<glm::dvec4> clip_; // ModelVertices transformed (valid where vertexState_ != 3)
   std::vector<glm::dvec3> window_;
   std::vector<CentreSpan> centres_;
-  std::vector<unsigned char> vertexState_;
+  /// A vertex's state in drawTriangles (see drawTrianglesFrom): one byte, but not a character
+  /// type, so that storing it does not make the compiler assume that any member (the scratch
+  /// vectors' pointers, the viewport) may have changed and load them again.
+  enum VertexState : std::uint8_t
+  {
+    kVertexNotFinite = 0,
+    kVertexFront = 1,  ///< in front of the near plane: window coordinates valid
+    kVertexBehind = 2, ///< finite, behind the near plane: its triangles are clipped
+    kVertexUnseen = 3  ///< not projected yet
+  };
+  std::vector<VertexState> vertexState_;
+  /// Per triangle of the current drawTriangles() call with neighbours: its facing where the
+  /// front end has found it (TriangleFacing::Unknown elsewhere).
+  std::vector<TriangleFacing> facing_;
   glm::dmat4 clipFromWorld_{ 1.0 };
   /// World-space corners of the near plane's rectangle (a box holding one reaches the eye's
   /// near plane on screen: never occluded); valid only if nearCornersValid_.
