@@ -24,6 +24,8 @@
 //     unsorted; block visibilities that leave one block are followed.
 //  7. Actor classes that draw a mapper of their own choosing (vtkLODActor, like ParaView's
 //     vtkPVLODActor, ignores the mapper handed to Render): still drawn in the exact order.
+//  8. A renderer with FXAA on: the pass anti-aliases as VTK's own geometry step does (image vs
+//     peeling with FXAA; the pass without FXAA differs at the edges).
 #include "vtkBSPTranslucentPass.h"
 #include "vtkOrderedTranslucentPass.h"
 
@@ -773,6 +775,45 @@ int TestBSPTranslucentPass(int, char*[])
     ok &= Check(discriminating > 0,
       "vtkLODActor: the same actors unsorted differ from peeling in " +
         std::to_string(discriminating) + " of 4 views (the check can fail)");
+  }
+
+  // --- 8. The renderer's FXAA -----------------------------------------------------------------
+  // A renderer with FXAA on (ParaView's views have it) anti-aliases after its translucent
+  // geometry, before volumes and overlays; a render pass replaces that step, so the ordered pass
+  // applies it itself. Reference: 100-peel peeling with FXAA, by VTK's own geometry step.
+  {
+    vtkNew<vtkRenderer> withFxaa, withoutFxaa, peeled;
+    vtkNew<vtkOrderedTranslucentPass> stepsOn, stepsOff;
+    vtkNew<vtkBSPTranslucentPass> passOn, passOff;
+    stepsOn->SetTranslucentPass(passOn);
+    stepsOff->SetTranslucentPass(passOff);
+    withFxaa->SetPass(stepsOn);
+    withoutFxaa->SetPass(stepsOff);
+    for (vtkRenderer* r : { withFxaa.Get(), withoutFxaa.Get(), peeled.Get() })
+    {
+      for (vtkActor* actor : { red, blue, green })
+      {
+        r->AddActor(actor);
+      }
+    }
+    withFxaa->UseFXAAOn();
+    peeled->UseFXAAOn();
+    peeled->SetUseDepthPeeling(1);
+    peeled->SetMaximumNumberOfPeels(100);
+    peeled->SetOcclusionRatio(0.0);
+    withoutFxaa->SetActiveCamera(withFxaa->GetActiveCamera());
+    peeled->SetActiveCamera(withFxaa->GetActiveCamera());
+    SetView(withFxaa, 40, 25, false);
+    auto on = RenderWith(window, withFxaa);
+    auto off = RenderWith(window, withoutFxaa);
+    auto reference = RenderWith(window, peeled);
+    const auto onDifference = st::CompareImages(on, reference);
+    const auto offDifference = st::CompareImages(off, reference);
+    std::string why;
+    ok &= Check(st::WithinThresholds(onDifference, st::Thresholds(0.5, 0.0002), &why),
+      "FXAA on: pass vs 100-peel peeling with FXAA: " + onDifference.Summary() + " " + why);
+    ok &= Check(offDifference.badCoveredPixels > 10 * (onDifference.badCoveredPixels + 1),
+      "FXAA off in the pass: its edges differ (the check can fail): " + offDifference.Summary());
   }
 
   window->GetRenderers()->RemoveAllItems();
