@@ -290,7 +290,7 @@ void MaskedDepthBuffer::drawTrianglesFrom(const glm::dvec4* clip, const ModelVer
       det = a.x * (b.y * c.w - b.w * c.y) - a.y * (b.x * c.w - b.w * c.x) +
         a.w * (b.x * c.y - b.y * c.x);
     }
-    return (det > 0.0) - (det < 0.0);
+    return static_cast<int>(facingOf(det));
   };
   // A triangle kept by keepDrawable(): in front of the near plane, it is dropped if behind
   // every tile of its span, else set up; a clipped one is clipped. Either way its outline edges

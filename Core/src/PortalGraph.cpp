@@ -3,7 +3,6 @@
 #include "scenevis/PortalGeometry.h"
 #include "scenevis/Scenes.h"
 
-#include <glm/common.hpp>
 #include <glm/geometric.hpp>
 
 #include <algorithm>
@@ -111,6 +110,18 @@ bool finite(const glm::dvec3& p)
 {
   return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z);
 }
+
+/// The two axes a boundary polygon keeps for its 2D point-in-polygon test (its normal's
+/// dominant axis @p axis dropped): x the first, y the second.
+struct KeptAxes
+{
+  int x, y;
+  explicit KeptAxes(int axis)
+    : x(axis == 0 ? 1 : 0)
+    , y(axis == 2 ? 1 : 2)
+  {
+  }
+};
 } // namespace
 
 std::int32_t PortalGraph::nodeOf(std::int32_t roomId) const
@@ -459,17 +470,18 @@ PortalGraph PortalGraph::build(const CellSceneInput& input, PortalGraphReport* r
     bp.plane = glm::dvec4(n, -glm::dot(n, c));
     const glm::dvec3 a = glm::abs(n);
     bp.axis = a.x >= a.y && a.x >= a.z ? 0 : (a.y >= a.z ? 1 : 2);
-    const int ax = bp.axis == 0 ? 1 : 0;
-    const int ay = bp.axis == 2 ? 1 : 2;
-    const glm::dvec3* kept = g.PolygonPoints.data() + bp.first;
-    bp.lo = bp.hi = glm::dvec2(kept[0][ax], kept[0][ay]);
+    const KeptAxes kept(bp.axis);
+    const glm::dvec3* stored = g.PolygonPoints.data() + bp.first;
+    double xLo = stored[0][kept.x], xHi = xLo;
+    bp.yLo = bp.yHi = stored[0][kept.y];
     for (std::size_t k = 1; k < count; ++k)
     {
-      const glm::dvec2 q(kept[k][ax], kept[k][ay]);
-      bp.lo = glm::min(bp.lo, q);
-      bp.hi = glm::max(bp.hi, q);
+      xLo = std::min(xLo, stored[k][kept.x]);
+      xHi = std::max(xHi, stored[k][kept.x]);
+      bp.yLo = std::min(bp.yLo, stored[k][kept.y]);
+      bp.yHi = std::max(bp.yHi, stored[k][kept.y]);
     }
-    bp.xBeyond = bp.hi.x + 1e-9 * (std::abs(bp.hi.x) + (bp.hi.x - bp.lo.x));
+    bp.xBeyond = xHi + 1e-9 * (std::abs(xHi) + (xHi - xLo));
     g.Polygons.push_back(bp);
     return true;
   };
@@ -670,9 +682,9 @@ int PortalGraph::parity(std::int32_t room, const glm::dvec3& p, const glm::dvec3
     }
     const glm::dvec3 q = p + t * dir;
     // Crossing-number test in the plane of the two non-dominant axes.
-    const int ax = bp.axis == 0 ? 1 : 0;
-    const int ay = bp.axis == 2 ? 1 : 2;
-    if (q[ay] < bp.lo.y || q[ay] >= bp.hi.y || q[ax] > bp.xBeyond)
+    const KeptAxes kept(bp.axis);
+    const int ax = kept.x, ay = kept.y;
+    if (q[ay] < bp.yLo || q[ay] >= bp.yHi || q[ax] > bp.xBeyond)
     {
       continue; // no edge the loop below would count (see BoundaryPolygon)
     }

@@ -37,7 +37,6 @@
 #include "scenevis/PolygonMesh.h"
 
 #include <glm/ext/vector_int3.hpp>
-#include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
 
@@ -231,11 +230,10 @@ private:
     std::uint32_t count = 0;
     glm::dvec4 plane{ 0.0 };
     int axis = 2; ///< Dominant axis of the normal (dropped for the 2D point-in-polygon test).
-    /// Bounds of the points in the two kept axes (x: the first kept axis, y: the second). A
-    /// point below or on the top of the y range crosses no edge; one beyond xBeyond (the x
-    /// range's top plus far more than the crossing's rounding) has no crossing to its right.
-    glm::dvec2 lo{ 0.0 }, hi{ 0.0 };
-    double xBeyond = 0.0;
+    /// The points' range in the second kept axis (y): a point below it or on its top crosses no
+    /// edge. Beyond xBeyond in the first (x: the range's top plus far more than the crossing's
+    /// rounding) a point has no crossing to its right.
+    double yLo = 0.0, yHi = 0.0, xBeyond = 0.0;
   };
   int parity(std::int32_t room, const glm::dvec3& p, const glm::dvec3& dir) const;
 
