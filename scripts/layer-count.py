@@ -56,7 +56,9 @@ def camera(eye, focal, up, bounds):
     return cam
 
 
-def layers(polydata, cam, size, peel=False):
+def layers(polydata, cam, size, peel=False, window=None):
+    """The layers over each pixel centre, a size x size array (row 0 at the bottom), drawn in
+    @p window (an offscreen window; a new one when None) or a new window."""
     mapper = vtk.vtkPolyDataMapper()
     mapper.SetInputData(polydata)
     mapper.ScalarVisibilityOff()
@@ -76,8 +78,9 @@ def layers(polydata, cam, size, peel=False):
     else:
         renderer.SetPass(scenevis.vtkOrderedTranslucentPass())
     renderer.SetActiveCamera(cam)
-    window = vtk.vtkRenderWindow()
-    window.SetOffScreenRendering(1)
+    if window is None:
+        window = vtk.vtkRenderWindow()
+        window.SetOffScreenRendering(1)
     window.SetMultiSamples(0)
     window.SetAlphaBitPlanes(1)
     window.AddRenderer(renderer)
@@ -88,6 +91,7 @@ def layers(polydata, cam, size, peel=False):
     grab.SetInputBufferTypeToRGB()
     grab.ReadFrontBufferOff()
     grab.Update()
+    window.RemoveRenderer(renderer)
     red = vtk_to_numpy(grab.GetOutput().GetPointData().GetScalars()).reshape(size, size, 3)[:, :, 0]
     covered = np.maximum(1e-9, 1.0 - red.astype(float) / 255.0)
     return np.round(np.log(covered) / math.log(1.0 - OPACITY)).astype(int)
