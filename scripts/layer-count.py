@@ -11,10 +11,11 @@ over its centre whatever their order. The unsplit mesh drawn with plain blending
 polygon that covers the centre: the count the other two are compared with.
 
 1. The fragments (plain blending). For each pixel whose count differs: the distance of its centre
-   to the nearest edge of the original polygons in window coordinates, beside that distance for
-   random covered pixels. A difference that comes from the rasterizer's sub-pixel vertex
+   to the nearest edge of the polygons and of the fragments in window coordinates (beside that
+   distance for random covered pixels), and whether in double precision as many fragments as
+   polygons cover the centre. A difference that comes from the rasterizer's sub-pixel vertex
    precision (1/256 pixel in llvmpipe) lies within a few thousandths of a pixel of an edge the
-   BSP split.
+   BSP split or made, where the fragments are right in exact arithmetic.
 2. The unsplit mesh through VTK's depth peeling (100 peels, occlusion ratio 0), the reference of
    the accuracy-versus-time report. For a sample of the pixels where peeling has fewer layers:
    whether two coplanar polygons of the original cover the centre (peeling keeps one of two
@@ -182,18 +183,30 @@ def main(argv):
     print(f"fragments: {int((after > before).sum())} pixels with more layers, "
           f"{int((after < before).sum())} with fewer")
     snap = 1.0 / 256.0
-    near = 0
+    fragment_window, fragment_cells = window_points(fragments, cam, size), cells_of(fragments)
+    fa, fb = edges_in_window(fragment_window, fragment_cells)
+    covering = covering_triangles(window, cells)
+    fragments_covering = covering_triangles(fragment_window, fragment_cells)
+    near = exact = 0
     for x, y in zip(xs, ys):
-        distance = nearest_edge(np.array([x + 0.5, y + 0.5]), a, b)
-        near += distance < snap
-        print(f"  pixel ({x}, {y}): {before[y, x]} -> {after[y, x]} layers, "
-              f"nearest original edge {distance:.5f} px")
+        centre = np.array([x + 0.5, y + 0.5])
+        to_original, to_fragment = nearest_edge(centre, a, b), nearest_edge(centre, fa, fb)
+        near += min(to_original, to_fragment) < snap
+        # In double precision: as many fragments over the centre as polygons.
+        polygons = len({int(t[0]) for t in covering(centre)})
+        pieces = len({int(t[0]) for t in fragments_covering(centre)})
+        exact += polygons == pieces
+        print(f"  pixel ({x}, {y}): {before[y, x]} -> {after[y, x]} layers; nearest edge of "
+              f"the polygons {to_original:.5f} px, of the fragments {to_fragment:.5f} px; "
+              f"in double precision {polygons} polygons, {pieces} fragments over the centre")
     rows, cols = np.nonzero(before > 0)
     pick = np.random.default_rng(1).choice(len(rows), size=min(400, len(rows)), replace=False)
-    sample = np.array([nearest_edge(np.array([cols[i] + 0.5, rows[i] + 0.5]), a, b) for i in pick])
-    print(f"differing pixels within 1/256 px of an original edge: {near} of {len(xs)}; "
-          f"random covered pixels: {(sample < snap).mean() * 100:.1f} % "
-          f"(median distance {np.median(sample):.3f} px, {len(sample)} sampled)")
+    sample = np.array([min(nearest_edge(c, a, b), nearest_edge(c, fa, fb))
+                       for c in (np.array([cols[i] + 0.5, rows[i] + 0.5]) for i in pick)])
+    print(f"differing pixels within 1/256 px of an edge (polygons' or fragments'): {near} of "
+          f"{len(xs)}, against {(sample < snap).mean() * 100:.1f} % of random covered pixels "
+          f"(median distance {np.median(sample):.4f} px, {len(sample)} sampled); as many "
+          f"fragments as polygons over the centre in double precision: {exact} of {len(xs)}")
 
     peeled = layers(original, cam, size, peel=True)
     fewer_rows, fewer_cols = np.nonzero(peeled < before)
