@@ -23,6 +23,7 @@
 #include <cstdint>
 #include <cstring>
 #include <limits>
+#include <memory>
 #include <random>
 #include <string>
 
@@ -142,6 +143,76 @@ MaskedDepthBuffer bufferFor(const Camera& cam)
 }
 
 const Camera kFront = perspectiveCamera({ 0, -10, 0 }, { 0, 0, 0 }, 60.0, 83, 61, 0.1, 100.0);
+
+/// A triangle of window coordinates set up for the exact rasterizer as drawFrontTriangle sets it
+/// up (the scanline tests' common part): its edge tests (outline bit k on edge k), the columns
+/// [x0, x1] and rows [y0, y1] of the viewport's pixel centres it may cover, and the coverage of
+/// its scanlines. Not copied: the coverage refers to the edges.
+struct ScanlineTriangle
+{
+  /// Nothing for a triangle of no area or one that covers no centre of a @p width x @p height
+  /// viewport.
+  static std::unique_ptr<const ScanlineTriangle> setUp(
+    const glm::dvec3 (&v)[3], unsigned outline, double margin, int width, int height)
+  {
+    const double area2 =
+      (v[1].x - v[0].x) * (v[2].y - v[0].y) - (v[1].y - v[0].y) * (v[2].x - v[0].x);
+    if (!(std::abs(area2) > 0.0))
+    {
+      return nullptr;
+    }
+    // Clamped in double before the cast: vertices far off screen lie beyond int's range.
+    auto columnSpan = [](double a, double b, double c, int pixels, int& lo, int& hi)
+    {
+      const double low = std::ceil(std::min({ a, b, c }) - 0.5);
+      const double high = std::floor(std::max({ a, b, c }) - 0.5);
+      lo = static_cast<int>(std::max(0.0, low));
+      hi = static_cast<int>(std::min(pixels - 1.0, high));
+    };
+    int x0, x1, y0, y1;
+    columnSpan(v[0].x, v[1].x, v[2].x, width, x0, x1);
+    columnSpan(v[0].y, v[1].y, v[2].y, height, y0, y1);
+    if (x0 > x1 || y0 > y1)
+    {
+      return nullptr;
+    }
+    double extent = width + height;
+    for (const glm::dvec3& p : v)
+    {
+      extent = std::max({ extent, std::abs(p.x), std::abs(p.y) });
+    }
+    return std::unique_ptr<const ScanlineTriangle>(
+      new ScanlineTriangle(v, area2 > 0.0 ? 1.0 : -1.0, outline, margin, extent, x0, x1, y0, y1));
+  }
+
+  ScanlineTriangle(const ScanlineTriangle&) = delete;
+  ScanlineTriangle& operator=(const ScanlineTriangle&) = delete;
+
+  /// Whether the centre of pixel (@p i, @p y) passes all three edge tests.
+  bool inside(int i, int y) const
+  {
+    return edges[0].inside(i + 0.5, y + 0.5) && edges[1].inside(i + 0.5, y + 0.5) &&
+      edges[2].inside(i + 0.5, y + 0.5);
+  }
+
+  const int x0, x1, y0, y1;
+  const EdgeTest edges[3];
+  const ScanlineCoverage coverage;
+
+private:
+  ScanlineTriangle(const glm::dvec3 (&v)[3], double orientation, unsigned outline, double margin,
+    double extent, int columnFrom, int columnTo, int rowFrom, int rowTo)
+    : x0(columnFrom)
+    , x1(columnTo)
+    , y0(rowFrom)
+    , y1(rowTo)
+    , edges{ EdgeTest(v[0], v[1], orientation, outline & 1u, margin),
+      EdgeTest(v[1], v[2], orientation, outline & 2u, margin),
+      EdgeTest(v[2], v[0], orientation, outline & 4u, margin) }
+    , coverage(edges, extent, columnFrom, columnTo)
+  {
+  }
+};
 } // namespace
 
 using OcclusionBuffer = RasterizerTest;
@@ -1294,34 +1365,13 @@ TEST(OcclusionScanline, RowIntervalsAreTheCentresInsideAllThreeEdges)
       default:
         break;
     }
-    const double area2 =
-      (v[1].x - v[0].x) * (v[2].y - v[0].y) - (v[1].y - v[0].y) * (v[2].x - v[0].x);
-    if (!(std::abs(area2) > 0.0))
+    const auto triangle = ScanlineTriangle::setUp(v, outline, margin, width, height);
+    if (!triangle)
     {
       continue;
     }
-    auto columnSpan = [](double a, double b, double c, int pixels, int& lo, int& hi)
-    {
-      lo = std::max(0, static_cast<int>(std::ceil(std::min({ a, b, c }) - 0.5)));
-      hi = std::min(pixels - 1, static_cast<int>(std::floor(std::max({ a, b, c }) - 0.5)));
-    };
-    int x0, x1, y0, y1;
-    columnSpan(v[0].x, v[1].x, v[2].x, width, x0, x1);
-    columnSpan(v[0].y, v[1].y, v[2].y, height, y0, y1);
-    if (x0 > x1 || y0 > y1)
-    {
-      continue;
-    }
-    const double orientation = area2 > 0.0 ? 1.0 : -1.0;
-    const EdgeTest edges[3] = { EdgeTest(v[0], v[1], orientation, outline & 1u, margin),
-      EdgeTest(v[1], v[2], orientation, outline & 2u, margin),
-      EdgeTest(v[2], v[0], orientation, outline & 4u, margin) };
-    double extent = width + height;
-    for (const glm::dvec3& p : v)
-    {
-      extent = std::max({ extent, std::abs(p.x), std::abs(p.y) });
-    }
-    const ScanlineCoverage coverage(edges, extent, x0, x1);
+    const int x0 = triangle->x0, x1 = triangle->x1, y0 = triangle->y0, y1 = triangle->y1;
+    const ScanlineCoverage& coverage = triangle->coverage;
     for (int ty = y0 / 4; ty <= y1 / 4; ++ty)
     {
       // The columns of a run of the span's tiles (drawFrontTriangle narrows to the live ones).
@@ -1339,8 +1389,7 @@ TEST(OcclusionScanline, RowIntervalsAreTheCentresInsideAllThreeEdges)
         {
           for (int i = rx0; i <= rx1; ++i)
           {
-            if (edges[0].inside(i + 0.5, y + 0.5) && edges[1].inside(i + 0.5, y + 0.5) &&
-              edges[2].inside(i + 0.5, y + 0.5))
+            if (triangle->inside(i, y))
             {
               ASSERT_TRUE(expectLast == -ScanlineCoverage::kEmpty || expectLast == i - 1)
                 << "the centres inside are not one interval: triangle " << t;
@@ -1428,36 +1477,13 @@ TEST(OcclusionScanline, FixedPointCrossingsGiveTheEdgeTestsIntervals)
         p = glm::dvec3(cx + uniform(-size, size), cy + uniform(-size, size), 0.5);
       }
     }
-    const double area2 =
-      (v[1].x - v[0].x) * (v[2].y - v[0].y) - (v[1].y - v[0].y) * (v[2].x - v[0].x);
-    if (!(std::abs(area2) > 0.0))
+    const auto triangle = ScanlineTriangle::setUp(v, outline, margin, width, height);
+    if (!triangle)
     {
       continue;
     }
-    auto columnSpan = [](double a, double b, double c, int pixels, int& lo, int& hi)
-    {
-      const double low = std::ceil(std::min({ a, b, c }) - 0.5);
-      const double high = std::floor(std::max({ a, b, c }) - 0.5);
-      lo = static_cast<int>(std::max(0.0, low));
-      hi = static_cast<int>(std::min(pixels - 1.0, high));
-    };
-    int x0, x1, y0, y1;
-    columnSpan(v[0].x, v[1].x, v[2].x, width, x0, x1);
-    columnSpan(v[0].y, v[1].y, v[2].y, height, y0, y1);
-    if (x0 > x1 || y0 > y1)
-    {
-      continue;
-    }
-    const double orientation = area2 > 0.0 ? 1.0 : -1.0;
-    const EdgeTest edges[3] = { EdgeTest(v[0], v[1], orientation, outline & 1u, margin),
-      EdgeTest(v[1], v[2], orientation, outline & 2u, margin),
-      EdgeTest(v[2], v[0], orientation, outline & 4u, margin) };
-    double extent = width + height;
-    for (const glm::dvec3& p : v)
-    {
-      extent = std::max({ extent, std::abs(p.x), std::abs(p.y) });
-    }
-    const ScanlineCoverage coverage(edges, extent, x0, x1);
+    const int x0 = triangle->x0, x1 = triangle->x1, y0 = triangle->y0, y1 = triangle->y1;
+    const ScanlineCoverage& coverage = triangle->coverage;
     const unsigned fixedEdges = coverage.fixedPointEdges();
     for (int k = 0; k < 3; ++k)
     {
@@ -1483,8 +1509,7 @@ TEST(OcclusionScanline, FixedPointCrossingsGiveTheEdgeTestsIntervals)
         {
           for (int i = rx0; i <= rx1; ++i)
           {
-            if (edges[0].inside(i + 0.5, y + 0.5) && edges[1].inside(i + 0.5, y + 0.5) &&
-              edges[2].inside(i + 0.5, y + 0.5))
+            if (triangle->inside(i, y))
             {
               expectFirst = std::min(expectFirst, i);
               expectLast = i;

@@ -2,6 +2,8 @@
 // lines pass through first and unchanged, triangle strips are sorted as their triangles.
 #include "vtkBSPSortFilter.h"
 
+#include "scenevis/testing/Expect.h"
+
 #include "vtkCamera.h"
 #include "vtkCellArray.h"
 #include "vtkCellData.h"
@@ -21,17 +23,6 @@
 
 namespace
 {
-int failures = 0;
-#define EXPECT(cond)                                                                               \
-  do                                                                                               \
-  {                                                                                                \
-    if (!(cond))                                                                                   \
-    {                                                                                              \
-      std::cerr << __FILE__ << ":" << __LINE__ << ": expected " #cond << std::endl;                \
-      ++failures;                                                                                  \
-    }                                                                                              \
-  } while (false)
-
 // Attribute fields that are linear in position, so interpolation along an edge is exact.
 double Temperature(const double p[3])
 {
@@ -127,39 +118,39 @@ int TestBSPSortFilterAttributes(int, char*[])
   vtkPolyData* out = sorter->GetOutput();
 
   // Topology: exactly one split, i.e. three fragments and two new points.
-  EXPECT(sorter->GetNumberOfSplits() == 1);
-  EXPECT(out->GetNumberOfPolys() == 3);
-  EXPECT(out->GetNumberOfPoints() == input->GetNumberOfPoints() + 2);
-  EXPECT(std::abs(PolysArea(out) - PolysArea(input)) < 1e-9);
+  SCENEVIS_EXPECT(sorter->GetNumberOfSplits() == 1);
+  SCENEVIS_EXPECT(out->GetNumberOfPolys() == 3);
+  SCENEVIS_EXPECT(out->GetNumberOfPoints() == input->GetNumberOfPoints() + 2);
+  SCENEVIS_EXPECT(std::abs(PolysArea(out) - PolysArea(input)) < 1e-9);
 
   // Verts and lines first and unchanged.
-  EXPECT(out->GetNumberOfVerts() == 1 && out->GetNumberOfLines() == 1);
+  SCENEVIS_EXPECT(out->GetNumberOfVerts() == 1 && out->GetNumberOfLines() == 1);
   vtkIntArray* part = vtkIntArray::SafeDownCast(out->GetCellData()->GetArray("Part"));
   vtkIdTypeArray* original = vtkIdTypeArray::SafeDownCast(
     out->GetCellData()->GetArray(vtkBSPSortFilter::OriginalCellIdArrayName()));
   vtkIdTypeArray* rank = vtkIdTypeArray::SafeDownCast(
     out->GetCellData()->GetArray(vtkBSPSortFilter::SortRankArrayName()));
-  EXPECT(part && original && rank);
+  SCENEVIS_EXPECT(part && original && rank);
   if (!part || !original || !rank)
   {
     return EXIT_FAILURE;
   }
-  EXPECT(part->GetValue(0) == 100 && part->GetValue(1) == 101);
-  EXPECT(rank->GetValue(0) == -1 && rank->GetValue(1) == -1);
+  SCENEVIS_EXPECT(part->GetValue(0) == 100 && part->GetValue(1) == 101);
+  SCENEVIS_EXPECT(rank->GetValue(0) == -1 && rank->GetValue(1) == -1);
   // Every fragment carries its source cell's data; ranks count up in output order.
   for (vtkIdType c = 2; c < out->GetNumberOfCells(); ++c)
   {
     const vtkIdType source = original->GetValue(c);
-    EXPECT(source == 2 || source == 3);
-    EXPECT(part->GetValue(c) == (source == 2 ? 10 : 20));
-    EXPECT(rank->GetValue(c) == c - 2);
+    SCENEVIS_EXPECT(source == 2 || source == 3);
+    SCENEVIS_EXPECT(part->GetValue(c) == (source == 2 ? 10 : 20));
+    SCENEVIS_EXPECT(rank->GetValue(c) == c - 2);
   }
 
   // Point data: linear fields interpolated exactly, normals unit length, on every point.
   vtkDataArray* temperature = out->GetPointData()->GetArray("Temperature");
   vtkDataArray* normals = out->GetPointData()->GetNormals();
   vtkDataArray* tcoords = out->GetPointData()->GetTCoords();
-  EXPECT(temperature && normals && tcoords);
+  SCENEVIS_EXPECT(temperature && normals && tcoords);
   if (!temperature || !normals || !tcoords)
   {
     return EXIT_FAILURE;
@@ -170,9 +161,9 @@ int TestBSPSortFilterAttributes(int, char*[])
     out->GetPoint(i, x);
     normals->GetTuple(i, n);
     tcoords->GetTuple(i, t);
-    EXPECT(std::abs(temperature->GetTuple1(i) - Temperature(x)) < 1e-5);
-    EXPECT(std::abs(std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]) - 1.0) < 1e-5);
-    EXPECT(std::abs(t[0] - x[1]) < 1e-5 && std::abs(t[1] - x[2]) < 1e-5);
+    SCENEVIS_EXPECT(std::abs(temperature->GetTuple1(i) - Temperature(x)) < 1e-5);
+    SCENEVIS_EXPECT(std::abs(std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]) - 1.0) < 1e-5);
+    SCENEVIS_EXPECT(std::abs(t[0] - x[1]) < 1e-5 && std::abs(t[1] - x[2]) < 1e-5);
   }
 
   // Triangle strips: a 4-point strip is sorted as its two triangles, both tagged with the strip.
@@ -189,12 +180,12 @@ int TestBSPSortFilterAttributes(int, char*[])
   sorter->SetInputData(strip);
   sorter->Update();
   out = sorter->GetOutput();
-  EXPECT(out->GetNumberOfPolys() == 2);
-  EXPECT(out->GetNumberOfStrips() == 0);
+  SCENEVIS_EXPECT(out->GetNumberOfPolys() == 2);
+  SCENEVIS_EXPECT(out->GetNumberOfStrips() == 0);
   original = vtkIdTypeArray::SafeDownCast(
     out->GetCellData()->GetArray(vtkBSPSortFilter::OriginalCellIdArrayName()));
-  EXPECT(original && original->GetValue(0) == 0 && original->GetValue(1) == 0);
-  EXPECT(std::abs(PolysArea(out) - 1.0198039027185568) < 1e-6);
+  SCENEVIS_EXPECT(original && original->GetValue(0) == 0 && original->GetValue(1) == 0);
+  SCENEVIS_EXPECT(std::abs(PolysArea(out) - 1.0198039027185568) < 1e-6);
 
-  return failures == 0 ? EXIT_SUCCESS : EXIT_FAILURE;
+  return scenevis::testing::ExpectFailures() == 0 ? EXIT_SUCCESS : EXIT_FAILURE;
 }

@@ -19,6 +19,8 @@
 #include "vtkBSPSortFilter.h"
 #include "vtkPainterSortFilter.h"
 
+#include "scenevis/testing/Expect.h"
+
 #include "vtkCamera.h"
 #include "vtkCellArray.h"
 #include "vtkCellData.h"
@@ -43,19 +45,6 @@
 
 namespace
 {
-int failures = 0;
-std::string currentCase;
-#define EXPECT(cond)                                                                               \
-  do                                                                                               \
-  {                                                                                                \
-    if (!(cond))                                                                                   \
-    {                                                                                              \
-      std::cerr << __FILE__ << ":" << __LINE__ << ": [" << currentCase << "] expected " #cond      \
-                << std::endl;                                                                      \
-      ++failures;                                                                                  \
-    }                                                                                              \
-  } while (false)
-
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
@@ -187,7 +176,8 @@ bool OrderIsCorrect(vtkPolyData* output, const double eye[3])
     polygons, order, scenevis::View::perspective({ eye[0], eye[1], eye[2] }));
   if (!report.ok() || report.constrainedPairs == 0)
   {
-    std::cerr << "[" << currentCase << "] oracle: " << report.violations.size() << " violations, "
+    std::cerr << "[" << scenevis::testing::ExpectContext()
+              << "] oracle: " << report.violations.size() << " violations, "
               << report.constrainedPairs << " constrained pairs\n";
   }
   return report.ok() && report.constrainedPairs > 0;
@@ -292,7 +282,7 @@ template <class Filter>
 void RunCatalogue(const char* filterName)
 {
   auto caseName = [&](const std::string& what)
-  { currentCase = std::string(filterName) + ": " + what; };
+  { scenevis::testing::ExpectContext() = std::string(filterName) + ": " + what; };
   vtkSmartPointer<vtkPolyData> quads = DemoScene(vtkDemoSceneSource::SCENE_CYCLIC_QUADS);
   vtkSmartPointer<vtkPolyData> triangles =
     DemoScene(vtkDemoSceneSource::SCENE_INTERPENETRATING_TRIANGLES);
@@ -302,9 +292,9 @@ void RunCatalogue(const char* filterName)
   caseName("no camera");
   {
     Sorted<Filter> run(quads, nullptr);
-    EXPECT(run.Error());
-    EXPECT(run.observer->GetErrorMessage().find("No camera") != std::string::npos);
-    EXPECT(run.Output()->GetNumberOfPolys() == quads->GetNumberOfPolys());
+    SCENEVIS_EXPECT(run.Error());
+    SCENEVIS_EXPECT(run.observer->GetErrorMessage().find("No camera") != std::string::npos);
+    SCENEVIS_EXPECT(run.Output()->GetNumberOfPolys() == quads->GetNumberOfPolys());
   }
   for (double bad : { kNaN, kInf, -kInf })
   {
@@ -312,19 +302,19 @@ void RunCatalogue(const char* filterName)
     vtkNew<vtkCamera> broken;
     broken->SetPosition(bad, 0, 5);
     Sorted<Filter> run(quads, broken);
-    EXPECT(run.Error());
-    EXPECT(run.observer->GetErrorMessage().find("non-finite") != std::string::npos);
-    EXPECT(run.Output()->GetNumberOfPolys() == quads->GetNumberOfPolys());
+    SCENEVIS_EXPECT(run.Error());
+    SCENEVIS_EXPECT(run.observer->GetErrorMessage().find("non-finite") != std::string::npos);
+    SCENEVIS_EXPECT(run.Output()->GetNumberOfPolys() == quads->GetNumberOfPolys());
   }
   caseName("zero view angle");
   {
     vtkNew<vtkCamera> narrow;
     narrow->DeepCopy(camera);
     narrow->SetViewAngle(0.0); // vtkCamera clamps it to 1e-8 degrees: it never reaches 0
-    EXPECT(narrow->GetViewAngle() < 1e-6);
+    SCENEVIS_EXPECT(narrow->GetViewAngle() < 1e-6);
     Sorted<Filter> run(quads, narrow);
-    EXPECT(run.Quiet());
-    EXPECT(OrderIsCorrect(run.Output(), narrow->GetPosition()));
+    SCENEVIS_EXPECT(run.Quiet());
+    SCENEVIS_EXPECT(OrderIsCorrect(run.Output(), narrow->GetPosition()));
   }
   caseName("eye == focal point");
   {
@@ -333,26 +323,26 @@ void RunCatalogue(const char* filterName)
     // vtkCamera keeps its direction of projection and puts the focal point 1e-20 along it; the
     // order of a perspective camera depends on the eye alone, which is still well defined.
     collapsed->SetFocalPoint(collapsed->GetPosition());
-    EXPECT(collapsed->GetDistance() < 1e-10);
+    SCENEVIS_EXPECT(collapsed->GetDistance() < 1e-10);
     Sorted<Filter> run(quads, collapsed);
-    EXPECT(run.Quiet());
-    EXPECT(OrderIsCorrect(run.Output(), collapsed->GetPosition()));
+    SCENEVIS_EXPECT(run.Quiet());
+    SCENEVIS_EXPECT(OrderIsCorrect(run.Output(), collapsed->GetPosition()));
   }
   caseName("empty input");
   {
     vtkNew<vtkPolyData> empty;
     Sorted<Filter> run(empty, camera);
-    EXPECT(run.Warning() && !run.Error());
-    EXPECT(run.Output()->GetNumberOfCells() == 0);
+    SCENEVIS_EXPECT(run.Warning() && !run.Error());
+    SCENEVIS_EXPECT(run.Output()->GetNumberOfCells() == 0);
   }
   for (double bad : { kNaN, kInf })
   {
     caseName("bad point " + std::to_string(bad) + " and degenerate polygons");
     Sorted<Filter> run(TrianglesWithBadPoint(bad), camera);
-    EXPECT(run.Warning() && !run.Error());
-    EXPECT(run.observer->GetWarningMessage().find("Removed") != std::string::npos);
-    EXPECT(run.filter->GetNumberOfRemovedPolygons() == 3);
-    EXPECT(run.Output()->GetNumberOfPolys() == 1);
+    SCENEVIS_EXPECT(run.Warning() && !run.Error());
+    SCENEVIS_EXPECT(run.observer->GetWarningMessage().find("Removed") != std::string::npos);
+    SCENEVIS_EXPECT(run.filter->GetNumberOfRemovedPolygons() == 3);
+    SCENEVIS_EXPECT(run.Output()->GetNumberOfPolys() == 1);
   }
   caseName("non-planar, concave and self-intersecting polygons");
   {
@@ -360,16 +350,16 @@ void RunCatalogue(const char* filterName)
     vtkNew<vtkCamera> above;
     above->SetPosition(0.3, 0.2, 8);
     Sorted<Filter> run(awkward, above);
-    EXPECT(!run.Error());
+    SCENEVIS_EXPECT(!run.Error());
     // The symmetric bow-tie has zero signed (Newell) area: removed and counted, with a warning.
-    EXPECT(run.filter->GetNumberOfRemovedPolygons() == 1);
-    EXPECT(run.Warning());
-    EXPECT(run.Output()->GetNumberOfPolys() >= 5);
-    EXPECT(OrderIsCorrect(run.Output(), above->GetPosition()));
+    SCENEVIS_EXPECT(run.filter->GetNumberOfRemovedPolygons() == 1);
+    SCENEVIS_EXPECT(run.Warning());
+    SCENEVIS_EXPECT(run.Output()->GetNumberOfPolys() >= 5);
+    SCENEVIS_EXPECT(OrderIsCorrect(run.Output(), above->GetPosition()));
     // Every fragment comes from a kept input cell.
     auto* original = vtkIdTypeArray::SafeDownCast(
       run.Output()->GetCellData()->GetArray(vtkVisibilityOrderFilter::OriginalCellIdArrayName()));
-    EXPECT(original && original->GetRange()[0] >= 0 && original->GetRange()[1] <= 3);
+    SCENEVIS_EXPECT(original && original->GetRange()[0] >= 0 && original->GetRange()[1] <= 3);
     // The floor and the dart are planar: their fragments keep their area exactly.
     long double floorArea = 0, dartArea = 0;
     const auto polygons = PolygonsOf(run.Output());
@@ -385,41 +375,41 @@ void RunCatalogue(const char* filterName)
         dartArea += Area(polygons[c]);
       }
     }
-    EXPECT(std::fabs(static_cast<double>(floorArea) - 16.0) < 1e-12);
+    SCENEVIS_EXPECT(std::fabs(static_cast<double>(floorArea) - 16.0) < 1e-12);
     // Dart (-1.5,0) (1.5,-1) (0,0) (1.5,1): two triangles of area 0.75 each.
-    EXPECT(std::fabs(static_cast<double>(dartArea) - 1.5) < 1e-12);
+    SCENEVIS_EXPECT(std::fabs(static_cast<double>(dartArea) - 1.5) < 1e-12);
   }
   caseName("mixed verts, lines, polys and strips");
   {
     vtkSmartPointer<vtkPolyData> mixed = MixedCells();
     Sorted<Filter> run(mixed, camera);
-    EXPECT(run.Quiet());
+    SCENEVIS_EXPECT(run.Quiet());
     vtkPolyData* out = run.Output();
-    EXPECT(out->GetNumberOfVerts() == 2);
-    EXPECT(out->GetNumberOfLines() == 1);
-    EXPECT(out->GetNumberOfStrips() == 0);
-    EXPECT(out->GetNumberOfPolys() >= 3 + 4);
+    SCENEVIS_EXPECT(out->GetNumberOfVerts() == 2);
+    SCENEVIS_EXPECT(out->GetNumberOfLines() == 1);
+    SCENEVIS_EXPECT(out->GetNumberOfStrips() == 0);
+    SCENEVIS_EXPECT(out->GetNumberOfPolys() >= 3 + 4);
     auto* original = vtkIdTypeArray::SafeDownCast(
       out->GetCellData()->GetArray(vtkVisibilityOrderFilter::OriginalCellIdArrayName()));
     auto* rank = vtkIdTypeArray::SafeDownCast(
       out->GetCellData()->GetArray(vtkVisibilityOrderFilter::SortRankArrayName()));
-    EXPECT(original && rank);
+    SCENEVIS_EXPECT(original && rank);
     if (original && rank)
     {
       // Verts and lines first, unchanged: input cells 0, 1 (verts) and 2 (line), rank -1.
       for (vtkIdType c = 0; c < 3; ++c)
       {
-        EXPECT(original->GetValue(c) == c && rank->GetValue(c) == -1);
+        SCENEVIS_EXPECT(original->GetValue(c) == c && rank->GetValue(c) == -1);
       }
       // Then every fragment of the quads (cells 3-5) and of the strip (cell 6), ranks 0, 1, ...
       bool fromStrip = false;
       for (vtkIdType c = 3; c < out->GetNumberOfCells(); ++c)
       {
-        EXPECT(original->GetValue(c) >= 3 && original->GetValue(c) <= 6);
-        EXPECT(rank->GetValue(c) == c - 3);
+        SCENEVIS_EXPECT(original->GetValue(c) >= 3 && original->GetValue(c) <= 6);
+        SCENEVIS_EXPECT(rank->GetValue(c) == c - 3);
         fromStrip = fromStrip || original->GetValue(c) == 6;
       }
-      EXPECT(fromStrip);
+      SCENEVIS_EXPECT(fromStrip);
     }
     // The fragments cover the quads and the strip's 4 triangles exactly.
     long double inputArea = 0;
@@ -442,8 +432,9 @@ void RunCatalogue(const char* filterName)
       }
       inputArea += Area(triangle);
     }
-    EXPECT(std::fabs(static_cast<double>((TotalArea(out) - inputArea) / inputArea)) < 1e-12);
-    EXPECT(OrderIsCorrect(out, camera->GetPosition()));
+    SCENEVIS_EXPECT(
+      std::fabs(static_cast<double>((TotalArea(out) - inputArea) / inputArea)) < 1e-12);
+    SCENEVIS_EXPECT(OrderIsCorrect(out, camera->GetPosition()));
   }
   // Scale and offset: the hard scenes at 1e-3 placed at 1e7, and at extents 1e-12 and 1e12.
   struct Placement
@@ -463,13 +454,14 @@ void RunCatalogue(const char* filterName)
       vtkNew<vtkCamera> view;
       LookFromAbove(placed, view);
       Sorted<Filter> run(placed, view);
-      EXPECT(run.Quiet());
-      EXPECT(run.filter->GetNumberOfRemovedPolygons() == 0);
-      EXPECT(run.Output()->GetNumberOfPolys() > scene->GetNumberOfPolys()); // splits needed
-      EXPECT(OrderIsCorrect(run.Output(), view->GetPosition()));
+      SCENEVIS_EXPECT(run.Quiet());
+      SCENEVIS_EXPECT(run.filter->GetNumberOfRemovedPolygons() == 0);
+      SCENEVIS_EXPECT(
+        run.Output()->GetNumberOfPolys() > scene->GetNumberOfPolys()); // splits needed
+      SCENEVIS_EXPECT(OrderIsCorrect(run.Output(), view->GetPosition()));
       const long double in = TotalArea(placed);
       const long double out = TotalArea(run.Output());
-      EXPECT(std::fabs(static_cast<double>((out - in) / in)) < 1e-6);
+      SCENEVIS_EXPECT(std::fabs(static_cast<double>((out - in) / in)) < 1e-6);
     }
   }
   // A sphere at 1e12, as a closed surface (the original case of this test).
@@ -483,8 +475,8 @@ void RunCatalogue(const char* filterName)
     far->SetPosition(3e12, 0, 5e12);
     far->SetFocalPoint(3e12, 0, 0);
     Sorted<Filter> run(sphere->GetOutput(), far);
-    EXPECT(run.Quiet());
-    EXPECT(run.Output()->GetNumberOfPolys() >= sphere->GetOutput()->GetNumberOfPolys());
+    SCENEVIS_EXPECT(run.Quiet());
+    SCENEVIS_EXPECT(run.Output()->GetNumberOfPolys() >= sphere->GetOutput()->GetNumberOfPolys());
   }
 }
 } // namespace
@@ -494,5 +486,5 @@ int TestBSPSortFilterBadInput(int, char*[])
   RunCatalogue<vtkBSPSortFilter>("vtkBSPSortFilter");
   RunCatalogue<vtkBSPSortFilterWithLeaves>("vtkBSPSortFilter, ordered leaves of 64");
   RunCatalogue<vtkPainterSortFilter>("vtkPainterSortFilter");
-  return failures == 0 ? EXIT_SUCCESS : EXIT_FAILURE;
+  return scenevis::testing::ExpectFailures() == 0 ? EXIT_SUCCESS : EXIT_FAILURE;
 }

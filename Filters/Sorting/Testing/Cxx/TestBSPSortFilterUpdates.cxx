@@ -3,6 +3,8 @@
 // the ordered-leaf size is a build setting (changing it rebuilds, a camera move does not).
 #include "vtkBSPSortFilter.h"
 
+#include "scenevis/testing/Expect.h"
+
 #include "vtkActor.h"
 #include "vtkCamera.h"
 #include "vtkCellData.h"
@@ -19,17 +21,6 @@
 
 namespace
 {
-int failures = 0;
-#define EXPECT(cond)                                                                               \
-  do                                                                                               \
-  {                                                                                                \
-    if (!(cond))                                                                                   \
-    {                                                                                              \
-      std::cerr << __FILE__ << ":" << __LINE__ << ": expected " #cond << std::endl;                \
-      ++failures;                                                                                  \
-    }                                                                                              \
-  } while (false)
-
 /// Output polygons as (source cell, first point id) pairs, in output order.
 std::vector<std::pair<vtkIdType, vtkIdType>> Sequence(vtkPolyData* pd)
 {
@@ -61,38 +52,38 @@ int TestBSPSortFilterUpdates(int, char*[])
   sorter->SetInputConnection(sphere->GetOutputPort());
   sorter->SetCamera(camera);
   sorter->Update();
-  EXPECT(sorter->GetNumberOfBuilds() == 1);
+  SCENEVIS_EXPECT(sorter->GetNumberOfBuilds() == 1);
   const vtkIdType nodesAfterBuild = sorter->GetLastNodesVisited();
   const auto before = Sequence(sorter->GetOutput());
 
   // Camera moves: re-order only, and a small step visits only part of the tree.
   camera->Azimuth(1.0);
   sorter->Update();
-  EXPECT(sorter->GetNumberOfBuilds() == 1);
-  EXPECT(sorter->GetLastNodesVisited() < nodesAfterBuild);
+  SCENEVIS_EXPECT(sorter->GetNumberOfBuilds() == 1);
+  SCENEVIS_EXPECT(sorter->GetLastNodesVisited() < nodesAfterBuild);
   camera->Azimuth(90.0);
   sorter->Update();
-  EXPECT(sorter->GetNumberOfBuilds() == 1);
+  SCENEVIS_EXPECT(sorter->GetNumberOfBuilds() == 1);
   const auto rotated = Sequence(sorter->GetOutput());
-  EXPECT(rotated != before);
+  SCENEVIS_EXPECT(rotated != before);
 
   // Nothing changed: the filter does not execute again.
   const vtkMTimeType outputTime = sorter->GetOutput()->GetMTime();
   sorter->Update();
-  EXPECT(sorter->GetOutput()->GetMTime() == outputTime);
+  SCENEVIS_EXPECT(sorter->GetOutput()->GetMTime() == outputTime);
 
   // Front to back is the exact reverse of back to front.
   sorter->SetDirectionToFrontToBack();
   sorter->Update();
   auto reversed = Sequence(sorter->GetOutput());
   std::reverse(reversed.begin(), reversed.end());
-  EXPECT(reversed == rotated);
+  SCENEVIS_EXPECT(reversed == rotated);
   sorter->SetDirectionToBackToFront();
 
   // The input changes: one rebuild.
   sphere->SetThetaResolution(32);
   sorter->Update();
-  EXPECT(sorter->GetNumberOfBuilds() == 2);
+  SCENEVIS_EXPECT(sorter->GetNumberOfBuilds() == 2);
 
   // A prop's matrix: sorting in data space with the prop equals sorting the transformed camera.
   vtkNew<vtkActor> actor;
@@ -115,36 +106,37 @@ int TestBSPSortFilterUpdates(int, char*[])
   reference->SetInputConnection(sphere->GetOutputPort());
   reference->SetCamera(dataCamera);
   reference->Update();
-  EXPECT(Sequence(reference->GetOutput()) == withProp);
+  SCENEVIS_EXPECT(Sequence(reference->GetOutput()) == withProp);
 
   // Moving the prop re-orders without a rebuild.
   const vtkIdType builds = sorter->GetNumberOfBuilds();
   actor->RotateY(120);
   sorter->Update();
-  EXPECT(sorter->GetNumberOfBuilds() == builds);
-  EXPECT(Sequence(sorter->GetOutput()) != withProp);
+  SCENEVIS_EXPECT(sorter->GetNumberOfBuilds() == builds);
+  SCENEVIS_EXPECT(Sequence(sorter->GetOutput()) != withProp);
 
   // Ordered leaves: a rebuild when the size changes, none when the camera moves; the output
   // lists the fragments the view draws, and front to back is still the exact reverse.
   sorter->SetOrderedLeafSize(16);
   sorter->Update();
-  EXPECT(sorter->GetNumberOfBuilds() == builds + 1);
-  EXPECT(sorter->GetLastNumberOfOrderedFragments() == sorter->GetOutput()->GetNumberOfPolys());
-  EXPECT(sorter->GetLastNumberOfOrderedFragments() <= sorter->GetNumberOfFragments());
+  SCENEVIS_EXPECT(sorter->GetNumberOfBuilds() == builds + 1);
+  SCENEVIS_EXPECT(
+    sorter->GetLastNumberOfOrderedFragments() == sorter->GetOutput()->GetNumberOfPolys());
+  SCENEVIS_EXPECT(sorter->GetLastNumberOfOrderedFragments() <= sorter->GetNumberOfFragments());
   const auto leafOrder = Sequence(sorter->GetOutput());
   camera->Azimuth(45.0);
   sorter->Update();
-  EXPECT(sorter->GetNumberOfBuilds() == builds + 1);
+  SCENEVIS_EXPECT(sorter->GetNumberOfBuilds() == builds + 1);
   const auto leafMoved = Sequence(sorter->GetOutput());
-  EXPECT(leafMoved != leafOrder);
+  SCENEVIS_EXPECT(leafMoved != leafOrder);
   sorter->SetDirectionToFrontToBack();
   sorter->Update();
   auto leafReversed = Sequence(sorter->GetOutput());
   std::reverse(leafReversed.begin(), leafReversed.end());
-  EXPECT(leafReversed == leafMoved);
-  EXPECT(sorter->GetNumberOfBuilds() == builds + 1);
+  SCENEVIS_EXPECT(leafReversed == leafMoved);
+  SCENEVIS_EXPECT(sorter->GetNumberOfBuilds() == builds + 1);
   sorter->SetOrderedLeafSize(1000); // clamped to 256
-  EXPECT(sorter->GetOrderedLeafSize() == 256);
+  SCENEVIS_EXPECT(sorter->GetOrderedLeafSize() == 256);
 
-  return failures == 0 ? EXIT_SUCCESS : EXIT_FAILURE;
+  return scenevis::testing::ExpectFailures() == 0 ? EXIT_SUCCESS : EXIT_FAILURE;
 }

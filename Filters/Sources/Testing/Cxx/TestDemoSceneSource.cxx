@@ -2,6 +2,8 @@
 // polygon, matching the core generator; names resolve; bad sizes give an error, not a crash.
 #include "vtkDemoSceneSource.h"
 
+#include "scenevis/testing/Expect.h"
+
 #include "vtkCellData.h"
 #include "vtkFieldData.h"
 #include "vtkIdTypeArray.h"
@@ -12,39 +14,26 @@
 #include <cstdlib>
 #include <iostream>
 
-namespace
-{
-int failures = 0;
-#define EXPECT(cond)                                                                               \
-  do                                                                                               \
-  {                                                                                                \
-    if (!(cond))                                                                                   \
-    {                                                                                              \
-      std::cerr << __FILE__ << ":" << __LINE__ << ": expected " #cond << std::endl;                \
-      ++failures;                                                                                  \
-    }                                                                                              \
-  } while (false)
-} // namespace
-
 int TestDemoSceneSource(int, char*[])
 {
   vtkNew<vtkDemoSceneSource> source;
   for (const char* name : { "spheres", "cyclic-quads", "triangles", "cad", "building" })
   {
-    EXPECT(source->SetSceneByName(name));
+    SCENEVIS_EXPECT(source->SetSceneByName(name));
     source->SetTriangleCount(10000);
     source->SetPartCount(50);
     source->Update();
     vtkPolyData* pd = source->GetOutput();
     const vtkIdType cells = pd->GetNumberOfPolys();
-    EXPECT(cells > 0);
+    SCENEVIS_EXPECT(cells > 0);
     auto* parts = vtkIdTypeArray::SafeDownCast(pd->GetCellData()->GetArray("PartId"));
     auto* colors = vtkUnsignedCharArray::SafeDownCast(pd->GetCellData()->GetScalars());
-    EXPECT(parts && parts->GetNumberOfTuples() == cells);
-    EXPECT(colors && colors->GetNumberOfComponents() == 4 && colors->GetNumberOfTuples() == cells);
+    SCENEVIS_EXPECT(parts && parts->GetNumberOfTuples() == cells);
+    SCENEVIS_EXPECT(
+      colors && colors->GetNumberOfComponents() == 4 && colors->GetNumberOfTuples() == cells);
     auto* partColors =
       vtkUnsignedCharArray::SafeDownCast(pd->GetFieldData()->GetArray("PartColors"));
-    EXPECT(partColors != nullptr);
+    SCENEVIS_EXPECT(partColors != nullptr);
     if (parts && colors && partColors)
     {
       // The per-cell colour is the colour of the cell's part.
@@ -53,7 +42,7 @@ int TestDemoSceneSource(int, char*[])
         const vtkIdType p = parts->GetValue(c);
         for (int k = 0; k < 4; ++k)
         {
-          EXPECT(colors->GetTypedComponent(c, k) == partColors->GetTypedComponent(p, k));
+          SCENEVIS_EXPECT(colors->GetTypedComponent(c, k) == partColors->GetTypedComponent(p, k));
         }
       }
     }
@@ -64,9 +53,9 @@ int TestDemoSceneSource(int, char*[])
   source->SetTriangleCount(100000);
   source->Update();
   const vtkIdType triangles = source->GetOutput()->GetNumberOfPolys();
-  EXPECT(triangles > 98000 && triangles < 102000);
-  EXPECT(source->GetOutput()->GetFieldData()->GetAbstractArray("PartNames")->GetNumberOfTuples() ==
-    64);
-  EXPECT(!source->SetSceneByName("no-such-scene"));
-  return failures == 0 ? EXIT_SUCCESS : EXIT_FAILURE;
+  SCENEVIS_EXPECT(triangles > 98000 && triangles < 102000);
+  SCENEVIS_EXPECT(
+    source->GetOutput()->GetFieldData()->GetAbstractArray("PartNames")->GetNumberOfTuples() == 64);
+  SCENEVIS_EXPECT(!source->SetSceneByName("no-such-scene"));
+  return scenevis::testing::ExpectFailures() == 0 ? EXIT_SUCCESS : EXIT_FAILURE;
 }

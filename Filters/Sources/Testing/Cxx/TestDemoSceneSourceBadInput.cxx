@@ -8,6 +8,8 @@
 //   generator's own limits (32-bit point ids, rooms) give the same kind of error.
 #include "vtkDemoSceneSource.h"
 
+#include "scenevis/testing/Expect.h"
+
 #include "vtkCommand.h"
 #include "vtkNew.h"
 #include "vtkPolyData.h"
@@ -19,17 +21,6 @@
 
 namespace
 {
-int failures = 0;
-#define EXPECT(cond)                                                                               \
-  do                                                                                               \
-  {                                                                                                \
-    if (!(cond))                                                                                   \
-    {                                                                                              \
-      std::cerr << __FILE__ << ":" << __LINE__ << ": expected " #cond << std::endl;                \
-      ++failures;                                                                                  \
-    }                                                                                              \
-  } while (false)
-
 struct Observed
 {
   vtkNew<vtkDemoSceneSource> source;
@@ -74,42 +65,42 @@ int TestDemoSceneSourceBadInput(int, char*[])
     Observed spheres;
     spheres.source->SetScene(vtkDemoSceneSource::SCENE_SPHERE_GRID);
     spheres.source->SetTriangleCount(bad);
-    EXPECT(spheres.observer->GetWarning());
-    EXPECT(spheres.source->GetTriangleCount() == 64);
-    EXPECT(spheres.Update() > 0);
-    EXPECT(spheres.Quiet());
+    SCENEVIS_EXPECT(spheres.observer->GetWarning());
+    SCENEVIS_EXPECT(spheres.source->GetTriangleCount() == 64);
+    SCENEVIS_EXPECT(spheres.Update() > 0);
+    SCENEVIS_EXPECT(spheres.Quiet());
 
     Observed cad;
     cad.source->SetScene(vtkDemoSceneSource::SCENE_CAD_ASSEMBLY);
     cad.source->SetPartCount(bad);
-    EXPECT(cad.observer->GetWarning());
-    EXPECT(cad.source->GetPartCount() == 1);
-    EXPECT(cad.Update() > 0);
-    EXPECT(cad.Quiet());
+    SCENEVIS_EXPECT(cad.observer->GetWarning());
+    SCENEVIS_EXPECT(cad.source->GetPartCount() == 1);
+    SCENEVIS_EXPECT(cad.Update() > 0);
+    SCENEVIS_EXPECT(cad.Quiet());
 
     Observed building;
     building.source->SetScene(vtkDemoSceneSource::SCENE_BUILDING);
     building.source->SetFloors(static_cast<int>(bad));
     building.source->SetRoomsX(static_cast<int>(bad));
     building.source->SetRoomsY(static_cast<int>(bad));
-    EXPECT(building.observer->GetWarning());
-    EXPECT(building.source->GetFloors() == 1 && building.source->GetRoomsX() == 1 &&
+    SCENEVIS_EXPECT(building.observer->GetWarning());
+    SCENEVIS_EXPECT(building.source->GetFloors() == 1 && building.source->GetRoomsX() == 1 &&
       building.source->GetRoomsY() == 1);
-    EXPECT(building.Update() > 0);
-    EXPECT(building.Quiet());
+    SCENEVIS_EXPECT(building.Update() > 0);
+    SCENEVIS_EXPECT(building.Quiet());
   }
 
   // Scene ids out of range are clamped; unknown names are refused.
   {
     vtkNew<vtkDemoSceneSource> source;
     source->SetScene(-1);
-    EXPECT(source->GetScene() == vtkDemoSceneSource::SCENE_SPHERE_GRID);
+    SCENEVIS_EXPECT(source->GetScene() == vtkDemoSceneSource::SCENE_SPHERE_GRID);
     source->SetScene(99);
-    EXPECT(source->GetScene() == vtkDemoSceneSource::SCENE_BUILDING);
-    EXPECT(!source->SetSceneByName("no-such-scene"));
-    EXPECT(!source->SetSceneByName(nullptr));
-    EXPECT(source->GetScene() == vtkDemoSceneSource::SCENE_BUILDING);
-    EXPECT(std::string(vtkDemoSceneSource::GetSceneName(42)) == "unknown");
+    SCENEVIS_EXPECT(source->GetScene() == vtkDemoSceneSource::SCENE_BUILDING);
+    SCENEVIS_EXPECT(!source->SetSceneByName("no-such-scene"));
+    SCENEVIS_EXPECT(!source->SetSceneByName(nullptr));
+    SCENEVIS_EXPECT(source->GetScene() == vtkDemoSceneSource::SCENE_BUILDING);
+    SCENEVIS_EXPECT(std::string(vtkDemoSceneSource::GetSceneName(42)) == "unknown");
   }
 
   // 1e11 triangles: over MaximumTriangleCount, refused up front; then recovery.
@@ -117,19 +108,19 @@ int TestDemoSceneSourceBadInput(int, char*[])
     Observed spheres;
     spheres.source->SetScene(vtkDemoSceneSource::SCENE_SPHERE_GRID);
     spheres.source->SetTriangleCount(100000000000); // 1e11
-    EXPECT(spheres.Update() == 0);
-    EXPECT(spheres.source->GetOutput()->GetNumberOfPoints() == 0);
-    EXPECT(spheres.ErrorSays("Cannot generate the spheres scene"));
-    EXPECT(spheres.ErrorSays("MaximumTriangleCount"));
-    EXPECT(spheres.ErrorCount() == 1);
+    SCENEVIS_EXPECT(spheres.Update() == 0);
+    SCENEVIS_EXPECT(spheres.source->GetOutput()->GetNumberOfPoints() == 0);
+    SCENEVIS_EXPECT(spheres.ErrorSays("Cannot generate the spheres scene"));
+    SCENEVIS_EXPECT(spheres.ErrorSays("MaximumTriangleCount"));
+    SCENEVIS_EXPECT(spheres.ErrorCount() == 1);
     // With the limit lifted, the generator's own limit (32-bit point ids) speaks, up front too.
     spheres.source->SetMaximumTriangleCount(VTK_ID_MAX);
-    EXPECT(spheres.Update() == 0);
-    EXPECT(spheres.ErrorSays("32-bit"));
-    EXPECT(spheres.ErrorCount() == 1);
+    SCENEVIS_EXPECT(spheres.Update() == 0);
+    SCENEVIS_EXPECT(spheres.ErrorSays("32-bit"));
+    SCENEVIS_EXPECT(spheres.ErrorCount() == 1);
     spheres.source->SetTriangleCount(1000);
-    EXPECT(spheres.Update() > 900);
-    EXPECT(spheres.Quiet());
+    SCENEVIS_EXPECT(spheres.Update() > 900);
+    SCENEVIS_EXPECT(spheres.Quiet());
   }
   // A billion rooms: refused up front, one clear error, an empty output; then recovery.
   {
@@ -138,34 +129,34 @@ int TestDemoSceneSourceBadInput(int, char*[])
     building.source->SetFloors(1000);
     building.source->SetRoomsX(1000);
     building.source->SetRoomsY(1000);
-    EXPECT(building.Update() == 0);
-    EXPECT(building.ErrorSays("Cannot generate the building scene"));
-    EXPECT(building.ErrorSays("MaximumTriangleCount"));
-    EXPECT(building.ErrorCount() == 1);
+    SCENEVIS_EXPECT(building.Update() == 0);
+    SCENEVIS_EXPECT(building.ErrorSays("Cannot generate the building scene"));
+    SCENEVIS_EXPECT(building.ErrorSays("MaximumTriangleCount"));
+    SCENEVIS_EXPECT(building.ErrorCount() == 1);
     building.source->SetMaximumTriangleCount(VTK_ID_MAX);
-    EXPECT(building.Update() == 0);
-    EXPECT(building.ErrorSays("too many rooms"));
-    EXPECT(building.ErrorCount() == 1);
+    SCENEVIS_EXPECT(building.Update() == 0);
+    SCENEVIS_EXPECT(building.ErrorSays("too many rooms"));
+    SCENEVIS_EXPECT(building.ErrorCount() == 1);
     building.source->SetFloors(2);
     building.source->SetRoomsX(2);
     building.source->SetRoomsY(2);
-    EXPECT(building.Update() > 0);
-    EXPECT(building.Quiet());
+    SCENEVIS_EXPECT(building.Update() > 0);
+    SCENEVIS_EXPECT(building.Quiet());
   }
   // Sizes the generators would accept but that exhaust memory: refused up front, at once.
   {
     Observed cad;
     cad.source->SetScene(vtkDemoSceneSource::SCENE_CAD_ASSEMBLY);
     cad.source->SetPartCount(10000000);
-    EXPECT(cad.Update() == 0);
-    EXPECT(cad.ErrorSays("MaximumTriangleCount"));
+    SCENEVIS_EXPECT(cad.Update() == 0);
+    SCENEVIS_EXPECT(cad.ErrorSays("MaximumTriangleCount"));
     Observed building;
     building.source->SetScene(vtkDemoSceneSource::SCENE_BUILDING);
     building.source->SetFloors(100);
     building.source->SetRoomsX(100);
     building.source->SetRoomsY(100);
-    EXPECT(building.Update() == 0);
-    EXPECT(building.ErrorSays("MaximumTriangleCount"));
+    SCENEVIS_EXPECT(building.Update() == 0);
+    SCENEVIS_EXPECT(building.ErrorSays("MaximumTriangleCount"));
   }
-  return failures == 0 ? EXIT_SUCCESS : EXIT_FAILURE;
+  return scenevis::testing::ExpectFailures() == 0 ? EXIT_SUCCESS : EXIT_FAILURE;
 }
