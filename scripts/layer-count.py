@@ -59,7 +59,7 @@ def camera(eye, focal, up, bounds):
 
 def layers(polydata, cam, size, peel=False, window=None):
     """The layers over each pixel centre, a size x size array (row 0 at the bottom), drawn in
-    @p window (an offscreen window; a new one when None) or a new window."""
+    @p window (an offscreen window), or in a new one when None."""
     mapper = vtk.vtkPolyDataMapper()
     mapper.SetInputData(polydata)
     mapper.ScalarVisibilityOff()
