@@ -168,11 +168,24 @@ def coplanar_pair(triangles, points, parts):
     return found
 
 
+def vector(text, name):
+    """x,y,z as three finite floats, or exit with one line naming @p name."""
+    try:
+        values = [float(v) for v in text.split(",")]
+    except ValueError:
+        values = []
+    if len(values) != 3 or not all(math.isfinite(v) for v in values):
+        sys.exit(f"layer-count: {name} must be three finite numbers x,y,z, not '{text}'")
+    return values
+
+
 def main(argv):
     if len(argv) not in (6, 7):
         sys.exit(__doc__)
-    eye, focal, up = ([float(v) for v in arg.split(",")] for arg in argv[3:6])
-    size = int(argv[6]) if len(argv) == 7 else 240
+    eye, focal, up = (vector(arg, name) for arg, name in zip(argv[3:6], ("EYE", "FOCAL", "UP")))
+    size = int(argv[6]) if len(argv) == 7 and argv[6].isdigit() else (240 if len(argv) == 6 else 0)
+    if not 8 <= size <= 4096:
+        sys.exit(f"layer-count: SIZE must be a whole number of pixels in 8..4096, not '{argv[6]}'")
     original, fragments = load(argv[1]), load(argv[2])
     cam = camera(eye, focal, up, original.GetBounds())
     before, after = layers(original, cam, size), layers(fragments, cam, size)
