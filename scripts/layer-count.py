@@ -99,10 +99,15 @@ def layers(polydata, cam, size, peel=False, window=None):
 
 
 def window_points(polydata, cam, size):
-    """The points in window coordinates (pixel centres at half-integers)."""
+    """The points of @p polydata in window coordinates (pixel centres at half-integers)."""
+    return to_window(vtk_to_numpy(polydata.GetPoints().GetData()), cam, size)
+
+
+def to_window(points, cam, size):
+    """World @p points (n x 3) in window coordinates."""
     matrix = cam.GetCompositeProjectionTransformMatrix(1.0, -1.0, 1.0)
     m = np.array([[matrix.GetElement(i, j) for j in range(4)] for i in range(4)])
-    points = vtk_to_numpy(polydata.GetPoints().GetData()).astype(np.float64)
+    points = np.asarray(points, dtype=np.float64).reshape(-1, 3)
     clip = np.c_[points, np.ones(len(points))] @ m.T
     return np.c_[(clip[:, 0] / clip[:, 3] + 1) * size / 2, (clip[:, 1] / clip[:, 3] + 1) * size / 2]
 
@@ -183,9 +188,11 @@ def main(argv):
     if len(argv) not in (6, 7):
         sys.exit(__doc__)
     eye, focal, up = (vector(arg, name) for arg, name in zip(argv[3:6], ("EYE", "FOCAL", "UP")))
-    size = int(argv[6]) if len(argv) == 7 and argv[6].isdigit() else (240 if len(argv) == 6 else 0)
+    size_text = argv[6] if len(argv) == 7 else "240"
+    size = int(size_text) if size_text.isdigit() else 0
     if not 8 <= size <= 4096:
-        sys.exit(f"layer-count: SIZE must be a whole number of pixels in 8..4096, not '{argv[6]}'")
+        sys.exit(f"layer-count: SIZE must be a whole number of pixels in 8..4096, "
+                 f"not '{size_text}'")
     original, fragments = load(argv[1]), load(argv[2])
     cam = camera(eye, focal, up, original.GetBounds())
     before, after = layers(original, cam, size), layers(fragments, cam, size)
@@ -226,7 +233,6 @@ def main(argv):
     print(f"100-peel peeling: {int((peeled > before).sum())} pixels with more layers, "
           f"{len(fewer_rows)} with fewer ({int((peeled <= before - 2).sum())} by 2 or more)")
     if len(fewer_rows):
-        at = covering_triangles(window, cells)
         points = vtk_to_numpy(original.GetPoints().GetData()).astype(np.float64)
         part_array = original.GetCellData().GetArray("PartId")
         parts = vtk_to_numpy(part_array) if part_array else None
@@ -235,7 +241,7 @@ def main(argv):
         kinds = {"other part": 0, "same part": 0, None: 0}
         for i in pick:
             centre = (fewer_cols[i] + 0.5, fewer_rows[i] + 0.5)
-            kinds[coplanar_pair(at(centre), points, parts)] += 1
+            kinds[coplanar_pair(covering(centre), points, parts)] += 1
         print(f"  of {len(pick)} sampled: two coplanar polygons of different parts cover the "
               f"centre at {kinds['other part']}, of one part at {kinds['same part']}, "
               f"none at {kinds[None]}")

@@ -64,12 +64,7 @@ def test_counts_layers_and_finds_what_peeling_drops(layer_count, render_window):
 
     # The overlap of the squares, at a point the triangle does not reach: 2 layers.
     window = layer_count.window_points(scene, cam, SIZE)
-    overlap = np.array([0.9, 0.1, 0.0])
-    squares = vtk.vtkPoints()
-    squares.InsertNextPoint(*overlap)
-    probe = vtk.vtkPolyData()
-    probe.SetPoints(squares)
-    x, y = (int(v) for v in layer_count.window_points(probe, cam, SIZE)[0])
+    x, y = (int(v) for v in layer_count.to_window([0.9, 0.1, 0.0], cam, SIZE)[0])
     assert plain[y, x] == 2
     assert split[y, x] == 2
     assert peeled[y, x] == 1, "depth peeling keeps one of two layers at one depth"
