@@ -21,7 +21,7 @@
 //    occluders' frame + the queries + drawing what passed.
 // Usage: scenevis_occlusion_bench [--grid N] [--size WxH] [--frames K]
 //        [--pixels-per-triangle P] [--smoke] [--write-flat FILE.vtp] [--occlusion-only]
-//        [--view NAME] [--cull-only K]
+//        [--view NAME] [--cull-only K] [--record PREFIX]
 // --write-flat writes the grid as ONE polydata (raw appended data, the model's point normals, a
 // PartId cell array naming the 46,000 placed parts, as flattening exporters write it) and exits:
 // the input of `scenevis render --scene`.
@@ -31,7 +31,10 @@
 // many --frames; --view measures only the view whose name starts with NAME ("engine", "inside",
 // "overview"); --cull-only K also calls the culler K times in a row at each camera without
 // drawing (warm caches) and prints its wall and thread CPU time per cull: the culler's cost alone,
-// for tuning and profiling it on a loaded machine.
+// for tuning and profiling it on a loaded machine. --record PREFIX writes every cull of the
+// occlusion culler at a view to PREFIX-VIEW.rec (PREFIX-engine-row.rec, ...; see
+// vtkOcclusionCuller::SetOcclusionRecordFile):
+// the input of scenevis_occlusion_replay, which times the rasterizer alone (BENCHMARKS.md).
 // Needs the data cache (scripts/fetch-data.sh); prints "SKIPPED" and exits 77 (CTest's
 // SKIP_RETURN_CODE) without it.
 #include "EngineGrid.h"
@@ -314,7 +317,7 @@ int main(int argc, char* argv[])
   const char* flatFile = nullptr;
   bool occlusionOnly = false;
   int cullOnly = 0;
-  std::string onlyView;
+  std::string onlyView, recordPrefix;
   for (int i = 1; i < argc; ++i)
   {
     const std::string a = argv[i];
@@ -332,6 +335,8 @@ int main(int argc, char* argv[])
       onlyView = argv[++i];
     else if (a == "--cull-only" && i + 1 < argc)
       cullOnly = std::max(0, std::atoi(argv[++i]));
+    else if (a == "--record" && i + 1 < argc)
+      recordPrefix = argv[++i];
     else if (a == "--occlusion-only")
       occlusionOnly = true;
     else if (a == "--smoke")
@@ -345,7 +350,7 @@ int main(int argc, char* argv[])
     {
       std::cerr << "usage: scenevis_occlusion_bench [--grid N] [--size WxH] [--frames K] "
                    "[--pixels-per-triangle P] [--smoke] [--occlusion-only] [--view NAME] "
-                   "[--cull-only K]\n";
+                   "[--cull-only K] [--record PREFIX]\n";
       return 2;
     }
   }
@@ -407,6 +412,12 @@ int main(int argc, char* argv[])
     if (pixelsPerTriangle >= 0.0)
     {
       occlusion->SetOccluderMinimumPixelsPerTriangle(pixelsPerTriangle);
+    }
+    if (!recordPrefix.empty())
+    {
+      std::string file = recordPrefix + "-" + v.name + ".rec";
+      std::replace(file.begin() + recordPrefix.size(), file.end(), ' ', '-');
+      occlusion->SetOcclusionRecordFile(file.c_str());
     }
     std::vector<Row> rows;
     if (!occlusionOnly)

@@ -13,6 +13,7 @@
 #   SCENEVIS_FUZZ_OCCLUSION_SECONDS  length of the occlusion fuzz run after it (default 30)
 #   SCENEVIS_FUZZ_PART_ORDER_SECONDS length of the two-level order fuzz run after that (default 20)
 #   SCENEVIS_FUZZ_PORTAL_SECONDS     length of the portal generation fuzz run after that (default 30)
+#   SCENEVIS_FUZZ_RECORDING_SECONDS  length of the occlusion recording fuzz run after that (default 20)
 #   SCENEVIS_SANITIZE_CXX     compiler for the ASan build (default: CMake's default, g++ on Debian)
 #
 # Only SceneVis' own code is instrumented (CMake option SCENEVIS_SANITIZE); VTK, GoogleTest and the
@@ -26,6 +27,7 @@ fuzzseconds=${SCENEVIS_FUZZ_SECONDS:-60}
 occlusionseconds=${SCENEVIS_FUZZ_OCCLUSION_SECONDS:-30}
 partorderseconds=${SCENEVIS_FUZZ_PART_ORDER_SECONDS:-20}
 portalseconds=${SCENEVIS_FUZZ_PORTAL_SECONDS:-30}
+recordingseconds=${SCENEVIS_FUZZ_RECORDING_SECONDS:-20}
 jobs=$(nproc)
 start=$(date +%s)
 
@@ -51,7 +53,8 @@ export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
 # gtest_discover_tests runs the test binary at build time, so the options above already apply.
 cmake --build "$build" -j"$jobs" --target scenevis_core_tests scenevis_fuzz_bsp_replay \
   scenevis_fuzz_occlusion_replay scenevis_fuzz_part_order_replay scenevis_fuzz_portal_generation_replay \
-  scenevis_fuzz_make_portal_corpus scenevis_split_parts_tests scenevis_instances_tests \
+  scenevis_fuzz_make_portal_corpus scenevis_fuzz_recording_replay scenevis_fuzz_make_recording_corpus \
+  scenevis_split_parts_tests scenevis_instances_tests \
   scenevis_huge_pages_tests \
   SceneVisFiltersSortingCxxTests SceneVisFiltersSortingRenderingCxxTests \
   SceneVisFiltersSourcesCxxTests SceneVisFiltersPortalsCxxTests SceneVisIOModelsCxxTests \
@@ -103,7 +106,8 @@ cmake -S "$root" -B "$fuzzbuild" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   -DBUILD_TESTING=OFF -DSCENEVIS_BUILD_BENCHMARKS=OFF -DSCENEVIS_BUILD_EXAMPLES=OFF \
   -DSCENEVIS_WRAP_PYTHON=OFF >"$fuzzbuild.configure.log" 2>&1 || { cat "$fuzzbuild.configure.log"; exit 1; }
 cmake --build "$fuzzbuild" -j"$jobs" --target scenevis_fuzz_bsp scenevis_fuzz_occlusion \
-  scenevis_fuzz_part_order scenevis_fuzz_portal_generation scenevis_fuzz_make_portal_corpus
+  scenevis_fuzz_part_order scenevis_fuzz_portal_generation scenevis_fuzz_make_portal_corpus \
+  scenevis_fuzz_recording scenevis_fuzz_make_recording_corpus
 # New inputs go to a scratch directory; the committed seed corpus is only read.
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
@@ -115,46 +119,34 @@ trap 'rm -rf "$work"' EXIT
   exit 1
 }
 grep -E '^(#[0-9]+ +DONE|stat::number_of_executed_units|stat::peak_rss_mb)' "$work/fuzz.log" || true
+# fuzz NAME TARGET SECONDS SEEDS WHAT: libFuzzer target TARGET for SECONDS (0 skips it) in
+# $work/NAME from the seed directory SEEDS; on a failure the log's end and the reproducer.
+fuzz() {
+  local name=$1 target=$2 seconds=$3 seeds=$4 what=$5
+  [ "$seconds" != "0" ] || return 0
+  mkdir -p "$work/$name"
+  (cd "$work/$name" && "$fuzzbuild/bin/$target" -max_total_time="$seconds" -timeout=20 \
+    -rss_limit_mb=2048 -print_final_stats=1 "$work/$name" "$seeds" 2>"$work/$name.log") || {
+    tail -n 40 "$work/$name.log"
+    echo "sanitize: the $what fuzzer failed; reproducer:"
+    ls -l "$work/$name"/crash-* 2>/dev/null || true
+    exit 1
+  }
+  grep -E '^(#[0-9]+ +DONE|stat::number_of_executed_units)' "$work/$name.log" || true
+}
 # The occlusion buffer against its ray oracle (Core/Fuzz/FuzzOcclusion.cpp).
-if [ "$occlusionseconds" != "0" ]; then
-  mkdir -p "$work/occlusion"
-  (cd "$work/occlusion" && "$fuzzbuild/bin/scenevis_fuzz_occlusion" \
-    -max_total_time="$occlusionseconds" -timeout=20 -rss_limit_mb=2048 -print_final_stats=1 \
-    "$work/occlusion" "$root/Core/Fuzz/occlusion-corpus" 2>"$work/occlusion.log") || {
-    tail -n 40 "$work/occlusion.log"
-    echo "sanitize: the occlusion fuzzer failed; reproducer:"
-    ls -l "$work"/occlusion/crash-* 2>/dev/null || true
-    exit 1
-  }
-  grep -E '^(#[0-9]+ +DONE|stat::number_of_executed_units)' "$work/occlusion.log" || true
-fi
+fuzz occlusion scenevis_fuzz_occlusion "$occlusionseconds" "$root/Core/Fuzz/occlusion-corpus" occlusion
 # The two-level order against the order oracle (Core/Fuzz/FuzzPartOrder.cpp).
-if [ "$partorderseconds" != "0" ]; then
-  mkdir -p "$work/part-order"
-  (cd "$work/part-order" && "$fuzzbuild/bin/scenevis_fuzz_part_order" \
-    -max_total_time="$partorderseconds" -timeout=20 -rss_limit_mb=2048 -print_final_stats=1 \
-    "$work/part-order" "$root/Core/Fuzz/part-order-corpus" 2>"$work/part-order.log") || {
-    tail -n 40 "$work/part-order.log"
-    echo "sanitize: the two-level order fuzzer failed; reproducer:"
-    ls -l "$work"/part-order/crash-* 2>/dev/null || true
-    exit 1
-  }
-  grep -E '^(#[0-9]+ +DONE|stat::number_of_executed_units)' "$work/part-order.log" || true
-fi
-# Rooms and portals against the box rooms they were built from (Core/Fuzz/FuzzPortalGeneration.cpp);
-# its seeds are written by code (scenevis_fuzz_make_portal_corpus).
-if [ "$portalseconds" != "0" ]; then
-  mkdir -p "$work/portal" "$work/portal-seeds"
-  "$fuzzbuild/bin/scenevis_fuzz_make_portal_corpus" "$work/portal-seeds" >/dev/null
-  (cd "$work/portal" && "$fuzzbuild/bin/scenevis_fuzz_portal_generation" \
-    -max_total_time="$portalseconds" -timeout=20 -rss_limit_mb=2048 -print_final_stats=1 \
-    "$work/portal" "$work/portal-seeds" 2>"$work/portal.log") || {
-    tail -n 40 "$work/portal.log"
-    echo "sanitize: the portal generation fuzzer failed; reproducer:"
-    ls -l "$work"/portal/crash-* 2>/dev/null || true
-    exit 1
-  }
-  grep -E '^(#[0-9]+ +DONE|stat::number_of_executed_units)' "$work/portal.log" || true
-fi
-echo "sanitize: fuzzing ${fuzzseconds} s + occlusion ${occlusionseconds} s + two-level order ${partorderseconds} s + portal generation ${portalseconds} s passed (build+run $(( $(date +%s) - fuzzstart )) s)"
+fuzz part-order scenevis_fuzz_part_order "$partorderseconds" "$root/Core/Fuzz/part-order-corpus" \
+  "two-level order"
+# Rooms and portals against the box rooms they were built from (Core/Fuzz/FuzzPortalGeneration.cpp)
+# and occlusion recordings read back to their bytes and replayed (FuzzOcclusionRecording.cpp):
+# their seeds are written by code.
+mkdir -p "$work/portal-seeds" "$work/recording-seeds"
+"$fuzzbuild/bin/scenevis_fuzz_make_portal_corpus" "$work/portal-seeds" >/dev/null
+"$fuzzbuild/bin/scenevis_fuzz_make_recording_corpus" "$work/recording-seeds"
+fuzz portal scenevis_fuzz_portal_generation "$portalseconds" "$work/portal-seeds" "portal generation"
+fuzz recording scenevis_fuzz_recording "$recordingseconds" "$work/recording-seeds" \
+  "occlusion recording"
+echo "sanitize: fuzzing ${fuzzseconds} s + occlusion ${occlusionseconds} s + two-level order ${partorderseconds} s + portal generation ${portalseconds} s + recordings ${recordingseconds} s passed (build+run $(( $(date +%s) - fuzzstart )) s)"
 echo "sanitize: done in $(( $(date +%s) - start )) s"

@@ -7,48 +7,23 @@
 // With both, the two rasterizers (MaskedDepthBuffer::Rasterizer) replay each cull alternately,
 // so that both see the same load.
 //
-// FILE holds, in the machine's byte order, a sequence of records, each led by an int32 tag:
-//   tag 1, a cull: int32 width, int32 height, glm::dmat4 clipFromWorld (16 doubles);
-//   any other tag, one drawTriangles() call of the current cull: double coverageMargin,
-//     depthMargin, polygonOffsetFactor, polygonOffsetDepth; uint64 vertexCount, triangleCount;
-//     int32 culling (FaceCulling), hasNeighbors, hasClusters; vertexCount glm::dvec4 clip
-//     vertices; 3 triangleCount uint32 indices; if hasNeighbors 3 triangleCount uint32
-//     neighbours; if hasClusters a glm::dmat4 clipFromModel, uint64 trianglesPerCluster and 6
-//     doubles per run of triangles.
-// Recordings of the engine-row and inside-the-grid culls of scenevis_occlusion_bench are made by
-// a temporary hook in drawTriangles() (not in the library); see BENCHMARKS.md.
+// FILE is a recording (scenevis/OcclusionRecording.h), e.g. of the engine-row culls of
+// `scenevis_occlusion_bench --record FILE` (BENCHMARKS.md).
 #include "scenevis/OcclusionBuffer.h"
+#include "scenevis/OcclusionRecording.h"
 
 #include <algorithm>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <ctime>
+#include <fstream>
 #include <string>
 #include <vector>
 
 namespace
 {
 using namespace scenevis::occlusion;
-
-struct Draw
-{
-  double coverageMargin = 0.0, depthMargin = 0.0, offsetFactor = 0.0, offsetDepth = 0.0;
-  std::uint64_t vertexCount = 0, triangleCount = 0;
-  std::int32_t culling = 0, hasNeighbors = 0, hasClusters = 0;
-  std::vector<glm::dvec4> clip;
-  std::vector<std::uint32_t> indices, neighbors;
-  glm::dmat4 clipFromModel{ 1.0 };
-  std::uint64_t trianglesPerCluster = 0;
-  std::vector<double> boxes;
-};
-
-struct Cull
-{
-  std::int32_t width = 800, height = 600;
-  glm::dmat4 clipFromWorld{ 1.0 };
-  std::vector<Draw> draws;
-};
 
 double threadSeconds()
 {
@@ -68,110 +43,19 @@ std::uint64_t fnv(std::uint64_t h, const void* p, std::size_t n)
   return h;
 }
 
-bool readCulls(const char* path, std::vector<Cull>& culls)
-{
-  FILE* f = std::fopen(path, "rb");
-  if (!f)
-  {
-    return false;
-  }
-  bool ok = true;
-  auto get = [&](void* p, std::size_t n)
-  {
-    ok = ok && std::fread(p, 1, n, f) == n;
-    return ok;
-  };
-  std::int32_t tag;
-  while (ok && std::fread(&tag, 4, 1, f) == 1)
-  {
-    if (tag == 1)
-    {
-      Cull c;
-      get(&c.width, 4);
-      get(&c.height, 4);
-      get(&c.clipFromWorld, sizeof c.clipFromWorld);
-      culls.push_back(std::move(c));
-      continue;
-    }
-    if (culls.empty())
-    {
-      culls.emplace_back();
-    }
-    Draw d;
-    get(&d.coverageMargin, 8);
-    get(&d.depthMargin, 8);
-    get(&d.offsetFactor, 8);
-    get(&d.offsetDepth, 8);
-    get(&d.vertexCount, 8);
-    get(&d.triangleCount, 8);
-    get(&d.culling, 4);
-    get(&d.hasNeighbors, 4);
-    get(&d.hasClusters, 4);
-    if (!ok || d.vertexCount > (1u << 28) || d.triangleCount > (1u << 28))
-    {
-      ok = false;
-      break;
-    }
-    d.clip.resize(d.vertexCount);
-    get(d.clip.data(), sizeof(glm::dvec4) * d.vertexCount);
-    d.indices.resize(3 * d.triangleCount);
-    get(d.indices.data(), 12 * d.triangleCount);
-    if (d.hasNeighbors)
-    {
-      d.neighbors.resize(3 * d.triangleCount);
-      get(d.neighbors.data(), 12 * d.triangleCount);
-    }
-    if (d.hasClusters)
-    {
-      get(&d.clipFromModel, sizeof d.clipFromModel);
-      get(&d.trianglesPerCluster, 8);
-      if (d.trianglesPerCluster == 0)
-      {
-        ok = false;
-        break;
-      }
-      d.boxes.resize(6 * ((d.triangleCount + d.trianglesPerCluster - 1) / d.trianglesPerCluster));
-      get(d.boxes.data(), 8 * d.boxes.size());
-    }
-    culls.back().draws.push_back(std::move(d));
-  }
-  std::fclose(f);
-  return ok;
-}
-
-/// One replay of a cull into @p buffer (cleared first).
-void replay(MaskedDepthBuffer& buffer, const Cull& cull)
-{
-  buffer.clear();
-  for (const Draw& d : cull.draws)
-  {
-    buffer.coverageMargin = d.coverageMargin;
-    buffer.depthMargin = d.depthMargin;
-    buffer.polygonOffsetFactor = d.offsetFactor;
-    buffer.polygonOffsetDepth = d.offsetDepth;
-    TriangleClusters clusters;
-    if (d.hasClusters)
-    {
-      clusters.clipFromModel = d.clipFromModel;
-      clusters.boxes = d.boxes.data();
-      clusters.trianglesPerCluster = d.trianglesPerCluster;
-    }
-    buffer.drawTriangles(d.clip.data(), d.vertexCount, d.indices.data(), d.triangleCount,
-      static_cast<FaceCulling>(d.culling), d.hasNeighbors ? d.neighbors.data() : nullptr,
-      d.hasClusters ? &clusters : nullptr);
-  }
-}
 } // namespace
 
 int main(int argc, char** argv)
 {
-  if (argc < 2)
+  const char* usage = "usage: %s FILE [repeats (1..100000, default 20)] [exact|float|both]\n";
+  const int repeats = argc > 2 ? std::atoi(argv[2]) : 20;
+  const std::string which = argc > 3 ? argv[3] : "both";
+  if (argc < 2 || argc > 4 || repeats < 1 || repeats > 100000 ||
+    (which != "exact" && which != "float" && which != "both"))
   {
-    std::fprintf(stderr, "usage: %s FILE [repeats]\n", argv[0]);
+    std::fprintf(stderr, usage, argv[0]);
     return 2;
   }
-  const int repeats = argc > 2 ? std::max(1, std::atoi(argv[2])) : 20;
-  const std::string which = argc > 3 ? argv[3] : "both";
   std::vector<MaskedDepthBuffer::Rasterizer> rasterizers;
   if (which != "float")
   {
@@ -181,21 +65,27 @@ int main(int argc, char** argv)
   {
     rasterizers.push_back(MaskedDepthBuffer::Rasterizer::Float);
   }
-  std::vector<Cull> culls;
-  if (!readCulls(argv[1], culls))
+  std::vector<RecordedCull> culls;
+  std::ifstream file(argv[1], std::ios::binary);
+  std::string error;
+  if (!file)
   {
-    std::fprintf(stderr, "%s: cannot read %s\n", argv[0], argv[1]);
+    std::fprintf(stderr, "%s: cannot open %s\n", argv[0], argv[1]);
+    return 1;
+  }
+  if (!readOcclusionRecording(file, culls, error))
+  {
+    std::fprintf(stderr, "%s: %s: %s\n", argv[0], argv[1], error.c_str());
     return 1;
   }
   for (std::size_t ci = 0; ci < culls.size(); ++ci)
   {
-    const Cull& cull = culls[ci];
+    const RecordedCull& cull = culls[ci];
     std::vector<MaskedDepthBuffer> buffers(rasterizers.size());
     std::vector<std::vector<double>> seconds(rasterizers.size());
     for (std::size_t k = 0; k < buffers.size(); ++k)
     {
-      buffers[k].resize(cull.width, cull.height);
-      buffers[k].setClipFromWorld(cull.clipFromWorld);
+      prepareReplay(buffers[k], cull);
       buffers[k].rasterizer = rasterizers[k];
     }
     for (int r = 0; r < repeats; ++r)
@@ -203,7 +93,7 @@ int main(int argc, char** argv)
       for (std::size_t k = 0; k < buffers.size(); ++k)
       {
         const double start = threadSeconds();
-        replay(buffers[k], cull);
+        replayDraws(buffers[k], cull);
         seconds[k].push_back(threadSeconds() - start);
       }
     }

@@ -353,13 +353,16 @@ TEST_P(OcclusionBuffer, BadInputIsRejectedNotDrawn)
   const double inf = std::numeric_limits<double>::infinity();
   // Vertices 5-7 are not finite in w, z or w only: taken as finite, each would make a drawable
   // triangle with vertices 1 and 2 (w = inf projects to the centre; z = inf is in front).
+  // Vertex 8 is finite and in front of the near plane, but its w is so small that 1 / w
+  // overflows: its window point would be 0 x inf = NaN.
   std::vector<glm::dvec4> clip = { { 0, 0, 0.5, 1 }, { 1, 0, 0.5, 1 }, { 0, 1, 0.5, 1 },
-    { nan, 0, 0, 1 }, { 0, 0, -5, -1 }, { 0, 0, 0.5, inf }, { 0, 0, inf, 1 }, { 0, 0, 0.5, nan } };
+    { nan, 0, 0, 1 }, { 0, 0, -5, -1 }, { 0, 0, 0.5, inf }, { 0, 0, inf, 1 }, { 0, 0, 0.5, nan },
+    { 0, 0, 1e-310, 1e-310 } };
   std::vector<std::uint32_t> indices = { 0, 1, 1, /*degenerate*/ 0, 1, 3, /*NaN*/ 0, 1, 9,
     /*out of range*/ 4, 4, 4 /*behind*/, 1, 2, 5, /*w = inf*/ 1, 2, 6, /*z = inf*/ 1, 2,
-    7 /*w = NaN*/ };
-  buffer.drawTriangles(clip.data(), clip.size(), indices.data(), 7);
-  EXPECT_EQ(buffer.stats().trianglesRejected, 7u);
+    7 /*w = NaN*/, 1, 2, 8 /*w = 1e-310*/ };
+  buffer.drawTriangles(clip.data(), clip.size(), indices.data(), 8);
+  EXPECT_EQ(buffer.stats().trianglesRejected, 8u);
   EXPECT_EQ(buffer.stats().tilesUpdated, 0u);
   EXPECT_FALSE(buffer.boxOccluded({ nan, 0, 0 }, { 1, 1, 1 }));
   EXPECT_FALSE(buffer.boxOccluded({ 1, 1, 1 }, { 0, 0, 0 })); // empty

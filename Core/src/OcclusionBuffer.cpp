@@ -1,4 +1,5 @@
 #include "scenevis/OcclusionBuffer.h"
+#include "scenevis/OcclusionRecording.h"
 
 #include "OcclusionEdge.h"
 #include "OcclusionFront.h"
@@ -21,6 +22,10 @@ namespace occlusion
 namespace
 {
 constexpr float kNoOccluder = std::numeric_limits<float>::infinity();
+/// The smallest clip w a vertex in front of the near plane is projected with: below it 1 / w
+/// overflows (a point in the eye's plane, seen through no real camera), and the vertex counts as
+/// not finite (its triangles are rejected: always conservative).
+constexpr double kSmallestW = 1.0 / std::numeric_limits<double>::max();
 
 bool finite(const glm::dvec4& v)
 {
@@ -109,6 +114,10 @@ void MaskedDepthBuffer::resize(int width, int height)
 
 void MaskedDepthBuffer::setClipFromWorld(const glm::dmat4& clipFromWorld)
 {
+  if (recorder)
+  {
+    recorder->beginCull(width_, height_, clipFromWorld);
+  }
   ++revision_;
   clipFromWorld_ = clipFromWorld;
   const glm::dmat4 worldFromClip = glm::inverse(clipFromWorld);
@@ -147,6 +156,11 @@ void MaskedDepthBuffer::drawTriangles(const glm::dvec4* clip,
   const std::uint32_t* neighbors,
   const TriangleClusters* clusters)
 {
+  if (recorder)
+  {
+    recorder->draw(
+      *this, clip, nullptr, vertexCount, indices, triangleCount, culling, neighbors, clusters);
+  }
   drawTrianglesFrom(
     clip, nullptr, vertexCount, indices, triangleCount, culling, neighbors, clusters);
 }
@@ -155,6 +169,11 @@ void MaskedDepthBuffer::drawTriangles(const ModelVertices& model, std::size_t ve
   const std::uint32_t* indices, std::size_t triangleCount, FaceCulling culling,
   const std::uint32_t* neighbors, const TriangleClusters* clusters)
 {
+  if (recorder)
+  {
+    recorder->draw(
+      *this, nullptr, &model, vertexCount, indices, triangleCount, culling, neighbors, clusters);
+  }
   if (!model.xyzFloat && !model.xyzDouble)
   {
     stats_.trianglesIn += triangleCount;
@@ -199,30 +218,14 @@ void MaskedDepthBuffer::drawTrianglesFrom(const glm::dvec4* clip, const ModelVer
     {
       if (model)
       {
-        // Left to right, as glm's matrix-vector product (see ModelVertices).
-        const glm::dmat4& m = model->clipFromModel;
-        double x, y, z;
-        if (model->xyzFloat)
-        {
-          const float* p = model->xyzFloat + 3 * std::size_t(i);
-          x = p[0], y = p[1], z = p[2];
-        }
-        else
-        {
-          const double* p = model->xyzDouble + 3 * std::size_t(i);
-          x = p[0], y = p[1], z = p[2];
-        }
-        clip_[i] = glm::dvec4(m[0][0] * x + m[1][0] * y + m[2][0] * z + m[3][0],
-          m[0][1] * x + m[1][1] * y + m[2][1] * z + m[3][1],
-          m[0][2] * x + m[1][2] * y + m[2][2] * z + m[3][2],
-          m[0][3] * x + m[1][3] * y + m[2][3] * z + m[3][3]);
+        clip_[i] = model->clip(i);
       }
       const glm::dvec4& v = clip[i];
       if (!finite(v))
       {
         s = kVertexNotFinite;
       }
-      else if (v.z + v.w >= 0.0 && v.w > 0.0)
+      else if (v.z + v.w >= 0.0 && v.w >= kSmallestW)
       {
         s = kVertexFront;
         const double inverseW = 1.0 / v.w;
@@ -241,6 +244,10 @@ void MaskedDepthBuffer::drawTrianglesFrom(const glm::dvec4* clip, const ModelVer
           (v.y * inverseW * 0.5 + 0.5) * height_, v.z * inverseW * 0.5 + 0.5);
 #endif
         centres_[i] = centreSpan(window_[i].x, window_[i].y, width_, height_);
+      }
+      else if (v.w > 0.0 && v.z + v.w >= 0.0)
+      {
+        s = kVertexNotFinite; // 0 < w < kSmallestW: 1 / w overflows, no window point
       }
       else
       {

@@ -33,9 +33,13 @@
 #include "vtkWeakPointer.h"
 
 #include "scenevis/OcclusionBuffer.h"
+#include "scenevis/OcclusionRecording.h"
 
 #include <cstddef>
 #include <cstdint>
+#include <fstream>
+#include <memory>
+#include <string>
 #include <unordered_map>
 #include <utility>
 #include <vector>
@@ -63,6 +67,17 @@ public:
   bool WorthDrawing(const double lo[3], const double hi[3], vtkIdType triangles);
 
   scenevis::occlusion::MaskedDepthBuffer& Buffer() { return this->DepthBuffer; }
+
+  ///@{
+  /// Recording of every frame's rasterization from the next BeginFrame() on, into @p fileName
+  /// (created or emptied; scenevis/OcclusionRecording.h); "" stops and closes the file. False,
+  /// and nothing recorded, if the file cannot be opened.
+  bool RecordTo(const std::string& fileName);
+  const std::string& RecordingFile() const { return this->RecordFile; }
+  /// Writes out what was recorded so far (call after each frame: a process may end without
+  /// destructors); false, and the recording stopped, if a write failed.
+  bool FlushRecording();
+  ///@}
 
   /// Occluder selection: a prop whose screen rectangle has fewer than this many pixels per
   /// triangle is not rasterized (it costs more than it hides: small, finely tessellated parts).
@@ -110,6 +125,9 @@ private:
   void Evict();
 
   scenevis::occlusion::MaskedDepthBuffer DepthBuffer;
+  std::string RecordFile;
+  std::unique_ptr<std::ofstream> RecordStream;
+  std::unique_ptr<scenevis::occlusion::OcclusionRecorder> Recorder;
   double ClipFromWorld[16] = { 0 };
   std::unordered_map<vtkPolyData*, Mesh> Meshes;
   std::vector<double> Points; // an occluder's points as doubles, when its array is neither

@@ -20,6 +20,16 @@ void vtkOcclusionCuller::SetOcclusionCulling(bool on)
   }
 }
 
+void vtkOcclusionCuller::SetOcclusionRecordFile(const char* fileName)
+{
+  const std::string name = fileName ? fileName : "";
+  if (this->OcclusionRecordFile != name)
+  {
+    this->OcclusionRecordFile = name;
+    this->Modified();
+  }
+}
+
 void vtkOcclusionCuller::SetOccluderCacheBudget(vtkIdType bytes)
 {
   const std::size_t value = bytes > 0 ? static_cast<std::size_t>(bytes) : 0;
@@ -40,6 +50,8 @@ void vtkOcclusionCuller::PrintSelf(ostream& os, vtkIndent indent)
   this->Superclass::PrintSelf(os, indent);
   os << indent << "OcclusionCulling: " << this->OcclusionCulling << "\n";
   os << indent << "OccluderCacheBudget: " << this->OccluderCacheBudget << " bytes\n";
+  os << indent << "OcclusionRecordFile: "
+     << (this->OcclusionRecordFile.empty() ? "(none)" : this->OcclusionRecordFile) << "\n";
   os << indent << "NumberOfPropsCulledByOcclusion: " << this->NumberOfPropsCulledByOcclusion
      << "\n";
   os << indent << "NumberOfOcclusionTests: " << this->NumberOfOcclusionTests << "\n";

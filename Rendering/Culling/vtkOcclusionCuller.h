@@ -75,6 +75,15 @@ public:
   ///@}
 
   ///@{
+  /// Record the occluder rasterization of every Cull() from the next one on into this file
+  /// (created, or emptied), for scenevis_occlusion_replay: the depth buffer's size and camera,
+  /// then each occluder's triangles as rasterized (scenevis/OcclusionRecording.h). The file is
+  /// complete after each Cull(). Null or "" (default): nothing is recorded. A file that cannot
+  /// be written is an error, and recording stops.
+  void SetOcclusionRecordFile(const char* fileName);
+  const char* GetOcclusionRecordFile() const { return this->OcclusionRecordFile.c_str(); }
+  ///@}
+  ///@{
   /// Statistics of the last Cull().
   vtkIdType GetNumberOfPropsCulledByOcclusion() const
   {

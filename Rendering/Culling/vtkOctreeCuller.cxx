@@ -676,9 +676,26 @@ double vtkOctreeCuller::Cull(
     sc::CullStats stats;
     if (this->OcclusionCulling)
     {
+      if (!in.Occlusion)
+      {
+        in.Occlusion.reset(new vtkOccluderRasterizer);
+      }
+      if (in.Occlusion->RecordingFile() != this->OcclusionRecordFile &&
+        !in.Occlusion->RecordTo(this->OcclusionRecordFile))
+      {
+        vtkErrorMacro("cannot write the occlusion recording " << this->OcclusionRecordFile
+                                                              << ": nothing is recorded");
+        this->OcclusionRecordFile.clear();
+      }
       in.CullOccluded(
         ren, params, this->OccluderCacheBudget, this->OccluderMinimumPixelsPerTriangle, stats);
-      const vtkOccluderRasterizer& raster = *in.Occlusion;
+      vtkOccluderRasterizer& raster = *in.Occlusion;
+      if (!raster.FlushRecording())
+      {
+        vtkErrorMacro("writing the occlusion recording " << this->OcclusionRecordFile
+                                                         << " failed: recording stopped");
+        this->OcclusionRecordFile.clear();
+      }
       this->NumberOfPropsCulledByOcclusion = static_cast<vtkIdType>(stats.culledOcclusion);
       this->NumberOfOcclusionTests = static_cast<vtkIdType>(stats.occlusionTests);
       this->NumberOfOccludersDrawn = raster.OccludersDrawn;

@@ -101,6 +101,7 @@
 
 #include <cstddef> // For std::size_t
 #include <memory>  // For std::unique_ptr
+#include <string>  // For std::string
 
 class vtkProp;
 
@@ -218,6 +219,7 @@ protected:
   bool OcclusionCulling = false;
   std::size_t OccluderCacheBudget = std::size_t(256) << 20;
   double OccluderMinimumPixelsPerTriangle = 1.0;
+  std::string OcclusionRecordFile; ///< see vtkOcclusionCuller::SetOcclusionRecordFile()
   vtkIdType NumberOfOccludersSkipped = 0;
   vtkIdType NumberOfPropsCulledByOcclusion = 0;
   vtkIdType NumberOfOcclusionTests = 0;

@@ -170,6 +170,28 @@ struct ModelVertices
   glm::dmat4 clipFromModel{ 1.0 };
   const float* xyzFloat = nullptr;
   const double* xyzDouble = nullptr;
+
+  /// Point @p i in clip space, as drawTriangles() transforms it (left to right, as glm's
+  /// matrix-vector product).
+  glm::dvec4 clip(std::size_t i) const
+  {
+    const glm::dmat4& m = clipFromModel;
+    double x, y, z;
+    if (xyzFloat)
+    {
+      const float* p = xyzFloat + 3 * i;
+      x = p[0], y = p[1], z = p[2];
+    }
+    else
+    {
+      const double* p = xyzDouble + 3 * i;
+      x = p[0], y = p[1], z = p[2];
+    }
+    return glm::dvec4(m[0][0] * x + m[1][0] * y + m[2][0] * z + m[3][0],
+      m[0][1] * x + m[1][1] * y + m[2][1] * z + m[3][1],
+      m[0][2] * x + m[1][2] * y + m[2][2] * z + m[3][2],
+      m[0][3] * x + m[1][3] * y + m[2][3] * z + m[3][3]);
+  }
 };
 
 /// Model-space boxes of runs of @p trianglesPerCluster triangles (6 doubles per run, see
@@ -208,6 +230,8 @@ enum class TriangleFacing : std::int8_t
   Unknown = 2
 };
 
+class OcclusionRecorder;
+
 class MaskedDepthBuffer
 {
 public:
@@ -244,6 +268,10 @@ public:
    */
   double polygonOffsetFactor = 0.0;
   double polygonOffsetDepth = 0.0; ///< units * r, in window depth
+
+  /// When set, every setClipFromWorld() (a cull) and drawTriangles() call is written to it
+  /// before it takes effect (scenevis/OcclusionRecording.h); null (default): nothing is.
+  OcclusionRecorder* recorder = nullptr;
 
   /// Size in pixels (the viewport's). Clears. Sizes below 1 give an empty buffer that occludes
   /// nothing.

@@ -1,0 +1,154 @@
+// vtkOcclusionCuller::SetOcclusionRecordFile: each Render() adds one cull to the file, whose draws
+// are what the culler rasterized that frame (as many triangles as it reports), and replaying a
+// cull into a buffer gives one behind which every prop culled by occlusion that frame is hidden.
+// Clearing the name stops recording; a file that cannot be written is an error, and culling goes
+// on unrecorded.
+#include "vtkOcclusionCuller.h"
+
+#include "scenevis/OcclusionBuffer.h"
+#include "scenevis/OcclusionRecording.h"
+#include "scenevis/testing/Expect.h"
+#include "scenevis/testing/RenderWindow.h"
+#include "scenevis/testing/StrictVtkOutput.h"
+
+#include <vtkActor.h>
+#include <vtkCamera.h>
+#include <vtkCubeSource.h>
+#include <vtkCullerCollection.h>
+#include <vtkLogger.h>
+#include <vtkNew.h>
+#include <vtkPolyDataMapper.h>
+#include <vtkRenderWindow.h>
+#include <vtkRenderer.h>
+#include <vtkTriangleFilter.h>
+
+#include <cstdio>
+#include <fstream>
+#include <string>
+#include <vector>
+
+namespace
+{
+namespace so = scenevis::occlusion;
+namespace st = scenevis::testing;
+
+vtkSmartPointer<vtkActor> Box(double x, double y, double z, double sx, double sy, double sz)
+{
+  vtkNew<vtkCubeSource> cube;
+  cube->SetCenter(x, y, z);
+  cube->SetXLength(sx);
+  cube->SetYLength(sy);
+  cube->SetZLength(sz);
+  vtkNew<vtkTriangleFilter> triangles;
+  triangles->SetInputConnection(cube->GetOutputPort());
+  vtkNew<vtkPolyDataMapper> mapper;
+  mapper->SetInputConnection(triangles->GetOutputPort());
+  auto actor = vtkSmartPointer<vtkActor>::New();
+  actor->SetMapper(mapper);
+  return actor;
+}
+
+bool ReadRecording(const std::string& path, std::vector<so::RecordedCull>& culls)
+{
+  std::ifstream in(path, std::ios::binary);
+  std::string error;
+  if (!so::readOcclusionRecording(in, culls, error))
+  {
+    std::cerr << path << ": " << error << std::endl;
+    return false;
+  }
+  return true;
+}
+
+/// The world-space box of an actor.
+bool Hidden(so::MaskedDepthBuffer& buffer, vtkActor* actor)
+{
+  const double* b = actor->GetBounds();
+  return buffer.boxOccluded({ b[0], b[2], b[4] }, { b[1], b[3], b[5] });
+}
+} // namespace
+
+int TestOcclusionCullerRecording(int, char*[])
+{
+  // The expected error is judged through the output window; loguru's copy on stderr would match
+  // the test's failure pattern.
+  vtkLogger::SetStderrVerbosity(vtkLogger::VERBOSITY_OFF);
+  st::StrictVtkOutput vtkOutput;
+  vtkOutput.ExpectError("cannot write the occlusion recording");
+  const std::string path = "TestOcclusionCullerRecording.rec";
+  std::remove(path.c_str());
+
+  vtkSmartPointer<vtkRenderWindow> window = st::MakeRenderWindow(160, 120);
+  vtkNew<vtkRenderer> ren;
+  window->AddRenderer(ren);
+  ren->GetCullers()->RemoveAllItems();
+  vtkNew<vtkOcclusionCuller> culler;
+  ren->AddCuller(culler);
+  // A wall in front of a row of small boxes, and one box beside the wall (visible).
+  std::vector<vtkSmartPointer<vtkActor>> hidden;
+  ren->AddActor(Box(0, 0, 0, 6, 4, 0.2));
+  for (int i = 0; i < 5; ++i)
+  {
+    hidden.push_back(Box(-2 + i, 0, -3, 0.5, 0.5, 0.5));
+    ren->AddActor(hidden.back());
+  }
+  vtkSmartPointer<vtkActor> beside = Box(5, 0, -3, 0.5, 0.5, 0.5);
+  ren->AddActor(beside);
+  vtkCamera* camera = ren->GetActiveCamera();
+  camera->SetPosition(0, 0, 10);
+  camera->SetFocalPoint(0, 0, -3);
+  camera->SetViewAngle(50);
+
+  culler->SetOcclusionRecordFile(path.c_str());
+  SCENEVIS_EXPECT(path == culler->GetOcclusionRecordFile());
+  std::vector<vtkIdType> triangles, culled;
+  for (int frame = 0; frame < 3; ++frame)
+  {
+    camera->Azimuth(frame == 0 ? 0.0 : 2.0);
+    ren->ResetCameraClippingRange();
+    window->Render();
+    triangles.push_back(culler->GetNumberOfOccluderTriangles());
+    culled.push_back(culler->GetNumberOfPropsCulledByOcclusion());
+  }
+  std::vector<so::RecordedCull> culls;
+  SCENEVIS_EXPECT(ReadRecording(path, culls));
+  SCENEVIS_EXPECT(culls.size() == 3);
+  for (std::size_t c = 0; c < culls.size() && c < triangles.size(); ++c)
+  {
+    st::ExpectContext() = "cull " + std::to_string(c);
+    const int* size = ren->GetSize();
+    SCENEVIS_EXPECT(culls[c].width == size[0] && culls[c].height == size[1]);
+    std::size_t recorded = 0;
+    for (const so::RecordedDraw& d : culls[c].draws)
+    {
+      recorded += d.indices.size() / 3;
+    }
+    SCENEVIS_EXPECT(recorded == static_cast<std::size_t>(triangles[c]));
+    SCENEVIS_EXPECT(culled[c] == 5); // the row behind the wall
+    so::MaskedDepthBuffer buffer;
+    so::prepareReplay(buffer, culls[c]);
+    so::replayDraws(buffer, culls[c]);
+    SCENEVIS_EXPECT(buffer.stats().trianglesIn == recorded);
+    for (const auto& box : hidden)
+    {
+      SCENEVIS_EXPECT(Hidden(buffer, box));
+    }
+    SCENEVIS_EXPECT(!Hidden(buffer, beside));
+  }
+  st::ExpectContext().clear();
+
+  // "" stops: the file keeps the three culls.
+  culler->SetOcclusionRecordFile("");
+  window->Render();
+  SCENEVIS_EXPECT(ReadRecording(path, culls) && culls.size() == 3);
+  culler->SetOcclusionRecordFile(nullptr);
+  SCENEVIS_EXPECT(std::string(culler->GetOcclusionRecordFile()).empty());
+
+  // A file that cannot be written: an error, and culling goes on.
+  culler->SetOcclusionRecordFile("no-such-directory/x.rec");
+  window->Render();
+  SCENEVIS_EXPECT(std::string(culler->GetOcclusionRecordFile()).empty());
+  SCENEVIS_EXPECT(culler->GetNumberOfPropsCulledByOcclusion() == 5);
+  std::remove(path.c_str());
+  return vtkOutput.ExitCode(st::ExpectFailures() == 0 ? EXIT_SUCCESS : EXIT_FAILURE);
+}
