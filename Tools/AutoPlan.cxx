@@ -323,6 +323,7 @@ ScenePlan PlanScene(const Options& options, const LoadedScene& scene, const std:
       why;
   }
   plan.cull.pvsBudget = options.pvsBudget;
+  plan.cull.recordOcclusion = options.recordOcclusion;
   if (options.chunkSize > 0)
     plan.cull.chunkSize = options.chunkSize;
   if (plan.instanced)

@@ -21,6 +21,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <fstream>
 #include <set>
 #include <stdexcept>
 #include <string>
@@ -170,6 +171,14 @@ CullSetup::CullSetup(const CullPlan& plan, const MethodPipeline& pipeline, vtkRe
         actor->GetProperty()->BackfaceCullingOn();
     }
     this->Octree->SetMinimumPixelSize(plan.smallPixels);
+    if (!plan.recordOcclusion.empty())
+    {
+      // Refused up front, as any file the tool cannot write (the culler would only warn).
+      if (!std::ofstream(plan.recordOcclusion, std::ios::binary | std::ios::trunc))
+        throw std::runtime_error("cannot write '" + plan.recordOcclusion + "'");
+      vtkOcclusionCuller::SafeDownCast(this->Octree)
+        ->SetOcclusionRecordFile(plan.recordOcclusion.c_str());
+    }
     inner = this->Octree;
   }
   else if (m == "portals" || m == "pvs")

@@ -116,6 +116,9 @@ render and cull:
   --chunk-size N        with --cull chunked or chunked-occlusion (or auto when it picks them):
                         at most N triangles per chunk (default 2048; the chunks' tree is
                         built once)
+  --record-occlusion FILE  with --cull occlusion: every cull's occluder rasterization (buffer
+                        size, camera, each occluder's triangles) written to FILE, for
+                        scenevis_occlusion_replay FILE (times the rasterizer alone)
 
 render:
   --sort METHOD         auto (default), none (unsorted alpha), oit (VTK's default weighted
@@ -375,6 +378,12 @@ Options ParseOptions(int argc, char* argv[])
     }
     else if (flag == "--chunk-size")
       options.chunkSize = ParseCount(flag, value(), 1, 1 << 24);
+    else if (flag == "--record-occlusion")
+    {
+      options.recordOcclusion = value();
+      if (options.recordOcclusion.empty())
+        throw UsageError("--record-occlusion expects a file name");
+    }
     else if (flag == "--sort")
       options.sort = value();
     else if (flag == "--size")
@@ -456,6 +465,13 @@ Options ParseOptions(int argc, char* argv[])
     throw UsageError("--chunk-size sets the chunks of --cull chunked or chunked-occlusion (got "
                      "--cull " +
       c + ")");
+  }
+  if (!options.recordOcclusion.empty() &&
+    (c != "occlusion" || (options.command != "render" && options.command != "cull")))
+  {
+    throw UsageError("--record-occlusion records the culls of render or cull with --cull "
+                     "occlusion (got " +
+      options.command + " --cull " + c + ")");
   }
   if ((!options.exportScene.empty() || options.exact) && options.command != "cull")
   {

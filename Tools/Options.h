@@ -63,6 +63,9 @@ struct Options
   /// --chunk-size N: triangles per chunk of --cull chunked / chunked-occlusion (0: the mapper's
   /// default).
   int chunkSize = 0;
+  /// --record-occlusion FILE: every cull of --cull occlusion written to FILE, for
+  /// scenevis_occlusion_replay (vtkOcclusionCuller::SetOcclusionRecordFile).
+  std::string recordOcclusion;
   int width = 800;
   int height = 600;
   int frames = 1;

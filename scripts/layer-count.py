@@ -20,6 +20,11 @@ polygon that covers the centre: the count the other two are compared with.
    the accuracy-versus-time report. For a sample of the pixels where peeling has fewer layers:
    whether two coplanar polygons of the original cover the centre (peeling keeps one of two
    layers at the same depth), and whether they belong to different parts (PartId).
+3. The accuracy-versus-time report's measure at this camera: the fragments in their colours
+   ('Colors' cell scalars, opacity 0.4, lit) drawn in their sorted order against the unsplit mesh
+   through 100-peel peeling; of the pixels off by more than 16 levels, how many are where peeling
+   has a layer too few or too many, where the fragments' count is off, and where every count is
+   right (what is left is order).
 """
 import math
 import sys
@@ -30,6 +35,7 @@ import vtk
 from vtk.util.numpy_support import vtk_to_numpy
 
 OPACITY = 0.1
+COLOUR_OPACITY = 0.4  # the accuracy report's
 
 
 def load(path):
@@ -57,18 +63,27 @@ def camera(eye, focal, up, bounds):
     return cam
 
 
-def layers(polydata, cam, size, peel=False, window=None):
-    """The layers over each pixel centre, a size x size array (row 0 at the bottom), drawn in
-    @p window (an offscreen window), or in a new one when None."""
+def render(polydata, cam, size, peel=False, window=None, colours=False):
+    """The RGB image (size x size x 3, row 0 at the bottom) of @p polydata drawn in @p window (an
+    offscreen window, or a new one when None): plain blending in cell order, or 100-peel depth
+    peeling with @p peel; white at opacity OPACITY without lighting, or with @p colours its
+    'Colors' cell scalars at COLOUR_OPACITY, lit (the accuracy report's look)."""
     mapper = vtk.vtkPolyDataMapper()
     mapper.SetInputData(polydata)
-    mapper.ScalarVisibilityOff()
     actor = vtk.vtkActor()
     actor.SetMapper(mapper)
     prop = actor.GetProperty()
-    prop.SetColor(1, 1, 1)
-    prop.SetOpacity(OPACITY)
-    prop.LightingOff()
+    if colours:
+        mapper.SetScalarModeToUseCellFieldData()
+        mapper.SelectColorArray("Colors")
+        mapper.SetColorModeToDirectScalars()
+        mapper.ScalarVisibilityOn()
+        prop.SetOpacity(COLOUR_OPACITY)
+    else:
+        mapper.ScalarVisibilityOff()
+        prop.SetColor(1, 1, 1)
+        prop.SetOpacity(OPACITY)
+        prop.LightingOff()
     renderer = vtk.vtkRenderer()
     renderer.AddActor(actor)
     renderer.SetBackground(0, 0, 0)
@@ -93,7 +108,13 @@ def layers(polydata, cam, size, peel=False, window=None):
     grab.ReadFrontBufferOff()
     grab.Update()
     window.RemoveRenderer(renderer)
-    red = vtk_to_numpy(grab.GetOutput().GetPointData().GetScalars()).reshape(size, size, 3)[:, :, 0]
+    return vtk_to_numpy(grab.GetOutput().GetPointData().GetScalars()).reshape(size, size, 3)
+
+
+def layers(polydata, cam, size, peel=False, window=None):
+    """The layers over each pixel centre, a size x size array (row 0 at the bottom) (see
+    render())."""
+    red = render(polydata, cam, size, peel, window)[:, :, 0]
     covered = np.maximum(1e-9, 1.0 - red.astype(float) / 255.0)
     return np.round(np.log(covered) / math.log(1.0 - OPACITY)).astype(int)
 
@@ -245,6 +266,20 @@ def main(argv):
         print(f"  of {len(pick)} sampled: two coplanar polygons of different parts cover the "
               f"centre at {kinds['other part']}, of one part at {kinds['same part']}, "
               f"none at {kinds[None]}")
+
+    # 3. The accuracy report's measure: the fragments in colour (plain blending, the sorted order)
+    # against the unsplit mesh through 100-peel peeling, pixels off by more than 16 levels, and
+    # which of them are where a layer count above differs.
+    sorted_image = render(fragments, cam, size, colours=True).astype(int)
+    peeled_image = render(original, cam, size, peel=True, colours=True).astype(int)
+    off = (np.abs(sorted_image - peeled_image).max(axis=2) > 16) & (before > 0)
+    short, extra, split = off & (peeled < before), off & (peeled > before), off & (after != before)
+    rest = off & ~(short | extra | split)
+    print(f"colour, opacity {COLOUR_OPACITY}: {int(off.sum())} of {int((before > 0).sum())} "
+          f"covered pixels off by > 16 between the sorted fragments and 100-peel peeling "
+          f"({100.0 * off.sum() / max(1, (before > 0).sum()):.2f} %): peeling a layer short at "
+          f"{int(short.sum())}, a layer more at {int(extra.sum())}, the fragments' count off at "
+          f"{int(split.sum())}, every count right at {int(rest.sum())}")
 
 
 if __name__ == "__main__":
