@@ -43,7 +43,7 @@ struct CullPlan
   std::string roomArray = "RoomId"; ///< the cell array the portal culler reads rooms from
   double pvsBudget = 0.0;           ///< --cull pvs: the precompute's budget in seconds (0: none)
   int chunkSize = 0;                ///< chunked: triangles per chunk (0: the mapper's default)
-  std::string recordOcclusion;      ///< occlusion: the file every cull is recorded to ("": none)
+  std::string recordOcclusion; ///< (chunked-)occlusion: the file culls are recorded to ("": none)
 };
 
 /// The --cull plan applied to a loaded scene: the groups drawn as actors and the sort method.

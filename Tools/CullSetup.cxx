@@ -8,6 +8,8 @@
 #include "vtkInstancedActor.h"
 #include "vtkOcclusionCuller.h"
 
+#include "scenevis/OcclusionRecording.h"
+
 #include <vtkActor.h>
 #include <vtkCamera.h>
 #include <vtkCommand.h>
@@ -124,11 +126,22 @@ CullSetup::CullSetup(const CullPlan& plan, const MethodPipeline& pipeline, vtkRe
 {
   // "none" really draws everything: not even VTK's default frustum coverage culler.
   renderer->GetCullers()->RemoveAllItems();
+  // Refused up front, as any file the tool cannot write (the culler would only warn); until a
+  // cull records, the file is a recording of no culls.
+  if (!plan.recordOcclusion.empty())
+  {
+    std::ofstream file(plan.recordOcclusion, std::ios::binary | std::ios::trunc);
+    scenevis::occlusion::writeOcclusionRecording(file, {});
+    if (!file.flush())
+      throw std::runtime_error("cannot write '" + plan.recordOcclusion + "'");
+  }
   if (vtkChunkedPolyDataMapper* chunked = pipeline.GetChunkedMapper())
   {
     chunked->SetOcclusionCulling(plan.method == "chunked-occlusion");
     if (plan.chunkSize > 0)
       chunked->SetChunkSize(plan.chunkSize);
+    if (plan.method == "chunked-occlusion" && !plan.recordOcclusion.empty())
+      chunked->SetOcclusionRecordFile(plan.recordOcclusion.c_str());
   }
   // Triangles per actor, of the scene's polygons before any sorting splits them (one actor:
   // the whole scene, whose mapper may read a sorter that has not run yet).
@@ -171,14 +184,9 @@ CullSetup::CullSetup(const CullPlan& plan, const MethodPipeline& pipeline, vtkRe
         actor->GetProperty()->BackfaceCullingOn();
     }
     this->Octree->SetMinimumPixelSize(plan.smallPixels);
-    if (!plan.recordOcclusion.empty())
-    {
-      // Refused up front, as any file the tool cannot write (the culler would only warn).
-      if (!std::ofstream(plan.recordOcclusion, std::ios::binary | std::ios::trunc))
-        throw std::runtime_error("cannot write '" + plan.recordOcclusion + "'");
+    if (m == "occlusion" && !plan.recordOcclusion.empty())
       vtkOcclusionCuller::SafeDownCast(this->Octree)
         ->SetOcclusionRecordFile(plan.recordOcclusion.c_str());
-    }
     inner = this->Octree;
   }
   else if (m == "portals" || m == "pvs")

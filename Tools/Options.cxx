@@ -116,9 +116,9 @@ render and cull:
   --chunk-size N        with --cull chunked or chunked-occlusion (or auto when it picks them):
                         at most N triangles per chunk (default 2048; the chunks' tree is
                         built once)
-  --record-occlusion FILE  with --cull occlusion: every cull's occluder rasterization (buffer
-                        size, camera, each occluder's triangles) written to FILE, for
-                        scenevis_occlusion_replay FILE (times the rasterizer alone)
+  --record-occlusion FILE  with --cull occlusion or chunked-occlusion: every cull's occluder
+                        rasterization (buffer size, camera, each occluder's triangles) written
+                        to FILE, for scenevis_occlusion_replay FILE (times the rasterizer alone)
 
 render:
   --sort METHOD         auto (default), none (unsorted alpha), oit (VTK's default weighted
@@ -467,10 +467,11 @@ Options ParseOptions(int argc, char* argv[])
       c + ")");
   }
   if (!options.recordOcclusion.empty() &&
-    (c != "occlusion" || (options.command != "render" && options.command != "cull")))
+    ((c != "occlusion" && c != "chunked-occlusion") ||
+      (options.command != "render" && options.command != "cull")))
   {
     throw UsageError("--record-occlusion records the culls of render or cull with --cull "
-                     "occlusion (got " +
+                     "occlusion or chunked-occlusion (got " +
       options.command + " --cull " + c + ")");
   }
   if ((!options.exportScene.empty() || options.exact) && options.command != "cull")

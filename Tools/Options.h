@@ -63,8 +63,8 @@ struct Options
   /// --chunk-size N: triangles per chunk of --cull chunked / chunked-occlusion (0: the mapper's
   /// default).
   int chunkSize = 0;
-  /// --record-occlusion FILE: every cull of --cull occlusion written to FILE, for
-  /// scenevis_occlusion_replay (vtkOcclusionCuller::SetOcclusionRecordFile).
+  /// --record-occlusion FILE: every cull of --cull occlusion or chunked-occlusion written to FILE,
+  /// for scenevis_occlusion_replay (SetOcclusionRecordFile of the culler or chunked mapper).
   std::string recordOcclusion;
   int width = 800;
   int height = 600;

@@ -28,6 +28,8 @@
 #include "vtkTypeInt32Array.h"
 #include "vtk_glew.h"
 
+#include "vtkOcclusionRecordFile.h"
+
 #include "scenevis/Frustum.h"
 #include "scenevis/NormalCone.h"
 #include "scenevis/OcclusionBuffer.h"
@@ -165,6 +167,7 @@ struct vtkChunkedPolyDataMapper::Internals
   bool UseOcclusion = false;
   so::FaceCulling OccluderFaces = so::FaceCulling::None;
   so::MaskedDepthBuffer Depth;
+  vtkOcclusionRecordFile Recording; // after Depth: closed before it goes
   glm::dmat4 ClipFromModel{ 1.0 };
   std::vector<glm::dvec4> ChunkClip;
   std::vector<std::uint32_t> ChunkIndices;
@@ -1052,6 +1055,13 @@ void vtkChunkedPolyDataMapper::RenderPieceStart(vtkRenderer* ren, vtkActor* acto
           in.ClipFromModel[c][r] = clipFromModel->GetElement(r, c);
         }
       }
+      if (in.Recording.Name() != this->OcclusionRecordFile &&
+        !in.Recording.Open(this->OcclusionRecordFile, in.Depth))
+      {
+        vtkErrorMacro("cannot write the occlusion recording " << this->OcclusionRecordFile
+                                                              << ": nothing is recorded");
+        this->OcclusionRecordFile.clear();
+      }
       if (in.Depth.width() != size[0] || in.Depth.height() != size[1])
       {
         in.Depth.resize(size[0], size[1]);
@@ -1108,6 +1118,12 @@ void vtkChunkedPolyDataMapper::RenderPieceStart(vtkRenderer* ren, vtkActor* acto
     if (!in.Nodes.empty())
     {
       in.Traverse(0, sc::kAllPlanes);
+    }
+    if (in.UseOcclusion && !in.Recording.Flush())
+    {
+      vtkErrorMacro("writing the occlusion recording " << this->OcclusionRecordFile
+                                                       << " failed: recording stopped");
+      this->OcclusionRecordFile.clear();
     }
     if (in.UseOcclusion)
     {
@@ -1212,6 +1228,13 @@ void vtkChunkedPolyDataMapper::RenderPieceDraw(vtkRenderer* ren, vtkActor* actor
 }
 
 //------------------------------------------------------------------------------
+void vtkChunkedPolyDataMapper::SetOcclusionRecordFile(const char* fileName)
+{
+  // Not Modified(): what is drawn does not change, and a newer mapper would rebuild its
+  // vertex buffers.
+  this->OcclusionRecordFile = fileName ? fileName : "";
+}
+
 void vtkChunkedPolyDataMapper::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
@@ -1219,6 +1242,9 @@ void vtkChunkedPolyDataMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "FrustumCulling: " << this->FrustumCulling << "\n";
   os << indent << "NormalConeCulling: " << this->NormalConeCulling << "\n";
   os << indent << "MinimumPixelSize: " << this->MinimumPixelSize << " (approximate)\n";
+  os << indent << "OcclusionCulling: " << this->OcclusionCulling << "\n";
+  os << indent << "OcclusionRecordFile: "
+     << (this->OcclusionRecordFile.empty() ? "(none)" : this->OcclusionRecordFile) << "\n";
   os << indent << "NumberOfChunks: " << this->GetNumberOfChunks() << "\n";
   os << indent << "NumberOfTrianglesDrawn: " << this->GetNumberOfTrianglesDrawn() << "\n";
   os << indent << "NumberOfDrawCalls: " << this->GetNumberOfDrawCalls() << "\n";

@@ -69,6 +69,7 @@
 
 #include <algorithm> // For std::min
 #include <memory>    // For std::unique_ptr
+#include <string>    // For std::string
 #include <vector>    // For std::vector
 
 class SCENEVISRENDERINGCULLING_EXPORT vtkChunkedPolyDataMapper : public vtkOpenGLPolyDataMapper
@@ -121,6 +122,16 @@ public:
   void SetOcclusionCulling(bool on) { this->OcclusionCulling = on; }
   vtkGetMacro(OcclusionCulling, bool);
   vtkBooleanMacro(OcclusionCulling, bool);
+  ///@}
+
+  ///@{
+  /// Record the chunks' occluder rasterization of every render from the next one on into this
+  /// file (created, or emptied), for scenevis_occlusion_replay, as
+  /// vtkOcclusionCuller::SetOcclusionRecordFile() does (coordinates are the mesh's own). Null or
+  /// "" (default): nothing is recorded. A file that cannot be written is an error, and
+  /// recording stops.
+  void SetOcclusionRecordFile(const char* fileName);
+  const char* GetOcclusionRecordFile() const { return this->OcclusionRecordFile.c_str(); }
   ///@}
 
   ///@{
@@ -186,6 +197,7 @@ protected:
   bool NormalConeCulling = true;
   double MinimumPixelSize = 0.0;
   bool OcclusionCulling = false;
+  std::string OcclusionRecordFile;
 
 private:
   vtkChunkedPolyDataMapper(const vtkChunkedPolyDataMapper&) = delete;

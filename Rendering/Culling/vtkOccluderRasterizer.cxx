@@ -69,42 +69,6 @@ bool PlanarConvex(vtkPoints* points, const vtkIdType* ids, vtkIdType n)
 }
 } // namespace
 
-bool vtkOccluderRasterizer::RecordTo(const std::string& fileName)
-{
-  this->DepthBuffer.recorder = nullptr;
-  this->Recorder.reset();
-  this->RecordStream.reset();
-  this->RecordFile.clear();
-  if (fileName.empty())
-  {
-    return true;
-  }
-  auto stream = std::make_unique<std::ofstream>(fileName, std::ios::binary | std::ios::trunc);
-  if (!*stream)
-  {
-    return false;
-  }
-  this->RecordStream = std::move(stream);
-  this->Recorder = std::make_unique<so::OcclusionRecorder>(*this->RecordStream);
-  this->DepthBuffer.recorder = this->Recorder.get();
-  this->RecordFile = fileName;
-  return true;
-}
-
-bool vtkOccluderRasterizer::FlushRecording()
-{
-  if (!this->RecordStream)
-  {
-    return true;
-  }
-  if (this->RecordStream->flush() && this->Recorder->good())
-  {
-    return true;
-  }
-  this->RecordTo(std::string());
-  return false;
-}
-
 void vtkOccluderRasterizer::BeginFrame(int width, int height, const double m[16])
 {
   ++this->Frame;

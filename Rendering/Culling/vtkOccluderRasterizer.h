@@ -32,14 +32,12 @@
 #include "vtkType.h"
 #include "vtkWeakPointer.h"
 
+#include "vtkOcclusionRecordFile.h"
+
 #include "scenevis/OcclusionBuffer.h"
-#include "scenevis/OcclusionRecording.h"
 
 #include <cstddef>
 #include <cstdint>
-#include <fstream>
-#include <memory>
-#include <string>
 #include <unordered_map>
 #include <utility>
 #include <vector>
@@ -68,16 +66,9 @@ public:
 
   scenevis::occlusion::MaskedDepthBuffer& Buffer() { return this->DepthBuffer; }
 
-  ///@{
-  /// Recording of every frame's rasterization from the next BeginFrame() on, into @p fileName
-  /// (created or emptied; scenevis/OcclusionRecording.h); "" stops and closes the file. False,
-  /// and nothing recorded, if the file cannot be opened.
-  bool RecordTo(const std::string& fileName);
-  const std::string& RecordingFile() const { return this->RecordFile; }
-  /// Writes out what was recorded so far (call after each frame: a process may end without
-  /// destructors); false, and the recording stopped, if a write failed.
-  bool FlushRecording();
-  ///@}
+  /// The file this frame's rasterization is recorded to (vtkOcclusionCuller's
+  /// SetOcclusionRecordFile()).
+  vtkOcclusionRecordFile& Recording() { return this->RecordFile; }
 
   /// Occluder selection: a prop whose screen rectangle has fewer than this many pixels per
   /// triangle is not rasterized (it costs more than it hides: small, finely tessellated parts).
@@ -125,9 +116,7 @@ private:
   void Evict();
 
   scenevis::occlusion::MaskedDepthBuffer DepthBuffer;
-  std::string RecordFile;
-  std::unique_ptr<std::ofstream> RecordStream;
-  std::unique_ptr<scenevis::occlusion::OcclusionRecorder> Recorder;
+  vtkOcclusionRecordFile RecordFile;
   double ClipFromWorld[16] = { 0 };
   std::unordered_map<vtkPolyData*, Mesh> Meshes;
   std::vector<double> Points; // an occluder's points as doubles, when its array is neither

@@ -680,8 +680,9 @@ double vtkOctreeCuller::Cull(
       {
         in.Occlusion.reset(new vtkOccluderRasterizer);
       }
-      if (in.Occlusion->RecordingFile() != this->OcclusionRecordFile &&
-        !in.Occlusion->RecordTo(this->OcclusionRecordFile))
+      vtkOcclusionRecordFile& recording = in.Occlusion->Recording();
+      if (recording.Name() != this->OcclusionRecordFile &&
+        !recording.Open(this->OcclusionRecordFile, in.Occlusion->Buffer()))
       {
         vtkErrorMacro("cannot write the occlusion recording " << this->OcclusionRecordFile
                                                               << ": nothing is recorded");
@@ -690,7 +691,7 @@ double vtkOctreeCuller::Cull(
       in.CullOccluded(
         ren, params, this->OccluderCacheBudget, this->OccluderMinimumPixelsPerTriangle, stats);
       vtkOccluderRasterizer& raster = *in.Occlusion;
-      if (!raster.FlushRecording())
+      if (!recording.Flush())
       {
         vtkErrorMacro("writing the occlusion recording " << this->OcclusionRecordFile
                                                          << " failed: recording stopped");

@@ -1,8 +1,10 @@
-// vtkOcclusionCuller::SetOcclusionRecordFile: each Render() adds one cull to the file, whose draws
-// are what the culler rasterized that frame (as many triangles as it reports), and replaying a
-// cull into a buffer gives one behind which every prop culled by occlusion that frame is hidden.
-// Clearing the name stops recording; a file that cannot be written is an error, and culling goes
-// on unrecorded.
+// Occlusion recordings from VTK. vtkOcclusionCuller::SetOcclusionRecordFile: each Render() adds
+// one cull to the file, whose draws are what the culler rasterized that frame (as many triangles
+// as it reports), and replaying a cull into a buffer gives one behind which every prop culled by
+// occlusion that frame is hidden. vtkChunkedPolyDataMapper::SetOcclusionRecordFile: one cull per
+// render of the mesh, its chunks' triangles. Clearing the name stops recording; a file that
+// cannot be written is an error, and culling goes on unrecorded.
+#include "vtkChunkedPolyDataMapper.h"
 #include "vtkOcclusionCuller.h"
 
 #include "scenevis/OcclusionBuffer.h"
@@ -12,11 +14,13 @@
 #include "scenevis/testing/StrictVtkOutput.h"
 
 #include <vtkActor.h>
+#include <vtkAppendPolyData.h>
 #include <vtkCamera.h>
 #include <vtkCubeSource.h>
 #include <vtkCullerCollection.h>
 #include <vtkLogger.h>
 #include <vtkNew.h>
+#include <vtkPolyData.h>
 #include <vtkPolyDataMapper.h>
 #include <vtkRenderWindow.h>
 #include <vtkRenderer.h>
@@ -60,6 +64,64 @@ bool ReadRecording(const std::string& path, std::vector<so::RecordedCull>& culls
   return true;
 }
 
+/// Triangles in all draws of a recorded cull.
+std::size_t RecordedTriangles(const so::RecordedCull& cull)
+{
+  std::size_t n = 0;
+  for (const so::RecordedDraw& d : cull.draws)
+  {
+    n += d.indices.size() / 3;
+  }
+  return n;
+}
+
+/// The same wall and boxes as one mesh under a vtkChunkedPolyDataMapper with occlusion culling.
+void TestChunkedMapper(vtkRenderWindow* window, const std::vector<vtkSmartPointer<vtkActor>>& parts)
+{
+  const std::string path = "TestOcclusionCullerRecording-chunked.rec";
+  std::remove(path.c_str());
+  vtkNew<vtkAppendPolyData> append;
+  for (const auto& part : parts)
+  {
+    part->GetMapper()->Update();
+    append->AddInputData(vtkPolyData::SafeDownCast(part->GetMapper()->GetInputDataObject(0, 0)));
+  }
+  append->Update();
+  vtkNew<vtkChunkedPolyDataMapper> mapper;
+  mapper->SetInputConnection(append->GetOutputPort());
+  mapper->SetChunkSize(12);
+  mapper->OcclusionCullingOn();
+  mapper->SetOcclusionRecordFile(path.c_str());
+  vtkNew<vtkActor> actor;
+  actor->SetMapper(mapper);
+  vtkNew<vtkRenderer> ren;
+  ren->AddActor(actor);
+  ren->GetActiveCamera()->SetPosition(0, 0, 10);
+  ren->GetActiveCamera()->SetFocalPoint(0, 0, -3);
+  ren->ResetCameraClippingRange();
+  window->AddRenderer(ren);
+  window->Render();
+  window->Render();
+  SCENEVIS_EXPECT(mapper->GetNumberOfChunksCulledByOcclusion() > 0);
+  std::vector<so::RecordedCull> culls;
+  SCENEVIS_EXPECT(ReadRecording(path, culls));
+  SCENEVIS_EXPECT(culls.size() == 2);
+  for (const so::RecordedCull& cull : culls)
+  {
+    SCENEVIS_EXPECT(RecordedTriangles(cull) > 0);
+    so::MaskedDepthBuffer buffer;
+    so::prepareReplay(buffer, cull);
+    so::replayDraws(buffer, cull);
+    SCENEVIS_EXPECT(buffer.stats().trianglesDrawn > 0);
+  }
+  mapper->SetOcclusionRecordFile("no-such-directory/y.rec");
+  window->Render();
+  SCENEVIS_EXPECT(std::string(mapper->GetOcclusionRecordFile()).empty());
+  SCENEVIS_EXPECT(mapper->GetNumberOfChunksCulledByOcclusion() > 0);
+  window->RemoveRenderer(ren);
+  std::remove(path.c_str());
+}
+
 /// The world-space box of an actor.
 bool Hidden(so::MaskedDepthBuffer& buffer, vtkActor* actor)
 {
@@ -74,7 +136,8 @@ int TestOcclusionCullerRecording(int, char*[])
   // the test's failure pattern.
   vtkLogger::SetStderrVerbosity(vtkLogger::VERBOSITY_OFF);
   st::StrictVtkOutput vtkOutput;
-  vtkOutput.ExpectError("cannot write the occlusion recording");
+  vtkOutput.ExpectError("cannot write the occlusion recording no-such-directory/x.rec");
+  vtkOutput.ExpectError("cannot write the occlusion recording no-such-directory/y.rec");
   const std::string path = "TestOcclusionCullerRecording.rec";
   std::remove(path.c_str());
 
@@ -84,12 +147,15 @@ int TestOcclusionCullerRecording(int, char*[])
   ren->GetCullers()->RemoveAllItems();
   vtkNew<vtkOcclusionCuller> culler;
   ren->AddCuller(culler);
-  // A wall in front of a row of small boxes, and one box beside the wall (visible).
+  // A wall in front of a row of small boxes, and one box beside the wall (visible; outside the
+  // chunked mapper's narrower view).
   std::vector<vtkSmartPointer<vtkActor>> hidden;
   ren->AddActor(Box(0, 0, 0, 6, 4, 0.2));
   for (int i = 0; i < 5; ++i)
   {
-    hidden.push_back(Box(-2 + i, 0, -3, 0.5, 0.5, 0.5));
+    // Far behind the wall: the chunk tree's first split (along depth) puts them in chunks of
+    // their own.
+    hidden.push_back(Box(-2 + i, 0, -20, 0.5, 0.5, 0.5));
     ren->AddActor(hidden.back());
   }
   vtkSmartPointer<vtkActor> beside = Box(5, 0, -3, 0.5, 0.5, 0.5);
@@ -118,11 +184,7 @@ int TestOcclusionCullerRecording(int, char*[])
     st::ExpectContext() = "cull " + std::to_string(c);
     const int* size = ren->GetSize();
     SCENEVIS_EXPECT(culls[c].width == size[0] && culls[c].height == size[1]);
-    std::size_t recorded = 0;
-    for (const so::RecordedDraw& d : culls[c].draws)
-    {
-      recorded += d.indices.size() / 3;
-    }
+    const std::size_t recorded = RecordedTriangles(culls[c]);
     SCENEVIS_EXPECT(recorded == static_cast<std::size_t>(triangles[c]));
     SCENEVIS_EXPECT(culled[c] == 5); // the row behind the wall
     so::MaskedDepthBuffer buffer;
@@ -150,5 +212,10 @@ int TestOcclusionCullerRecording(int, char*[])
   SCENEVIS_EXPECT(std::string(culler->GetOcclusionRecordFile()).empty());
   SCENEVIS_EXPECT(culler->GetNumberOfPropsCulledByOcclusion() == 5);
   std::remove(path.c_str());
+
+  std::vector<vtkSmartPointer<vtkActor>> parts = { Box(0, 0, 0, 6, 4, 0.2), beside };
+  parts.insert(parts.end(), hidden.begin(), hidden.end());
+  window->RemoveRenderer(ren);
+  TestChunkedMapper(window, parts);
   return vtkOutput.ExitCode(st::ExpectFailures() == 0 ? EXIT_SUCCESS : EXIT_FAILURE);
 }
