@@ -301,6 +301,8 @@ TEST(OcclusionRecording, MalformedRecordsAreNamed)
   rejects(withBytes(bytes, 12, &tooWide, 4), "outside 0..16384");
   const double nan = std::numeric_limits<double>::quiet_NaN(), negative = -1.0;
   rejects(withBytes(bytes, kFirstDraw, &nan, 8), "not finite");
+  // Errors name the record at fault: the first draw starts after the header and the cull.
+  EXPECT_EQ(error.rfind("byte 148: ", 0), 0u) << error;
   rejects(withBytes(bytes, kFirstDraw + 8, &negative, 8), "margin outside 0..1");
   const double two = 2.0, hugeFactor = 1e5;
   rejects(withBytes(bytes, kFirstDraw, &two, 8), "margin outside 0..1");

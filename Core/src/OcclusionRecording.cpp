@@ -94,9 +94,12 @@ public:
   std::uint64_t left() const { return left_; }
   std::uint64_t offset() const { return offset_; }
 
+  /// The record read next starts here: errors name its first byte.
+  void beginRecord() { record_ = offset_; }
+
   bool fail(const std::string& what)
   {
-    error_ = "byte " + std::to_string(offset_) + ": " + what;
+    error_ = "byte " + std::to_string(record_) + ": " + what;
     return false;
   }
 
@@ -140,7 +143,7 @@ private:
   std::istream& in_;
   std::string& error_;
   bool seekable_ = false;
-  std::uint64_t left_ = 0, offset_ = 0;
+  std::uint64_t left_ = 0, offset_ = 0, record_ = 0;
 };
 
 bool readCull(Source& src, RecordedCull& cull)
@@ -324,6 +327,7 @@ bool readOcclusionRecording(std::istream& in, std::vector<RecordedCull>& culls, 
   }
   while (src.left() > 0)
   {
+    src.beginRecord();
     std::int32_t tag = 0;
     if (!src.get(tag, "record tag"))
     {

@@ -270,7 +270,8 @@ public:
   double polygonOffsetDepth = 0.0; ///< units * r, in window depth
 
   /// When set, every setClipFromWorld() (a cull) and drawTriangles() call is written to it
-  /// before it takes effect (scenevis/OcclusionRecording.h); null (default): nothing is.
+  /// before it takes effect (scenevis/OcclusionRecording.h); null (default): nothing is. A
+  /// copy of the buffer writes to the same recorder.
   OcclusionRecorder* recorder = nullptr;
 
   /// Size in pixels (the viewport's). Clears. Sizes below 1 give an empty buffer that occludes

@@ -94,7 +94,8 @@ private:
 void writeOcclusionRecording(std::ostream& out, const std::vector<RecordedCull>& culls);
 
 /**
- * Reads a recording. False with @p error naming the byte offset and what is wrong (not a
+ * Reads a recording. False with @p error naming the first byte of the record at fault (0: the
+ * header) and what is wrong (not a
  * recording, a record cut short, an unknown tag, counts beyond what is left of the stream or
  * 2^28, a size outside 0..16384, a face culling outside the enum, a flag other than 0 or 1,
  * margins or an offset not finite, margins outside 0..1, a polygon offset factor beyond 1e4 or
