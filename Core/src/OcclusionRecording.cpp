@@ -73,6 +73,16 @@ void putDraw(std::ostream& out, const double margins[4], std::size_t vertexCount
   }
 }
 
+/// The run boxes of a recorded draw as drawTriangles() takes them (used when d.hasClusters).
+TriangleClusters clustersOf(const RecordedDraw& d)
+{
+  TriangleClusters clusters;
+  clusters.clipFromModel = d.clipFromModel;
+  clusters.boxes = d.boxes.data();
+  clusters.trianglesPerCluster = static_cast<std::size_t>(d.trianglesPerCluster);
+  return clusters;
+}
+
 /// Reads from a stream whose remaining size is known, so that no count read from it can make
 /// us allocate more than the stream holds.
 class Source
@@ -301,10 +311,7 @@ void writeOcclusionRecording(std::ostream& out, const std::vector<RecordedCull>&
     {
       const double margins[4] = { d.coverageMargin, d.depthMargin, d.polygonOffsetFactor,
         d.polygonOffsetDepth };
-      TriangleClusters clusters;
-      clusters.clipFromModel = d.clipFromModel;
-      clusters.boxes = d.boxes.data();
-      clusters.trianglesPerCluster = static_cast<std::size_t>(d.trianglesPerCluster);
+      const TriangleClusters clusters = clustersOf(d);
       putDraw(out, margins, d.clip.size(), d.clip.data(), d.indices.data(), d.indices.size() / 3,
         d.culling, d.hasNeighbors, d.neighbors.data(), d.hasClusters ? &clusters : nullptr);
     }
@@ -378,10 +385,7 @@ void replayDraws(MaskedDepthBuffer& buffer, const RecordedCull& cull)
     buffer.depthMargin = d.depthMargin;
     buffer.polygonOffsetFactor = d.polygonOffsetFactor;
     buffer.polygonOffsetDepth = d.polygonOffsetDepth;
-    TriangleClusters clusters;
-    clusters.clipFromModel = d.clipFromModel;
-    clusters.boxes = d.boxes.data();
-    clusters.trianglesPerCluster = static_cast<std::size_t>(d.trianglesPerCluster);
+    const TriangleClusters clusters = clustersOf(d);
     buffer.drawTriangles(d.clip.data(), d.clip.size(), d.indices.data(), d.indices.size() / 3,
       d.culling, d.hasNeighbors ? d.neighbors.data() : nullptr,
       d.hasClusters ? &clusters : nullptr);

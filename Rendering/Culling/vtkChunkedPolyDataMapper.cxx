@@ -1055,13 +1055,7 @@ void vtkChunkedPolyDataMapper::RenderPieceStart(vtkRenderer* ren, vtkActor* acto
           in.ClipFromModel[c][r] = clipFromModel->GetElement(r, c);
         }
       }
-      if (in.Recording.Name() != this->OcclusionRecordFile &&
-        !in.Recording.Open(this->OcclusionRecordFile, in.Depth))
-      {
-        vtkErrorMacro("cannot write the occlusion recording " << this->OcclusionRecordFile
-                                                              << ": nothing is recorded");
-        this->OcclusionRecordFile.clear();
-      }
+      in.Recording.BeforeCull(this->OcclusionRecordFile, in.Depth, this);
       if (in.Depth.width() != size[0] || in.Depth.height() != size[1])
       {
         in.Depth.resize(size[0], size[1]);
@@ -1119,14 +1113,9 @@ void vtkChunkedPolyDataMapper::RenderPieceStart(vtkRenderer* ren, vtkActor* acto
     {
       in.Traverse(0, sc::kAllPlanes);
     }
-    if (in.UseOcclusion && !in.Recording.Flush())
-    {
-      vtkErrorMacro("writing the occlusion recording " << this->OcclusionRecordFile
-                                                       << " failed: recording stopped");
-      this->OcclusionRecordFile.clear();
-    }
     if (in.UseOcclusion)
     {
+      in.Recording.AfterCull(this->OcclusionRecordFile, this);
       // Front to back visits chunks out of order: draw them in chunk order again (the plain
       // mapper's primitive order) and merge adjacent ranges.
       std::sort(in.Ranges.begin(), in.Ranges.end());

@@ -1,5 +1,8 @@
 #include "vtkOcclusionRecordFile.h"
 
+#include "vtkObject.h"
+#include "vtkSetGet.h"
+
 vtkOcclusionRecordFile::~vtkOcclusionRecordFile()
 {
   this->Close();
@@ -46,4 +49,25 @@ bool vtkOcclusionRecordFile::Flush()
   }
   this->Close();
   return false;
+}
+
+void vtkOcclusionRecordFile::BeforeCull(
+  std::string& fileName, scenevis::occlusion::MaskedDepthBuffer& buffer, vtkObject* owner)
+{
+  if (this->FileName != fileName && !this->Open(fileName, buffer))
+  {
+    vtkErrorWithObjectMacro(
+      owner, "cannot write the occlusion recording " << fileName << ": nothing is recorded");
+    fileName.clear();
+  }
+}
+
+void vtkOcclusionRecordFile::AfterCull(std::string& fileName, vtkObject* owner)
+{
+  if (!this->Flush())
+  {
+    vtkErrorWithObjectMacro(
+      owner, "writing the occlusion recording " << fileName << " failed: recording stopped");
+    fileName.clear();
+  }
 }

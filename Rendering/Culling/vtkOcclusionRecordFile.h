@@ -13,6 +13,8 @@
 #include "scenevis/OcclusionBuffer.h"
 #include "scenevis/OcclusionRecording.h"
 
+class vtkObject;
+
 #include <fstream>
 #include <memory>
 #include <string>
@@ -28,6 +30,15 @@ public:
   const std::string& Name() const { return this->FileName; }
   /// Writes out what was recorded so far; false, and the file closed, if a write failed.
   bool Flush();
+
+  ///@{
+  /// What the owners do around each cull: before it, follow their file name @p fileName
+  /// (open it when it changed); after it, flush. A file that cannot be opened or written is a
+  /// VTK error of @p owner, and @p fileName is cleared (recording stops; culling goes on).
+  void BeforeCull(
+    std::string& fileName, scenevis::occlusion::MaskedDepthBuffer& buffer, vtkObject* owner);
+  void AfterCull(std::string& fileName, vtkObject* owner);
+  ///@}
 
 private:
   void Close();

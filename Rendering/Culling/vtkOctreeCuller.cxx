@@ -106,13 +106,10 @@ public:
 
   /// Front-to-back cull with occlusion (vtkOcclusionCuller): props found visible are rasterized
   /// as occluders before farther nodes are tested; last frame's visible props occlude first.
+  /// Occlusion must have been made.
   void CullOccluded(vtkRenderer* ren, const sc::CullParams& params, std::size_t cacheBudget,
     double minimumPixelsPerTriangle, sc::CullStats& stats)
   {
-    if (!this->Occlusion)
-    {
-      this->Occlusion.reset(new vtkOccluderRasterizer);
-    }
     vtkOccluderRasterizer& raster = *this->Occlusion;
     raster.CacheBudget = cacheBudget;
     raster.MinimumPixelsPerTriangle = minimumPixelsPerTriangle;
@@ -680,23 +677,11 @@ double vtkOctreeCuller::Cull(
       {
         in.Occlusion.reset(new vtkOccluderRasterizer);
       }
-      vtkOcclusionRecordFile& recording = in.Occlusion->Recording();
-      if (recording.Name() != this->OcclusionRecordFile &&
-        !recording.Open(this->OcclusionRecordFile, in.Occlusion->Buffer()))
-      {
-        vtkErrorMacro("cannot write the occlusion recording " << this->OcclusionRecordFile
-                                                              << ": nothing is recorded");
-        this->OcclusionRecordFile.clear();
-      }
+      vtkOccluderRasterizer& raster = *in.Occlusion;
+      raster.Recording().BeforeCull(this->OcclusionRecordFile, raster.Buffer(), this);
       in.CullOccluded(
         ren, params, this->OccluderCacheBudget, this->OccluderMinimumPixelsPerTriangle, stats);
-      vtkOccluderRasterizer& raster = *in.Occlusion;
-      if (!recording.Flush())
-      {
-        vtkErrorMacro("writing the occlusion recording " << this->OcclusionRecordFile
-                                                         << " failed: recording stopped");
-        this->OcclusionRecordFile.clear();
-      }
+      raster.Recording().AfterCull(this->OcclusionRecordFile, this);
       this->NumberOfPropsCulledByOcclusion = static_cast<vtkIdType>(stats.culledOcclusion);
       this->NumberOfOcclusionTests = static_cast<vtkIdType>(stats.occlusionTests);
       this->NumberOfOccludersDrawn = raster.OccludersDrawn;

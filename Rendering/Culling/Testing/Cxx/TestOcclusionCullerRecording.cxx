@@ -122,7 +122,7 @@ void TestChunkedMapper(vtkRenderWindow* window, const std::vector<vtkSmartPointe
   std::remove(path.c_str());
 }
 
-/// The world-space box of an actor.
+/// Whether the world-space box of @p actor is hidden behind @p buffer.
 bool Hidden(so::MaskedDepthBuffer& buffer, vtkActor* actor)
 {
   const double* b = actor->GetBounds();
