@@ -59,7 +59,8 @@ Scene (all commands):
   --parts N             parts of the cad demo (default 1000)
   --opacity A           opacity given to every cell of a model file, in (0, 1] (default: the
                         file's own: the materials of glTF/VRML parts or a Colors RGBA cell
-                        array, else opaque). The demo scenes keep their own (translucent)
+                        array, else opaque). The demo scenes keep their own (translucent
+                        and opaque parts): --opacity with one warns that it is ignored
   --part-array NAME     render, cull, bench: the integer cell array naming parts (default
                         PartId); one value per cell, at most 1,000,000 distinct values
   --room-array NAME     render, cull, bench: the integer cell array naming rooms, -1 = outside
