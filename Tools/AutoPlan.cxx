@@ -172,7 +172,8 @@ std::string GenerateRoomsForAuto(vtkPolyData* pd, const std::string& roomArray, 
 bool IsPropCulling(const std::string& mode)
 {
   return mode == "frustum" || mode == "octree" || mode == "normal-cones" || mode == "occlusion" ||
-    mode.rfind("small:", 0) == 0 || mode == "portals" || mode == "pvs";
+    mode.rfind("small:", 0) == 0 || mode == "portals" || mode == "pvs" ||
+    mode == "portals+occlusion" || mode == "pvs+occlusion";
 }
 
 CullPlan PlanCulling(
@@ -190,7 +191,7 @@ CullPlan PlanCulling(
     plan.reason = choice.Reason + " (" + facts.Summary() + ")";
     plan.chunkSize = choice.ChunkSize;
   }
-  if ((plan.method == "portals" || plan.method == "pvs") && !rooms)
+  if (plan.Portals() && !rooms)
   {
     throw UsageError("--cull " + plan.method +
       " needs rooms and portals: the building demo, or a model with a " + roomArray +

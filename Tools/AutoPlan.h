@@ -44,6 +44,16 @@ struct CullPlan
   double pvsBudget = 0.0;           ///< --cull pvs: the precompute's budget in seconds (0: none)
   int chunkSize = 0;                ///< chunked: triangles per chunk (0: the mapper's default)
   std::string recordOcclusion; ///< (chunked-)occlusion: the file culls are recorded to ("": none)
+
+  /// portals, pvs, portals+occlusion, pvs+occlusion: vtkPortalCuller culls first.
+  bool Portals() const { return Pvs() || method == "portals" || method == "portals+occlusion"; }
+  /// pvs, pvs+occlusion: the portal culler with precomputed potentially visible sets.
+  bool Pvs() const { return method == "pvs" || method == "pvs+occlusion"; }
+  /// occlusion, portals+occlusion, pvs+occlusion: vtkOcclusionCuller (after the portal culler).
+  bool Occlusion() const
+  {
+    return method == "occlusion" || method == "portals+occlusion" || method == "pvs+occlusion";
+  }
 };
 
 /// The --cull plan applied to a loaded scene: the groups drawn as actors and the sort method.

@@ -34,6 +34,36 @@ namespace tool
 {
 
 /**
+ * Cullers run one after the other, as a renderer runs its own list (each gets what the ones
+ * before it kept): one culler for CullStage to time and re-use.
+ */
+class CullerChain : public vtkCuller
+{
+public:
+  static CullerChain* New() { return new CullerChain; }
+  vtkTypeMacro(CullerChain, vtkCuller);
+
+  static vtkSmartPointer<CullerChain> Of(vtkCuller* first, vtkCuller* second)
+  {
+    auto chain = vtkSmartPointer<CullerChain>::New();
+    chain->Cullers = { first, second };
+    return chain;
+  }
+
+  double Cull(vtkRenderer* ren, vtkProp** propList, int& listLength, int& initialized) override
+  {
+    double total = 0.0;
+    for (const auto& culler : this->Cullers)
+    {
+      total = culler->Cull(ren, propList, listLength, initialized);
+    }
+    return total;
+  }
+
+  std::vector<vtkSmartPointer<vtkCuller>> Cullers;
+};
+
+/**
  * Wraps the culler of a mode (vtkFrustumCoverageCuller, vtkOctreeCuller, vtkPortalCuller): times
  * it, records what it kept, and while the camera, the viewport and the props are unchanged
  * re-uses the last visible set instead of culling again (auto's "camera unchanged: no re-cull").
@@ -171,9 +201,9 @@ CullSetup::CullSetup(const CullPlan& plan, const MethodPipeline& pipeline, vtkRe
   {
     inner = vtkSmartPointer<vtkFrustumCoverageCuller>::New();
   }
-  else if (m == "octree" || m == "normal-cones" || m == "occlusion" || plan.smallPixels > 0.0)
+  if (m == "octree" || m == "normal-cones" || plan.Occlusion() || plan.smallPixels > 0.0)
   {
-    this->Octree = m == "occlusion"
+    this->Octree = plan.Occlusion()
       ? vtkSmartPointer<vtkOctreeCuller>(vtkSmartPointer<vtkOcclusionCuller>::New())
       : vtkSmartPointer<vtkOctreeCuller>::New();
     if (m == "normal-cones")
@@ -184,20 +214,22 @@ CullSetup::CullSetup(const CullPlan& plan, const MethodPipeline& pipeline, vtkRe
         actor->GetProperty()->BackfaceCullingOn();
     }
     this->Octree->SetMinimumPixelSize(plan.smallPixels);
-    if (m == "occlusion" && !plan.recordOcclusion.empty())
+    if (plan.Occlusion() && !plan.recordOcclusion.empty())
       vtkOcclusionCuller::SafeDownCast(this->Octree)
         ->SetOcclusionRecordFile(plan.recordOcclusion.c_str());
     inner = this->Octree;
   }
-  else if (m == "portals" || m == "pvs")
+  if (plan.Portals())
   {
     this->Portal = vtkSmartPointer<vtkPortalCuller>::New();
     this->Portal->SetPortals(portals);
     this->Portal->SetRoomIdArrayName(plan.roomArray.c_str());
     this->Portal->SetMode(
-      m == "pvs" ? vtkPortalCuller::MODE_PVS : vtkPortalCuller::MODE_EXACT_FRUSTUM);
-    inner = this->Portal;
-    if (m == "pvs")
+      plan.Pvs() ? vtkPortalCuller::MODE_PVS : vtkPortalCuller::MODE_EXACT_FRUSTUM);
+    // portals+occlusion: the occlusion culler gets what the portal culler kept.
+    inner = inner ? vtkSmartPointer<vtkCuller>(CullerChain::Of(this->Portal, inner))
+                  : vtkSmartPointer<vtkCuller>(this->Portal);
+    if (plan.Pvs())
     {
       // Past the budget, the unfinished portals keep their conservative might-see sets.
       this->Portal->SetPVSBudgetSeconds(plan.pvsBudget);

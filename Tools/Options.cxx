@@ -95,7 +95,11 @@ render and cull:
                         chunked (one mesh through vtkChunkedPolyDataMapper: chunks culled
                         inside it), chunked-occlusion (chunked + chunks hidden behind nearer
                         chunks culled, conservative; opaque), portals (vtkPortalCuller, exact frustum narrowing), pvs
-                        (vtkPortalCuller with precomputed potentially visible sets).
+                        (vtkPortalCuller with precomputed potentially visible sets),
+                        portals+occlusion and pvs+occlusion (the portal culler, then
+                        vtkOcclusionCuller on the props it kept: the parts of rooms seen through
+                        portals that nearer parts hide are not drawn; give parts below rooms
+                        with --part-array).
                         Prop culling modes draw one actor per part (--part-array, and room
                         where present); with those, --sort takes none, oit, multi-actor or
                         peel:N.
@@ -109,7 +113,7 @@ render and cull:
                         octree, placements are not one mesh); otherwise none. The
                         report says why, in numbers. A frame whose camera did not move
                         re-uses the last visible set and order
-  --pvs-budget SECONDS  with --cull pvs: the PVS precompute's portal flow shares SECONDS (wall
+  --pvs-budget SECONDS  with --cull pvs (or pvs+occlusion): the PVS precompute's portal flow shares SECONDS (wall
                         clock, > 0; default: none) among the portals; a portal's flow that
                         used its share closes with what it might still see (conservative,
                         larger sets), and the report says how many
@@ -117,7 +121,8 @@ render and cull:
   --chunk-size N        with --cull chunked or chunked-occlusion (or auto when it picks them):
                         at most N triangles per chunk (default 2048; the chunks' tree is
                         built once)
-  --record-occlusion FILE  with --cull occlusion or chunked-occlusion: every cull's occluder
+  --record-occlusion FILE  with --cull occlusion, chunked-occlusion, portals+occlusion or
+                        pvs+occlusion: every cull's occluder
                         rasterization (buffer size, camera, each occluder's triangles) written
                         to FILE, for scenevis_occlusion_replay FILE (times the rasterizer alone)
 
@@ -442,11 +447,11 @@ Options ParseOptions(int argc, char* argv[])
   const std::string& c = options.cull;
   if (c != "auto" && c != "none" && c != "frustum" && c != "octree" && c != "normal-cones" &&
     c != "occlusion" && c != "chunked" && c != "chunked-occlusion" && c != "portals" &&
-    c != "pvs" && c.rfind("small:", 0) != 0)
+    c != "pvs" && c != "portals+occlusion" && c != "pvs+occlusion" && c.rfind("small:", 0) != 0)
   {
     throw UsageError(
       "--cull expects auto, none, frustum, octree, normal-cones, occlusion, small:N, "
-      "chunked, chunked-occlusion, portals or pvs, got '" +
+      "chunked, chunked-occlusion, portals, pvs, portals+occlusion or pvs+occlusion, got '" +
       c + "'");
   }
   if (c.rfind("small:", 0) == 0)
@@ -456,7 +461,7 @@ Options ParseOptions(int argc, char* argv[])
       throw UsageError(
         "--cull small:N expects a size in pixels in (0, 10000], got '" + c.substr(6) + "'");
   }
-  if (options.pvsBudget > 0.0 && c != "pvs")
+  if (options.pvsBudget > 0.0 && c != "pvs" && c != "pvs+occlusion")
   {
     throw UsageError(
       "--pvs-budget is the budget of --cull pvs's precompute (got --cull " + c + ")");
@@ -468,11 +473,12 @@ Options ParseOptions(int argc, char* argv[])
       c + ")");
   }
   if (!options.recordOcclusion.empty() &&
-    ((c != "occlusion" && c != "chunked-occlusion") ||
+    ((c != "occlusion" && c != "chunked-occlusion" && c != "portals+occlusion" &&
+       c != "pvs+occlusion") ||
       (options.command != "render" && options.command != "cull")))
   {
     throw UsageError("--record-occlusion records the culls of render or cull with --cull "
-                     "occlusion or chunked-occlusion (got " +
+                     "occlusion, chunked-occlusion or portals/pvs+occlusion (got " +
       options.command + " --cull " + c + ")");
   }
   if ((!options.exportScene.empty() || options.exact) && options.command != "cull")

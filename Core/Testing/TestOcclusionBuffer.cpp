@@ -25,6 +25,7 @@
 #include <limits>
 #include <memory>
 #include <random>
+#include <set>
 #include <string>
 
 using namespace scenevis;
@@ -559,50 +560,61 @@ TEST_P(OcclusionCull, EveryObjectSeenAtSomePixelIsKept)
                                              << hiddenInFrustum << " hidden in the frustum";
 }
 
+/// Objects for OcclusionCull tests: a box and the triangles drawn as its occluder each.
+struct QuadScene
+{
+  culling::BoxArrays boxes;
+  std::vector<std::vector<Triangle>> faces;
+
+  void add(const glm::dvec3& lo, const glm::dvec3& hi, std::vector<Triangle> f)
+  {
+    Box box;
+    box.lo = lo;
+    box.hi = hi;
+    boxes.push_back(box);
+    faces.push_back(std::move(f));
+  }
+
+  /// The rectangle [x0, x1] x [z0, z1] in the plane at @p y (two triangles).
+  void addRectangleAtY(double x0, double x1, double y, double z0, double z1)
+  {
+    const glm::dvec3 a(x0, y, z0), b(x1, y, z0), c(x1, y, z1), d(x0, y, z1);
+    add(a, c, { { a, b, c }, { a, c, d } });
+  }
+};
+
 TEST_P(OcclusionCull, AWallBesideTheEyeIsDrawnBeforeWhatItHidesWhateverTheTree)
 {
   // A wall of four panels two units in front of the eye, a long thin rail passing beside the eye
   // (its box comes nearer than the wall), and 200 blocks behind the wall near the rail. A
   // depth-first traversal that enters the rail's subtree first tests the blocks before the wall
   // is drawn and keeps them all; front to back over the whole tree, every block is hidden.
-  culling::BoxArrays boxes;
-  std::vector<std::vector<Triangle>> faces;
-  auto addQuad = [&](const glm::dvec3& lo, const glm::dvec3& hi, std::vector<Triangle> f) {
-    Box box;
-    box.lo = lo;
-    box.hi = hi;
-    boxes.push_back(box);
-    faces.push_back(std::move(f));
-  };
+  QuadScene scene;
   for (int i = 0; i < 4; ++i)
   {
     // Panels of the wall y = 2 over x in [-8, 8], z in [-6, 6], abutting along x = -4, 0, 4.
-    const double x0 = -8 + 4 * i, x1 = x0 + 4;
-    const glm::dvec3 a(x0, 2, -6), b(x1, 2, -6), c(x1, 2, 6), d(x0, 2, 6);
-    addQuad({ x0, 2, -6 }, { x1, 2, 6 }, { { a, b, c }, { a, c, d } });
+    scene.addRectangleAtY(-8 + 4 * i, -4 + 4 * i, 2, -6, 6);
   }
   {
     const glm::dvec3 a(-0.2, -1, -0.45), b(0.2, -1, -0.45), c(0.2, 60, -0.45), d(-0.2, 60, -0.45);
-    addQuad({ -0.2, -1, -0.45 }, { 0.2, 60, -0.45 }, { { a, b, c }, { a, c, d } });
+    scene.add({ -0.2, -1, -0.45 }, { 0.2, 60, -0.45 }, { { a, b, c }, { a, c, d } });
   }
-  const std::size_t firstBlock = boxes.size();
+  const std::size_t firstBlock = scene.boxes.size();
   for (int i = 0; i < 200; ++i)
   {
-    const glm::dvec3 c(-2 + 0.2 * (i % 20), 10 + 4.0 * (i / 20), -0.5);
-    const glm::dvec3 a(c.x - 0.05, c.y, -0.55), b(c.x + 0.05, c.y, -0.55),
-      e(c.x + 0.05, c.y, -0.45), d(c.x - 0.05, c.y, -0.45);
-    addQuad({ c.x - 0.05, c.y, -0.55 }, { c.x + 0.05, c.y, -0.45 }, { { a, b, e }, { a, e, d } });
+    const double x = -2 + 0.2 * (i % 20);
+    scene.addRectangleAtY(x - 0.05, x + 0.05, 10 + 4.0 * (i / 20), -0.55, -0.45);
   }
   for (const culling::BuildMethod method :
     { culling::BuildMethod::BinnedSah, culling::BuildMethod::Median })
   {
     culling::Bvh bvh;
-    bvh.build(boxes, method);
+    bvh.build(scene.boxes, method);
     const Camera cam = perspectiveCamera({ 0, 0, 0 }, { 0, 1, 0 }, 60.0, 160, 120, 0.1, 100.0);
     MaskedDepthBuffer buffer = bufferFor(cam);
     culling::OcclusionCull occlusion;
     occlusion.buffer = &buffer;
-    occlusion.drawOccluder = [&](std::uint32_t id) { draw(buffer, cam, faces[id]); };
+    occlusion.drawOccluder = [&](std::uint32_t id) { draw(buffer, cam, scene.faces[id]); };
     culling::CullParams params;
     params.frustum = culling::Frustum::fromViewProjection(cam.clipFromWorld);
     params.eye = glm::dvec3(0, 0, 0);
@@ -614,6 +626,61 @@ TEST_P(OcclusionCull, AWallBesideTheEyeIsDrawnBeforeWhatItHidesWhateverTheTree)
     }
     EXPECT_EQ(visible.size(), 3u); // the rail and the two middle panels (the outer ones are out of view)
   }
+}
+
+TEST_P(OcclusionCull, ObjectsLeftOutNeitherOccludeNorShow)
+{
+  // A wall (two panels) two units in front of the eye and 20 blocks behind it. Left out
+  // (OcclusionCull::active 0, as when another culler removed them this frame), the panels hide
+  // nothing and are not listed; a left-out block is neither listed nor tested.
+  QuadScene scene;
+  for (int i = 0; i < 2; ++i)
+  {
+    scene.addRectangleAtY(-8 + 8 * i, 8 * i, 2, -6, 6);
+  }
+  for (int i = 0; i < 20; ++i)
+  {
+    scene.addRectangleAtY(-1.04 + 0.1 * i, -0.96 + 0.1 * i, 10, -0.05, 0.05);
+  }
+  culling::Bvh bvh;
+  bvh.build(scene.boxes);
+  const Camera cam = perspectiveCamera({ 0, 0, 0 }, { 0, 1, 0 }, 60.0, 160, 120, 0.1, 100.0);
+  auto cull = [&](const std::vector<std::uint8_t>& active, culling::CullStats& stats)
+  {
+    MaskedDepthBuffer buffer = bufferFor(cam);
+    culling::OcclusionCull occlusion;
+    occlusion.buffer = &buffer;
+    occlusion.drawOccluder = [&](std::uint32_t id)
+    {
+      EXPECT_TRUE(active[id]) << "object " << id << " was left out but drawn as an occluder";
+      draw(buffer, cam, scene.faces[id]);
+    };
+    occlusion.active = active.data();
+    culling::CullParams params;
+    params.frustum = culling::Frustum::fromViewProjection(cam.clipFromWorld);
+    params.eye = glm::dvec3(0, 0, 0);
+    std::vector<std::uint32_t> visible;
+    bvh.cullOccluded(params, occlusion, visible, &stats);
+    return std::set<std::uint32_t>(visible.begin(), visible.end());
+  };
+  std::vector<std::uint8_t> all(scene.boxes.size(), 1);
+  culling::CullStats stats;
+  EXPECT_EQ(cull(all, stats), (std::set<std::uint32_t>{ 0, 1 })) << "the wall hides the blocks";
+  EXPECT_EQ(stats.culledOcclusion, 20u);
+
+  std::vector<std::uint8_t> noWall = all;
+  noWall[0] = noWall[1] = 0;
+  const std::set<std::uint32_t> seen = cull(noWall, stats);
+  EXPECT_EQ(seen.size(), 20u) << "without the wall every block is seen";
+  EXPECT_EQ(seen.count(0) + seen.count(1), 0u) << "left-out panels are listed";
+  EXPECT_EQ(stats.objectsTested, 20u) << "left-out panels were tested";
+
+  std::vector<std::uint8_t> noBlock = noWall;
+  noBlock[7] = 0;
+  const std::set<std::uint32_t> fewer = cull(noBlock, stats);
+  EXPECT_EQ(fewer.size(), 19u);
+  EXPECT_EQ(fewer.count(7), 0u) << "a left-out block is listed";
+  EXPECT_EQ(stats.objectsTested, 19u);
 }
 
 TEST_P(OcclusionBuffer, TheRevisionChangesWhenATestsAnswerMay)

@@ -643,7 +643,7 @@ void Bvh::cullOccluded(const CullParams& params,
       }
       const std::uint32_t p = position_[id];
       if (p >= treeCount_ || always_[p] || occluderStamp_[p] == occlusionFrame_ ||
-        !objectPasses(probe, p, allPlanes))
+        (occlusion.active && !occlusion.active[id]) || !objectPasses(probe, p, allPlanes))
       {
         continue;
       }
@@ -754,7 +754,8 @@ void Bvh::cullNodeOccluded(OcclusionFrame& of, std::uint32_t root, std::uint8_t 
     }
     for (std::uint32_t p = node.first; p < node.first + node.count; ++p)
     {
-      if (always_[p] || !objectPasses(f, p, mask))
+      if (always_[p] || (of.occlusion.active && !of.occlusion.active[id_[p]]) ||
+        !objectPasses(f, p, mask))
       {
         continue;
       }

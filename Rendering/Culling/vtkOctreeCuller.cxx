@@ -20,6 +20,7 @@
 #include "vtkPolyData.h"
 #include "vtkPolyDataMapper.h"
 #include "vtkProp.h"
+#include "vtkPropCollection.h"
 #include "vtkProperty.h"
 #include "vtkRenderer.h"
 #include "vtkSmartPointer.h"
@@ -85,12 +86,21 @@ public:
   vtkCullerSlotWatcher Watcher{ this->Slots };
   std::vector<unsigned char> PrevPresent;
 
+  // The renderer's props as last counted (SlotsInRenderer): its collection's MTime, and how many
+  // slots belong to props in it.
+  vtkMTimeType ViewPropsTime = 0;
+  std::size_t SlotsInRendererCount = 0;
+
   /// Maps the list onto the slots (Present, ListSlots; observers of props that came or left);
-  /// returns whether the hierarchy must be rebuilt (props never seen, or most gone).
-  bool MapList(vtkProp** propList, std::size_t n, vtkOctreeCuller* self);
+  /// returns whether the hierarchy must be rebuilt (props never seen, or most gone from the
+  /// renderer).
+  bool MapList(vtkRenderer* ren, vtkProp** propList, std::size_t n, vtkOctreeCuller* self);
   /// One slot per prop (per placement of a vtkInstancedActor), the hierarchy over them, and
-  /// their observers in UPDATE_ON_EVENTS.
-  void Rebuild(vtkProp** propList, std::size_t n, vtkOctreeCuller* self);
+  /// their observers in UPDATE_ON_EVENTS. The props: the list's, and the renderer's other
+  /// visible props (those a culler before this one removed: they come back without a rebuild).
+  void Rebuild(vtkRenderer* ren, vtkProp** propList, std::size_t n, vtkOctreeCuller* self);
+  /// Slots whose prop is in the renderer (counted again only when its props changed).
+  std::size_t SlotsInRenderer(vtkRenderer* ren);
   /// Re-reads the props that may have moved (how: the UpdateMode) and refits their paths.
   void FindMoved(vtkOctreeCuller* self);
   /// The camera as the core's cull parameters; false (warned once) if it or the viewport is
@@ -138,6 +148,8 @@ public:
       return raster.WorthDrawing(&lo.x, &hi.x, static_cast<vtkIdType>(triangles));
     };
     occlusion.seeds = &this->LastVisible;
+    // Props a culler before this one removed are left out: not tested against the buffer.
+    occlusion.active = this->Present.data();
     this->Bvh.cullOccluded(params, occlusion, this->Visible, &stats);
     this->LastVisible = this->Visible;
   }
@@ -145,7 +157,7 @@ public:
 
 //------------------------------------------------------------------------------
 bool vtkOctreeCuller::vtkInternals::MapList(
-  vtkProp** propList, std::size_t n, vtkOctreeCuller* self)
+  vtkRenderer* ren, vtkProp** propList, std::size_t n, vtkOctreeCuller* self)
 {
   // A vtkInstancedActor that gained or lost placements needs other slots: rebuild.
   for (const std::uint32_t head : this->InstancedHeads)
@@ -187,8 +199,13 @@ bool vtkOctreeCuller::vtkInternals::MapList(
         std::fill_n(this->Present.begin() + it->second, count, 1);
       }
     }
-    // Forget props that are gone once they are the majority (they are held by reference).
-    rebuild = rebuild || (this->Slots.size() > 64 && 2 * present < this->Slots.size());
+    // Forget props that are gone once they are the majority (they are held by reference). Gone
+    // from the renderer, not only from the list: a culler that runs before this one
+    // (vtkPortalCuller) often hands over less than half of the props, which must not cost a
+    // rebuild every frame.
+    rebuild = rebuild ||
+      (this->Slots.size() > 64 && 2 * present < this->Slots.size() &&
+        2 * this->SlotsInRenderer(ren) < this->Slots.size());
     if (this->Watcher.EventsActive && !rebuild)
     {
       // Props that left stop being observed; props that came back are re-read.
@@ -217,9 +234,52 @@ bool vtkOctreeCuller::vtkInternals::MapList(
 }
 
 //------------------------------------------------------------------------------
-void vtkOctreeCuller::vtkInternals::Rebuild(
-  vtkProp** propList, std::size_t n, vtkOctreeCuller* self)
+std::size_t vtkOctreeCuller::vtkInternals::SlotsInRenderer(vtkRenderer* ren)
 {
+  vtkPropCollection* props = ren ? ren->GetViewProps() : nullptr;
+  if (!props)
+  {
+    return 0;
+  }
+  if (props->GetMTime() != this->ViewPropsTime)
+  {
+    this->ViewPropsTime = props->GetMTime();
+    this->SlotsInRendererCount = 0;
+    vtkCollectionSimpleIterator it;
+    props->InitTraversal(it);
+    while (vtkProp* prop = props->GetNextProp(it))
+    {
+      const auto found = this->SlotOf.find(prop);
+      if (found != this->SlotOf.end())
+      {
+        this->SlotsInRendererCount += this->Slots[found->second].Count;
+      }
+    }
+  }
+  return this->SlotsInRendererCount;
+}
+
+//------------------------------------------------------------------------------
+void vtkOctreeCuller::vtkInternals::Rebuild(
+  vtkRenderer* ren, vtkProp** list, std::size_t n, vtkOctreeCuller* self)
+{
+  // The list first (its entries' slots are ListSlots), then the renderer's other visible props.
+  std::vector<vtkProp*> props(list, list + n);
+  if (vtkPropCollection* viewProps = ren ? ren->GetViewProps() : nullptr)
+  {
+    const std::unordered_set<vtkProp*> listed(list, list + n);
+    vtkCollectionSimpleIterator it;
+    viewProps->InitTraversal(it);
+    while (vtkProp* prop = viewProps->GetNextProp(it))
+    {
+      if (prop->GetVisibility() && !listed.count(prop))
+      {
+        props.push_back(prop);
+      }
+    }
+  }
+  vtkProp** propList = props.data();
+  const std::size_t all = props.size();
   this->Watcher.UnwatchAll();
   this->Watcher.EventsActive = false;
   this->Slots.clear();
@@ -232,7 +292,7 @@ void vtkOctreeCuller::vtkInternals::Rebuild(
   // One slot per prop, per placement of a vtkInstancedActor: sized once (a slot is ~180
   // bytes; growing by doubling would hold up to twice that for 46,000 placements).
   std::size_t slots = 0;
-  for (std::size_t i = 0; i < n; ++i)
+  for (std::size_t i = 0; i < all; ++i)
   {
     auto* instanced = vtkInstancedActor::SafeDownCast(propList[i]);
     slots += instanced ? std::max<std::size_t>(1, instanced->GetNumberOfPlacements()) : 1;
@@ -242,12 +302,15 @@ void vtkOctreeCuller::vtkInternals::Rebuild(
     std::vector<Slot>().swap(this->Slots); // cleared above
   }
   this->Slots.reserve(slots);
-  for (std::size_t i = 0; i < n; ++i)
+  for (std::size_t i = 0; i < all; ++i)
   {
     const auto found = this->SlotOf.find(propList[i]);
     if (found != this->SlotOf.end())
     {
-      this->ListSlots[i] = found->second; // the same prop twice in the list
+      if (i < n)
+      {
+        this->ListSlots[i] = found->second; // the same prop twice in the list
+      }
       continue;
     }
     const auto s = static_cast<std::uint32_t>(this->Slots.size());
@@ -266,7 +329,10 @@ void vtkOctreeCuller::vtkInternals::Rebuild(
       triangles.push_back(slot.Triangles);
     }
     this->SlotOf.emplace(propList[i], s);
-    this->ListSlots[i] = s;
+    if (i < n)
+    {
+      this->ListSlots[i] = s;
+    }
     if (instanced)
     {
       this->InstancedHeads.push_back(s);
@@ -286,7 +352,14 @@ void vtkOctreeCuller::vtkInternals::Rebuild(
     this->Bvh.refit();
   }
   this->NormalConesBuilt = self->NormalConeCulling;
-  this->Present.assign(this->Slots.size(), 1);
+  // Present: in the list (a prop only the renderer has is neither drawn nor an occluder).
+  this->Present.assign(this->Slots.size(), 0);
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    const std::uint32_t s = this->ListSlots[i];
+    std::fill_n(this->Present.begin() + s, this->Slots[s].Count, 1);
+  }
+  this->ViewPropsTime = 0; // the slots changed: count again
   this->MultiplierIsOne.assign(this->Slots.size(), 0);
   this->RebuildRequested = false;
   ++self->NumberOfRebuilds;
@@ -297,7 +370,10 @@ void vtkOctreeCuller::vtkInternals::Rebuild(
     std::vector<vtkObject*> scratch;
     for (std::uint32_t s = 0; s < this->Slots.size(); ++s)
     {
-      this->Watcher.Register(s, self->NormalConeCulling, scratch);
+      if (this->Present[s])
+      {
+        this->Watcher.Register(s, self->NormalConeCulling, scratch);
+      }
     }
     this->Watcher.PolledSetChanged = true;
     this->Watcher.EventsActive = true;
@@ -652,9 +728,9 @@ double vtkOctreeCuller::Cull(
   const auto n = static_cast<std::size_t>(listLength);
 
   // --- 1. Map the list onto the hierarchy's slots; rebuild only for props never seen. ----------
-  if (in.MapList(propList, n, this))
+  if (in.MapList(ren, propList, n, this))
   {
-    in.Rebuild(propList, n, this);
+    in.Rebuild(ren, propList, n, this);
   }
   else
   {
@@ -701,9 +777,8 @@ double vtkOctreeCuller::Cull(
     }
     this->NumberOfNodesVisited = static_cast<vtkIdType>(stats.nodesVisited);
     this->NumberOfPropsTested = static_cast<vtkIdType>(stats.objectsTested);
-    this->NumberOfTrianglesDrawn = static_cast<vtkIdType>(stats.trianglesDrawn);
-    // By reason, over all props the hierarchy knows (equal to this list's unless another
-    // culler ran first and passed a subset).
+    // By reason, over all props the hierarchy knows (the renderer's: equal to this list's
+    // unless another culler ran first and passed a subset). Triangles drawn: this list's (below).
     this->NumberOfPropsCulledByFrustum = static_cast<vtkIdType>(stats.culledFrustum);
     this->NumberOfPropsCulledBySize = static_cast<vtkIdType>(stats.culledContribution);
     this->NumberOfPropsCulledByDistance = static_cast<vtkIdType>(stats.culledDistance);
@@ -718,10 +793,12 @@ double vtkOctreeCuller::Cull(
   // --- 5. Drawn props first (relative order kept), culled ones after. --------------------------
   in.Keep.resize(n);
   in.KeptSlots.clear();
+  vtkIdType trianglesDrawn = 0;
   for (std::size_t i = 0; i < n; ++i)
   {
     const std::uint32_t s = in.ListSlots[i];
     bool drawn = in.Drawn[s] != 0;
+    trianglesDrawn += drawn && in.Slots[s].Placement < 0 ? in.Slots[s].Triangles : 0;
     if (in.Slots[s].Placement >= 0)
     {
       // A vtkInstancedActor: drawn while any placement is, and told which.
@@ -731,6 +808,7 @@ double vtkOctreeCuller::Cull(
         if (in.Drawn[s + k])
         {
           in.Placements.push_back(static_cast<vtkIdType>(k));
+          trianglesDrawn += in.Slots[s + k].Triangles;
         }
       }
       if (this->SortingStyle != 0 && usable)
@@ -750,6 +828,10 @@ double vtkOctreeCuller::Cull(
   const auto kept = static_cast<std::size_t>(this->CompactPropList(propList, listLength, in.Keep.data()));
   this->NumberOfPropsCulled = static_cast<vtkIdType>(n - kept);
   this->NumberOfPropsDrawn = static_cast<vtkIdType>(kept);
+  if (usable)
+  {
+    this->NumberOfTrianglesDrawn = trianglesDrawn;
+  }
   listLength = static_cast<int>(kept);
 
   // --- 6. Optional depth sort of the drawn props (2D / unbounded props first, as VTK does). -----

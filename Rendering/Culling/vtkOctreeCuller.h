@@ -27,19 +27,23 @@
  * @endcode
  * It can also run after vtkFrustumCoverageCuller (AddCuller alone): then it receives the props
  * that culler kept, which it maps onto its hierarchy without rebuilding it; but that culler's
- * per-prop cost remains and it culls props with uninitialized bounds itself.
+ * per-prop cost remains and it culls props with uninitialized bounds itself. After
+ * vtkPortalCuller (portals first, then this culler or vtkOcclusionCuller) likewise: the
+ * hierarchy is built over the renderer's visible props, so the different subset the portal
+ * culler hands over at each frame costs no rebuild; vtkOcclusionCuller neither tests nor draws
+ * as occluders the props that culler removed.
  *
- * vtkCuller contract (vtkCompactingCuller): props that are culled are moved to the end of the list (the drawn ones
- * keep their relative order unless SortingStyle says otherwise) and listLength is shortened;
- * when @p initialized is set the drawn props' render-time multipliers are kept (multiplied by
- * 1), otherwise set to 1; initialized is set to 1. Culled props' multipliers are not touched
- * (no other code reads them past listLength). 2D props (GetBounds() == nullptr) and props with
- * uninitialized, empty or NaN bounds are never culled (a warning is given once per culler for
+ * vtkCuller contract (vtkCompactingCuller): props that are culled are moved to the end of the list
+ * (the drawn ones keep their relative order unless SortingStyle says otherwise) and listLength is
+ * shortened; when @p initialized is set the drawn props' render-time multipliers are kept
+ * (multiplied by 1), otherwise set to 1; initialized is set to 1. Culled props' multipliers are not
+ * touched (no other code reads them past listLength). 2D props (GetBounds() == nullptr) and props
+ * with uninitialized, empty or NaN bounds are never culled (a warning is given once per culler for
  * the latter). Without a valid camera or viewport nothing is culled (warning once).
  *
  * Updates: the hierarchy is rebuilt only when props appear (or more than half of those it knows
- * are gone); a prop whose bounds change is refit in O(log n). How changes are found is the
- * UpdateMode:
+ * are gone from the renderer); a prop whose bounds change is refit in O(log n). How changes are
+ * found is the UpdateMode:
  * - UPDATE_ON_EVENTS (default): event-driven dirty tracking; a frame costs O(changed props) plus
  *   the traversal. The culler observes ModifiedEvent (and DeleteEvent) on, per prop: the prop;
  *   for a plain vtkActor (class vtkActor / vtkOpenGLActor) also its user matrix, its property
@@ -79,7 +83,10 @@
  * in.
  *
  * Statistics of the last Cull(): nodes visited, props tested / culled (by reason) / drawn,
- * triangles drawn (polygons of the props' polydata).
+ * triangles drawn (polygons of the props' polydata). After another culler, "culled by frustum"
+ * (and size, distance, normal cone) and tested count the hierarchy's props, those that culler
+ * removed included; drawn and triangles drawn count this list's (and, in vtkOcclusionCuller,
+ * the props tested against the buffer and culled by occlusion).
  *
  * vtkInstancedActor: each placement is a prop of its own in the hierarchy (its box: the mesh's
  * box corners through the placement's model matrix), culled by frustum, distance, size and, in

@@ -125,6 +125,10 @@ struct OcclusionCull
   /// Objects drawn as occluders before the traversal (temporal coherence: last frame's visible
   /// set). Seeds that fail this frame's frustum / distance / size / cone tests are skipped.
   const std::vector<std::uint32_t>* seeds = nullptr;
+  /// Optional, one byte per object id: 0 leaves the object out of this cull (another culler
+  /// removed it this frame): it is not tested, counted, drawn as an occluder or visible (objects
+  /// without a box, never culled, are listed as always). Nodes are tested as before.
+  const std::uint8_t* active = nullptr;
 };
 
 enum class BuildMethod
