@@ -449,7 +449,9 @@ TEST_P(OcclusionBuffer, RandomScenesAreConservativeAtEveryPixel)
 }
 
 // The BVH's front-to-back cull with occlusion: opaque boxes occlude each other; every object the
-// oracle sees at some pixel is in the visible list, with and without last frame's seeds.
+// oracle sees at some pixel is in the visible list, with and without last frame's seeds, and
+// with a random 30 % of the objects left out (OcclusionCull::active: as if another culler had
+// removed them; the oracle then sees through them, and none is listed or drawn).
 TEST_P(OcclusionCull, EveryObjectSeenAtSomePixelIsKept)
 {
   std::mt19937_64 rng(777);
@@ -485,8 +487,15 @@ TEST_P(OcclusionCull, EveryObjectSeenAtSomePixelIsKept)
   bvh.build(boxes);
   std::vector<std::uint32_t> last;
   std::size_t culledTotal = 0, hiddenInFrustum = 0;
+  std::mt19937_64 maskRng(31); // apart from the cameras' numbers
   for (int view = 0; view < 12; ++view)
   {
+    std::vector<std::uint8_t> active(300, 1);
+    const bool masked = view % 3 == 1;
+    for (std::uint8_t& a : active)
+    {
+      a = !masked || std::uniform_real_distribution<double>(0, 1)(maskRng) < 0.7 ? 1 : 0;
+    }
     const glm::dvec3 eye(uniform(-12, 12), -25 + uniform(-3, 3), uniform(-4, 4));
     const Camera cam = view % 4 == 3
       ? parallelCamera(eye, { 0, 0, 0 }, 8.0, 160, 120, 0.1, 80.0)
@@ -497,7 +506,9 @@ TEST_P(OcclusionCull, EveryObjectSeenAtSomePixelIsKept)
     culling::OcclusionCull occlusion;
     occlusion.buffer = &buffer;
     occlusion.seeds = view % 2 == 1 ? &last : nullptr;
+    occlusion.active = masked ? active.data() : nullptr;
     occlusion.drawOccluder = [&](std::uint32_t id) {
+      ASSERT_TRUE(active[id]) << "view " << view << ": object " << id << " left out but drawn";
       // Occluder selection (views 2, 5, 8, 11): blocks thinner than 1.2 along x are never
       // drawn; leaving them out must not lose a visible object.
       const Box b = boxes.get(id);
@@ -522,21 +533,27 @@ TEST_P(OcclusionCull, EveryObjectSeenAtSomePixelIsKept)
     std::vector<char> kept(300, 0);
     for (const std::uint32_t id : visible)
     {
+      ASSERT_TRUE(active[id]) << "view " << view << ": object " << id << " left out but listed";
       kept[id] = 1;
     }
-    // The oracle: the nearest box along each pixel's ray.
+    // The oracle: the nearest box that takes part along each pixel's ray.
     std::vector<std::pair<glm::dvec3, glm::dvec3>> solid;
+    std::vector<int> idOf;
     for (std::size_t id = 0; id < 300; ++id)
     {
       const Box b = boxes.get(id);
-      solid.emplace_back(b.lo, b.hi);
+      if (active[id])
+      {
+        solid.emplace_back(b.lo, b.hi);
+        idOf.push_back(static_cast<int>(id));
+      }
     }
     const std::vector<int> nearest =
       nearestBoxPerPixel(cam.clipFromWorld, cam.width, cam.height, solid);
     std::vector<char> seen(300, 0);
     for (std::size_t pixel = 0; pixel < nearest.size(); ++pixel)
     {
-      const int who = nearest[pixel];
+      const int who = nearest[pixel] < 0 ? -1 : idOf[static_cast<std::size_t>(nearest[pixel])];
       if (who >= 0)
       {
         seen[static_cast<std::size_t>(who)] = 1;
@@ -550,7 +567,8 @@ TEST_P(OcclusionCull, EveryObjectSeenAtSomePixelIsKept)
     {
       // In the frustum (kept by the frustum test alone) but seen at no pixel.
       const Box b = boxes.get(static_cast<std::size_t>(id));
-      hiddenInFrustum += !seen[id] && !culling::boxOutside(params.frustum, b.lo, b.hi) ? 1 : 0;
+      hiddenInFrustum +=
+        active[id] && !seen[id] && !culling::boxOutside(params.frustum, b.lo, b.hi) ? 1 : 0;
     }
     last = visible;
   }
