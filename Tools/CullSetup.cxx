@@ -64,10 +64,11 @@ public:
 };
 
 /**
- * Wraps the culler of a mode (vtkFrustumCoverageCuller, vtkOctreeCuller, vtkPortalCuller): times
- * it, records what it kept, and while the camera, the viewport and the props are unchanged
- * re-uses the last visible set instead of culling again (auto's "camera unchanged: no re-cull").
- * It honours the vtkCuller contract itself on re-used frames.
+ * Wraps the culler of a mode (vtkFrustumCoverageCuller, vtkOctreeCuller, vtkPortalCuller, or
+ * the portal culler and the occlusion culler in a CullerChain): times it, records what it kept,
+ * and while the camera, the viewport and the props are unchanged re-uses the last visible set
+ * instead of culling again (auto's "camera unchanged: no re-cull"). It honours the vtkCuller
+ * contract itself on re-used frames.
  */
 class CullStage : public vtkCuller
 {

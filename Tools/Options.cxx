@@ -113,18 +113,18 @@ render and cull:
                         octree, placements are not one mesh); otherwise none. The
                         report says why, in numbers. A frame whose camera did not move
                         re-uses the last visible set and order
-  --pvs-budget SECONDS  with --cull pvs (or pvs+occlusion): the PVS precompute's portal flow shares SECONDS (wall
-                        clock, > 0; default: none) among the portals; a portal's flow that
-                        used its share closes with what it might still see (conservative,
-                        larger sets), and the report says how many
+  --pvs-budget SECONDS  with --cull pvs (or pvs+occlusion): the PVS precompute's portal flow
+                        shares SECONDS (wall clock, > 0; default: none) among the portals; a
+                        portal's flow that used its share closes with what it might still see
+                        (conservative, larger sets), and the report says how many
                         (culling.portals.pvs.degraded_portals, budget_exceeded)
   --chunk-size N        with --cull chunked or chunked-occlusion (or auto when it picks them):
                         at most N triangles per chunk (default 2048; the chunks' tree is
                         built once)
   --record-occlusion FILE  with --cull occlusion, chunked-occlusion, portals+occlusion or
-                        pvs+occlusion: every cull's occluder
-                        rasterization (buffer size, camera, each occluder's triangles) written
-                        to FILE, for scenevis_occlusion_replay FILE (times the rasterizer alone)
+                        pvs+occlusion: every cull's occluder rasterization (buffer size, camera,
+                        each occluder's triangles) written to FILE, for
+                        scenevis_occlusion_replay FILE (times the rasterizer alone)
 
 render:
   --sort METHOD         auto (default), none (unsorted alpha), oit (VTK's default weighted
