@@ -171,9 +171,8 @@ std::string GenerateRoomsForAuto(vtkPolyData* pd, const std::string& roomArray, 
 
 bool IsPropCulling(const std::string& mode)
 {
-  return mode == "frustum" || mode == "octree" || mode == "normal-cones" || mode == "occlusion" ||
-    mode.rfind("small:", 0) == 0 || mode == "portals" || mode == "pvs" ||
-    mode == "portals+occlusion" || mode == "pvs+occlusion";
+  return mode == "frustum" || mode == "octree" || mode == "normal-cones" ||
+    mode.rfind("small:", 0) == 0 || CullUsesPortals(mode) || CullUsesOcclusion(mode);
 }
 
 CullPlan PlanCulling(

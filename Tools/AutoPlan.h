@@ -45,15 +45,10 @@ struct CullPlan
   int chunkSize = 0;                ///< chunked: triangles per chunk (0: the mapper's default)
   std::string recordOcclusion; ///< (chunked-)occlusion: the file culls are recorded to ("": none)
 
-  /// portals, pvs, portals+occlusion, pvs+occlusion: vtkPortalCuller culls first.
-  bool Portals() const { return Pvs() || method == "portals" || method == "portals+occlusion"; }
-  /// pvs, pvs+occlusion: the portal culler with precomputed potentially visible sets.
-  bool Pvs() const { return method == "pvs" || method == "pvs+occlusion"; }
-  /// occlusion, portals+occlusion, pvs+occlusion: vtkOcclusionCuller (after the portal culler).
-  bool Occlusion() const
-  {
-    return method == "occlusion" || method == "portals+occlusion" || method == "pvs+occlusion";
-  }
+  /// The cullers the method runs (Options.h: CullUsesPortals and the others).
+  bool Portals() const { return CullUsesPortals(method); }
+  bool Pvs() const { return CullUsesPvs(method); }
+  bool Occlusion() const { return CullUsesOcclusion(method); }
 };
 
 /// The --cull plan applied to a loaded scene: the groups drawn as actors and the sort method.

@@ -256,6 +256,21 @@ const char* HelpText()
   return kHelp;
 }
 
+bool CullUsesPortals(const std::string& method)
+{
+  return method == "portals" || method == "portals+occlusion" || CullUsesPvs(method);
+}
+
+bool CullUsesPvs(const std::string& method)
+{
+  return method == "pvs" || method == "pvs+occlusion";
+}
+
+bool CullUsesOcclusion(const std::string& method)
+{
+  return method == "occlusion" || method == "portals+occlusion" || method == "pvs+occlusion";
+}
+
 Options ParseOptions(int argc, char* argv[])
 {
   Options options;
@@ -446,8 +461,8 @@ Options ParseOptions(int argc, char* argv[])
   }
   const std::string& c = options.cull;
   if (c != "auto" && c != "none" && c != "frustum" && c != "octree" && c != "normal-cones" &&
-    c != "occlusion" && c != "chunked" && c != "chunked-occlusion" && c != "portals" &&
-    c != "pvs" && c != "portals+occlusion" && c != "pvs+occlusion" && c.rfind("small:", 0) != 0)
+    c != "chunked" && c != "chunked-occlusion" && !CullUsesPortals(c) && !CullUsesOcclusion(c) &&
+    c.rfind("small:", 0) != 0)
   {
     throw UsageError(
       "--cull expects auto, none, frustum, octree, normal-cones, occlusion, small:N, "
@@ -461,7 +476,7 @@ Options ParseOptions(int argc, char* argv[])
       throw UsageError(
         "--cull small:N expects a size in pixels in (0, 10000], got '" + c.substr(6) + "'");
   }
-  if (options.pvsBudget > 0.0 && c != "pvs" && c != "pvs+occlusion")
+  if (options.pvsBudget > 0.0 && !CullUsesPvs(c))
   {
     throw UsageError(
       "--pvs-budget is the budget of --cull pvs's precompute (got --cull " + c + ")");
@@ -473,8 +488,7 @@ Options ParseOptions(int argc, char* argv[])
       c + ")");
   }
   if (!options.recordOcclusion.empty() &&
-    ((c != "occlusion" && c != "chunked-occlusion" && c != "portals+occlusion" &&
-       c != "pvs+occlusion") ||
+    ((!CullUsesOcclusion(c) && c != "chunked-occlusion") ||
       (options.command != "render" && options.command != "cull")))
   {
     throw UsageError("--record-occlusion records the culls of render or cull with --cull "

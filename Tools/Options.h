@@ -83,6 +83,13 @@ const char* HelpText();
 /// --cameras file. Throws UsageError.
 Options ParseOptions(int argc, char* argv[]);
 
+/// What a --cull method name runs. Portals: portals, pvs, portals+occlusion, pvs+occlusion
+/// (vtkPortalCuller first). Pvs: pvs, pvs+occlusion. Occlusion: occlusion, portals+occlusion,
+/// pvs+occlusion (vtkOcclusionCuller, after the portal culler when there is one).
+bool CullUsesPortals(const std::string& method);
+bool CullUsesPvs(const std::string& method);
+bool CullUsesOcclusion(const std::string& method);
+
 /// The cameras a command runs: every camera of --cameras, else the command line's one.
 std::vector<CameraSpec> CamerasToRun(const Options& options);
 
