@@ -22,6 +22,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <functional>
 #include <limits>
 #include <memory>
 #include <random>
@@ -599,6 +600,31 @@ struct QuadScene
     const glm::dvec3 a(x0, y, z0), b(x1, y, z0), c(x1, y, z1), d(x0, y, z1);
     add(a, c, { { a, b, c }, { a, c, d } });
   }
+
+  /// Bvh::cullOccluded() of @p bvh (built over these boxes) from @p cam, whose eye is at the
+  /// origin, with OcclusionCull::active @p active; an object handed over as an occluder is drawn
+  /// when @p occludes says so. The visible ids.
+  std::set<std::uint32_t> cull(culling::Bvh& bvh, const Camera& cam, const std::uint8_t* active,
+    const std::function<bool(std::uint32_t)>& occludes, culling::CullStats& stats) const
+  {
+    MaskedDepthBuffer buffer = bufferFor(cam);
+    culling::OcclusionCull occlusion;
+    occlusion.buffer = &buffer;
+    occlusion.drawOccluder = [&](std::uint32_t id)
+    {
+      if (occludes(id))
+      {
+        draw(buffer, cam, faces[id]);
+      }
+    };
+    occlusion.active = active;
+    culling::CullParams params;
+    params.frustum = culling::Frustum::fromViewProjection(cam.clipFromWorld);
+    params.eye = glm::dvec3(0, 0, 0);
+    std::vector<std::uint32_t> visible;
+    bvh.cullOccluded(params, occlusion, visible, &stats);
+    return std::set<std::uint32_t>(visible.begin(), visible.end());
+  }
 };
 
 TEST_P(OcclusionCull, AWallBesideTheEyeIsDrawnBeforeWhatItHidesWhateverTheTree)
@@ -665,21 +691,12 @@ TEST_P(OcclusionCull, ObjectsLeftOutNeitherOccludeNorShow)
   const Camera cam = perspectiveCamera({ 0, 0, 0 }, { 0, 1, 0 }, 60.0, 160, 120, 0.1, 100.0);
   auto cull = [&](const std::vector<std::uint8_t>& active, culling::CullStats& stats)
   {
-    MaskedDepthBuffer buffer = bufferFor(cam);
-    culling::OcclusionCull occlusion;
-    occlusion.buffer = &buffer;
-    occlusion.drawOccluder = [&](std::uint32_t id)
+    const auto occludes = [&](std::uint32_t id)
     {
       EXPECT_TRUE(active[id]) << "object " << id << " was left out but drawn as an occluder";
-      draw(buffer, cam, scene.faces[id]);
+      return true;
     };
-    occlusion.active = active.data();
-    culling::CullParams params;
-    params.frustum = culling::Frustum::fromViewProjection(cam.clipFromWorld);
-    params.eye = glm::dvec3(0, 0, 0);
-    std::vector<std::uint32_t> visible;
-    bvh.cullOccluded(params, occlusion, visible, &stats);
-    return std::set<std::uint32_t>(visible.begin(), visible.end());
+    return scene.cull(bvh, cam, active.data(), occludes, stats);
   };
   std::vector<std::uint8_t> all(scene.boxes.size(), 1);
   culling::CullStats stats;
@@ -699,6 +716,62 @@ TEST_P(OcclusionCull, ObjectsLeftOutNeitherOccludeNorShow)
   EXPECT_EQ(fewer.size(), 19u);
   EXPECT_EQ(fewer.count(7), 0u) << "a left-out block is listed";
   EXPECT_EQ(stats.objectsTested, 19u);
+}
+
+TEST_P(OcclusionCull, NodesStandForTheirActiveObjects)
+{
+  // A wall two units in front of the eye and 400 blocks behind it, spread across the view.
+  // Another culler kept the wall and 5 blocks: the traversal visits the nodes above those alone
+  // (a node is the box around its active objects; one without any is not entered) and its
+  // statistics count them alone.
+  QuadScene scene;
+  scene.addRectangleAtY(-8, 8, 2, -6, 6);
+  for (int i = 0; i < 400; ++i)
+  {
+    const double x = -12.0 + 0.06 * i;
+    scene.addRectangleAtY(x, x + 0.04, 10.0 + (i % 5), -0.05, 0.05);
+  }
+  culling::Bvh bvh;
+  bvh.build(scene.boxes);
+  const Camera cam = perspectiveCamera({ 0, 0, 0 }, { 0, 1, 0 }, 60.0, 160, 120, 0.1, 100.0);
+  auto cull = [&](const std::uint8_t* active, bool withWall, culling::CullStats& stats)
+  {
+    return scene.cull(
+      bvh, cam, active, [&](std::uint32_t id) { return id != 0 || withWall; }, stats);
+  };
+  const std::set<std::uint32_t> kept = { 0, 3, 101, 102, 250, 399 };
+  std::vector<std::uint8_t> active(scene.boxes.size(), 0);
+  for (const std::uint32_t id : kept)
+  {
+    active[id] = 1;
+  }
+  culling::CullStats all, few;
+  // Without the wall drawn every block in the frustum is seen: the blocks kept, those of the
+  // others in view.
+  const std::set<std::uint32_t> seenAll = cull(nullptr, false, all);
+  const std::set<std::uint32_t> seenFew = cull(active.data(), false, few);
+  std::set<std::uint32_t> expected;
+  for (const std::uint32_t id : kept)
+  {
+    if (seenAll.count(id))
+    {
+      expected.insert(id);
+    }
+  }
+  EXPECT_GT(seenAll.size(), 100u);
+  EXPECT_EQ(seenFew, expected);
+  EXPECT_GE(expected.size(), 3u) << "the kept blocks are in view";
+  const std::size_t depth = 2 * static_cast<std::size_t>(std::ceil(std::log2(401.0 / 4))) + 2;
+  EXPECT_LE(few.nodesVisited, kept.size() * depth)
+    << "nodes without an active object were entered (all active: " << all.nodesVisited << ")";
+  EXPECT_LE(few.objectsTested, kept.size());
+  EXPECT_EQ(few.culledFrustum, kept.size() - expected.size())
+    << "culled by the frustum counts the active objects, not the subtrees";
+  // With the wall: the 5 blocks are hidden, and culled by occlusion counts them, not the
+  // subtrees they are in.
+  culling::CullStats walled;
+  EXPECT_EQ(cull(active.data(), true, walled), (std::set<std::uint32_t>{ 0 }));
+  EXPECT_EQ(walled.culledOcclusion + walled.culledFrustum, kept.size() - 1);
 }
 
 TEST_P(OcclusionBuffer, TheRevisionChangesWhenATestsAnswerMay)

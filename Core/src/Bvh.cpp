@@ -439,30 +439,37 @@ void Bvh::cull(const CullParams& params, std::vector<std::uint32_t>& visible, Cu
 bool Bvh::nodePasses(Frame& f, std::uint32_t ni, std::uint8_t& mask) const
 {
   const Node& node = nodes_[ni];
+  return boxPasses(f, ni, node.lo, node.hi, node.objects, mask);
+}
+
+bool Bvh::boxPasses(Frame& f, std::uint32_t ni, const glm::dvec3& lo, const glm::dvec3& hi,
+  std::uint32_t objects, std::uint8_t& mask) const
+{
   const CullParams& params = f.params;
   ++f.stats.nodesVisited;
-  if (mask && !testBoxMasked(params.frustum, node.lo, node.hi, mask, nodeHint_[ni]))
+  if (mask && !testBoxMasked(params.frustum, lo, hi, mask, nodeHint_[ni]))
   {
-    f.stats.culledFrustum += node.objects;
+    f.stats.culledFrustum += objects;
     return false;
   }
-  if (f.distance && nearestDistance2(params.eye, node.lo, node.hi) > f.maxDistance2)
+  if (f.distance && nearestDistance2(params.eye, lo, hi) > f.maxDistance2)
   {
-    f.stats.culledDistance += node.objects;
+    f.stats.culledDistance += objects;
     return false;
   }
-  const glm::dvec3 center = (node.lo + node.hi) * 0.5;
-  const double radius = 0.5 * glm::length(node.hi - node.lo);
+  const glm::dvec3 center = (lo + hi) * 0.5;
+  const double radius = 0.5 * glm::length(hi - lo);
   if (f.nodeContribution && tooSmall(params, center, radius, radius))
   {
-    f.stats.culledContribution += node.objects;
+    f.stats.culledContribution += objects;
     return false;
   }
+  // The node's cone holds the normals of all its objects, so of any of them inside [lo, hi].
   if (f.cones && nodeCones_[ni].canCull() &&
     (params.parallel ? backFacingAlong(nodeCones_[ni], params.viewDirection)
                      : backFacingFromEye(nodeCones_[ni], center, radius, params.eye)))
   {
-    f.stats.culledNormalCone += node.objects;
+    f.stats.culledNormalCone += objects;
     return false;
   }
   return true;
@@ -657,12 +664,51 @@ void Bvh::cullOccluded(const CullParams& params,
   }
   if (!nodes_.empty())
   {
+    if (occlusion.active)
+    {
+      boundActive(occlusion.active);
+    }
     cullNodeOccluded(frame, 0, allPlanes);
   }
   appendAlwaysVisible(visible, local);
   if (stats)
   {
     *stats = local;
+  }
+}
+
+void Bvh::boundActive(const std::uint8_t* active)
+{
+  constexpr double inf = std::numeric_limits<double>::infinity();
+  activeBounds_.resize(nodes_.size());
+  // Children have larger indices than their parent: one reverse sweep.
+  for (std::size_t ni = nodes_.size(); ni-- > 0;)
+  {
+    const Node& node = nodes_[ni];
+    NodeBound& b = activeBounds_[ni];
+    if (node.isLeaf())
+    {
+      b.lo = glm::dvec3(inf);
+      b.hi = glm::dvec3(-inf);
+      b.objects = 0;
+      for (std::uint32_t p = node.first; p < node.first + node.count; ++p)
+      {
+        if (!always_[p] && active[id_[p]])
+        {
+          b.lo = glm::min(b.lo, glm::dvec3(boxes_.minX[p], boxes_.minY[p], boxes_.minZ[p]));
+          b.hi = glm::max(b.hi, glm::dvec3(boxes_.maxX[p], boxes_.maxY[p], boxes_.maxZ[p]));
+          ++b.objects;
+        }
+      }
+    }
+    else
+    {
+      const NodeBound& l = activeBounds_[ni + 1];
+      const NodeBound& r = activeBounds_[node.first];
+      b.lo = glm::min(l.lo, r.lo);
+      b.hi = glm::max(l.hi, r.hi);
+      b.objects = l.objects + r.objects;
+    }
   }
 }
 
@@ -680,8 +726,20 @@ void Bvh::cullNodeOccluded(OcclusionFrame& of, std::uint32_t root, std::uint8_t 
   const auto later = [](const HeapEntry& a, const HeapEntry& b) {
     return a.nearness > b.nearness || (a.nearness == b.nearness && a.index > b.index);
   };
-  const Node& rootNode = nodes_[root];
-  heap.push_back({ nearness(f.params, rootNode.lo, rootNode.hi), root, rootMask, false });
+  // With objects left out (OcclusionCull::active), a node is the box around its active objects,
+  // and a node without any is not visited.
+  const bool pruned = of.occlusion.active != nullptr;
+  const auto bound = [&](std::uint32_t ni)
+  {
+    const Node& node = nodes_[ni];
+    return pruned ? activeBounds_[ni] : NodeBound{ node.lo, node.hi, node.objects };
+  };
+  const NodeBound rootBound = bound(root);
+  if (rootBound.objects == 0)
+  {
+    return;
+  }
+  heap.push_back({ nearness(f.params, rootBound.lo, rootBound.hi), root, rootMask, false });
   while (!heap.empty())
   {
     std::pop_heap(heap.begin(), heap.end(), later);
@@ -731,23 +789,28 @@ void Bvh::cullNodeOccluded(OcclusionFrame& of, std::uint32_t root, std::uint8_t 
       continue;
     }
     const std::uint32_t ni = entry.index;
-    if (!nodePasses(f, ni, mask))
+    const NodeBound b = bound(ni);
+    if (!boxPasses(f, ni, b.lo, b.hi, b.objects, mask))
     {
       continue;
     }
     const Node& node = nodes_[ni];
     ++f.stats.occlusionTests;
-    if (of.occlusion.buffer->boxOccluded(node.lo, node.hi))
+    if (of.occlusion.buffer->boxOccluded(b.lo, b.hi))
     {
-      f.stats.culledOcclusion += node.objects;
+      f.stats.culledOcclusion += b.objects;
       continue;
     }
     if (!node.isLeaf())
     {
       for (const std::uint32_t child : { ni + 1, node.first })
       {
-        heap.push_back({ nearness(f.params, nodes_[child].lo, nodes_[child].hi), child, mask,
-          false });
+        const NodeBound c = bound(child);
+        if (c.objects == 0)
+        {
+          continue;
+        }
+        heap.push_back({ nearness(f.params, c.lo, c.hi), child, mask, false });
         std::push_heap(heap.begin(), heap.end(), later);
       }
       continue;

@@ -58,6 +58,9 @@ public:
   // source shared by 100k actors costs one callback that marks 100k slots).
   std::unordered_map<vtkObject*, Watch> Watches;
   std::vector<std::uint32_t> DirtyList, DirtyWork;
+  /// Marked slots whose prop was out of the culler's list when the list was read (another
+  /// culler removed it): they stay marked and are re-read once the prop is back.
+  std::vector<std::uint32_t> DirtyAbsent;
   std::vector<unsigned char> Dirty;
   std::vector<std::uint32_t> PolledSlots;
   bool PolledSetChanged = true;

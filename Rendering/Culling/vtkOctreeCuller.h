@@ -64,8 +64,9 @@
  *   vtkMatrix4x4::Element) without calling Modified(), changes to cell connectivity alone (no
  *   Modified() on the polydata), and time-dependent pipeline output without a Modified() (call
  *   InvalidateProp() for those). Props that leave the
- *   renderer stop being observed at the next Cull(); all observers go with the culler or when
- *   the mode is changed.
+ *   renderer stop being observed at the next Cull() whose list changed; props that another
+ *   culler removed from the list stay observed (their events are kept until they are back);
+ *   all observers go with the culler or when the mode is changed.
  * - UPDATE_BOUNDS_EVERY_FRAME: GetBounds() of every prop every frame, like
  *   vtkFrustumCoverageCuller (same pipeline updates); always correct.
  * - UPDATE_ON_MODIFIED: GetBounds() only for props whose MTime, mapper MTime or mapper input

@@ -127,7 +127,9 @@ struct OcclusionCull
   const std::vector<std::uint32_t>* seeds = nullptr;
   /// Optional, one byte per object id: 0 leaves the object out of this cull (another culler
   /// removed it this frame): it is not tested, counted, drawn as an occluder or visible (objects
-  /// without a box, never culled, are listed as always). Nodes are tested as before.
+  /// without a box, never culled, are listed as always). A node then stands for its active
+  /// objects: it is tested with the box around them (bottom-up, O(nodes) per cull) and skipped
+  /// when it has none, and its statistics count them.
   const std::uint8_t* active = nullptr;
 };
 
@@ -213,6 +215,18 @@ private:
   /// Hands the object at position @p p to drawOccluder once per cull (if worthDrawing).
   void drawOnce(OcclusionFrame& frame, std::uint32_t p);
   bool nodePasses(Frame& frame, std::uint32_t node, std::uint8_t& mask) const;
+  /// nodePasses() for the @p objects of node @p node inside [lo, hi].
+  bool boxPasses(Frame& frame, std::uint32_t node, const glm::dvec3& lo, const glm::dvec3& hi,
+    std::uint32_t objects, std::uint8_t& mask) const;
+  /// What a node stands for in cullOccluded(): its box and objects, or with OcclusionCull::active
+  /// its active objects' (boundActive()).
+  struct NodeBound
+  {
+    glm::dvec3 lo, hi;
+    std::uint32_t objects = 0;
+  };
+  /// activeBounds_ for @p active, children before parents.
+  void boundActive(const std::uint8_t* active);
   bool objectPasses(Frame& frame, std::uint32_t position, std::uint8_t mask) const;
   void computeNodeBounds(std::uint32_t node);
   double totalArea() const;
@@ -232,6 +246,7 @@ private:
   // cullOccluded(): frame stamp per object position when it was drawn as an occluder.
   std::vector<std::uint32_t> occluderStamp_;
   std::uint32_t occlusionFrame_ = 0;
+  std::vector<NodeBound> activeBounds_;
   std::vector<std::uint8_t> leafDirty_;
   // Build scratch.
   std::vector<glm::dvec3> centroid_;

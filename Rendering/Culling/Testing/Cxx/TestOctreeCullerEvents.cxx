@@ -4,7 +4,8 @@
 //  - the exact visible set of the ID buffer (the props' current world geometry, merged), and
 //  - the props a fresh UPDATE_BOUNDS_EVERY_FRAME culler draws (same hierarchy test on fresh
 //    bounds: also catches props that are in the frustum but hidden).
-// Also: props that leave the renderer stop being observed; deleting the culler removes its
+// Also: props another culler removed stay observed and are re-read when they are back if they
+// changed; props that leave the renderer stop being observed; deleting the culler removes its
 // observers (the objects live on and can be modified without a crash).
 #include "vtkOctreeCuller.h"
 
@@ -342,27 +343,53 @@ int TestOctreeCullerEvents(int, char*[])
       culler->GetNumberOfPolledProps() < count / 2,
     "followers and user-transform actors polled, the others on events");
 
-  // Props leaving: their observers go at the next Cull().
+  // Props that another culler removed from the list stay observed (re-observing and re-reading
+  // them every frame cost more than the cull behind vtkPortalCuller); what happens to them
+  // meanwhile is read when they are back. Props that leave the renderer stop being observed.
   {
-    std::vector<bool> few(count, false);
+    std::vector<bool> all(count, true), few(count, false);
     for (int a = 0; a < count; a += 2)
     {
       few[static_cast<std::size_t>(a)] = true; // half stay: mapped without a rebuild
     }
-    few[0] = present[0];
+    // Actor 1 out of view, read so while in the list; then it leaves the list.
+    actors[1]->SetPosition(0, 0, -500);
+    Drawn(culler, ren, actors, all);
+    const vtkIdType rebuilds = culler->GetNumberOfRebuilds();
     const vtkIdType before = culler->GetNumberOfObservedObjects();
     Drawn(culler, ren, actors, few);
-    const vtkIdType after = culler->GetNumberOfObservedObjects();
-    std::cout << "observed objects: " << before << " -> " << after << " after half the props left\n";
-    ok &= Check(after < before, "observers of props that left are removed");
-    // A prop that left and is modified meanwhile is re-read when it comes back.
-    actors[1]->SetPosition(0, 0, 3); // in view
+    ok &= Check(culler->GetNumberOfObservedObjects() == before,
+      "props another culler removed stay observed (" + std::to_string(before) + " -> " +
+        std::to_string(culler->GetNumberOfObservedObjects()) + ")");
+    // Moved into view while out of the list, for two frames: drawn when it comes back.
+    actors[1]->SetPosition(0, 0, 3);
     Drawn(culler, ren, actors, few);
     std::vector<bool> back = few;
     back[1] = true;
-    const std::vector<std::uint32_t> drawn = Drawn(culler, ren, actors, back);
+    std::vector<std::uint32_t> drawn = Drawn(culler, ren, actors, back);
     ok &= Check(std::find(drawn.begin(), drawn.end(), 1u) != drawn.end(),
-      "a prop moved while absent is drawn when it comes back");
+      "a prop moved while out of the list is drawn when it comes back");
+    // Out of the list and unchanged: drawn again when back, with no re-read needed.
+    Drawn(culler, ren, actors, few);
+    drawn = Drawn(culler, ren, actors, back);
+    ok &= Check(std::find(drawn.begin(), drawn.end(), 1u) != drawn.end(),
+      "a prop back in the list unchanged is drawn");
+    // The odd props leave the renderer: their observers go at the next Cull() (the list
+    // changes: without actor 1).
+    for (int a = 1; a < count; a += 2)
+    {
+      ren->RemoveActor(actors[static_cast<std::size_t>(a)]);
+    }
+    Drawn(culler, ren, actors, few);
+    const vtkIdType after = culler->GetNumberOfObservedObjects();
+    std::cout << "observed objects: " << before << " -> " << after
+              << " after half the props left the renderer\n";
+    ok &= Check(after < before && culler->GetNumberOfRebuilds() == rebuilds,
+      "observers of props that left the renderer are removed, without a rebuild");
+    for (int a = 1; a < count; a += 2)
+    {
+      ren->AddActor(actors[static_cast<std::size_t>(a)]);
+    }
   }
 
   // Switching modes: observers removed, and re-added (with a full re-read) when switched back.
