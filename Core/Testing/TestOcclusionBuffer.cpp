@@ -28,6 +28,7 @@
 #include <random>
 #include <set>
 #include <string>
+#include <tuple>
 
 using namespace scenevis;
 using namespace scenevis::occlusion;
@@ -1468,6 +1469,61 @@ TEST_P(OcclusionBuffer, OutlineEdgesKeepTheCoverageMarginAtEveryPixel)
 // pass all three canonical edge tests, over any narrowed range of columns of a row of tiles:
 // random triangles of every kind the set-up meets (centre-aligned and integer vertices,
 // horizontal and vertical edges, slivers, outline and interior edges, both windings).
+TEST(OcclusionNeighbours, TrianglesWithTwoPointsInOnePlaceLeaveTheSurfaceClosed)
+{
+  // A unit cube, 12 outward triangles, its corners duplicated per face (as glTF meshes split
+  // them at creases): welded by position, every edge joins two triangles.
+  std::vector<double> xyz;
+  std::vector<std::uint32_t> indices;
+  const int faces[6][4] = { { 0, 2, 3, 1 }, { 4, 5, 7, 6 }, { 0, 1, 5, 4 }, { 2, 6, 7, 3 },
+    { 0, 4, 6, 2 }, { 1, 3, 7, 5 } };
+  for (const auto& f : faces)
+  {
+    const auto base = static_cast<std::uint32_t>(xyz.size() / 3);
+    for (const int corner : f)
+    {
+      xyz.insert(xyz.end(), { double(corner & 1), double((corner >> 1) & 1), double(corner >> 2) });
+    }
+    indices.insert(indices.end(), { base, base + 1, base + 2, base, base + 2, base + 3 });
+  }
+  const std::size_t cube = indices.size() / 3;
+  auto closed = [&](const std::vector<std::uint32_t>& tris)
+  {
+    const std::vector<std::uint32_t> n =
+      buildTriangleNeighbors(xyz.data(), xyz.size() / 3, tris.data(), tris.size() / 3);
+    return std::make_pair(
+      closedSurface(xyz.data(), xyz.size() / 3, tris.data(), tris.size() / 3, n), n);
+  };
+  auto [isClosed, neighbors] = closed(indices);
+  EXPECT_TRUE(isClosed);
+  EXPECT_EQ(std::count(neighbors.begin(), neighbors.end(), kNoNeighbor), 0);
+
+  // Two degenerate triangles on the edge from corner 0 to corner 1 (a repeated point; and a
+  // triangle of that edge with one end twice): the edge still joins its two faces.
+  std::vector<std::uint32_t> withDegenerates = indices;
+  withDegenerates.insert(withDegenerates.end(), { 0, 3, 3, 3, 0, 0 });
+  std::tie(isClosed, neighbors) = closed(withDegenerates);
+  EXPECT_TRUE(isClosed) << "degenerate triangles opened the surface";
+  EXPECT_EQ(std::count(neighbors.begin(), neighbors.begin() + 3 * cube, kNoNeighbor), 0)
+    << "a degenerate triangle on an edge hid the edge's two triangles from each other";
+  EXPECT_EQ(neighbors[3 * cube], kNoNeighbor) << "a degenerate triangle has no neighbours";
+
+  // A hole (the last triangle removed) and a flipped triangle are not closed.
+  const std::vector<std::uint32_t> holed(indices.begin(), indices.end() - 3);
+  EXPECT_FALSE(closed(holed).first);
+  std::vector<std::uint32_t> flipped = indices;
+  std::swap(flipped[1], flipped[2]);
+  EXPECT_FALSE(closed(flipped).first);
+  // Collinear points, three of them distinct, are a triangle of the surface: a needle on an edge
+  // with no partner is an open edge.
+  std::vector<std::uint32_t> needle = indices;
+  xyz.insert(xyz.end(), { 0.5, 0.0, 0.0 });
+  const auto middle = static_cast<std::uint32_t>(xyz.size() / 3 - 1);
+  needle.insert(needle.end(), { 0, middle, 3 });
+  EXPECT_FALSE(closed(needle).first);
+  EXPECT_FALSE(closedSurface(xyz.data(), xyz.size() / 3, indices.data(), 0, {}));
+}
+
 TEST(OcclusionScanline, RowIntervalsAreTheCentresInsideAllThreeEdges)
 {
   constexpr int width = 96, height = 48;

@@ -962,6 +962,13 @@ std::vector<std::uint32_t> buildTriangleNeighbors(
   edges.reserve(3 * triangleCount);
   for (std::size_t t = 0; t < triangleCount; ++t)
   {
+    const std::uint32_t* tri = indices + 3 * t;
+    if (tri[0] < pointCount && tri[1] < pointCount && tri[2] < pointCount &&
+      (weld[tri[0]] == weld[tri[1]] || weld[tri[1]] == weld[tri[2]] ||
+        weld[tri[2]] == weld[tri[0]]))
+    {
+      continue; // two points in one place: no area, and its edges would hide its neighbours'
+    }
     for (int k = 0; k < 3; ++k)
     {
       const std::uint32_t i0 = indices[3 * t + k], i1 = indices[3 * t + (k + 1) % 3];
@@ -990,6 +997,37 @@ std::vector<std::uint32_t> buildTriangleNeighbors(
     i = j;
   }
   return neighbors;
+}
+
+bool closedSurface(const double* xyz, std::size_t pointCount, const std::uint32_t* indices,
+  std::size_t triangleCount, const std::vector<std::uint32_t>& neighbors)
+{
+  if (triangleCount == 0 || neighbors.size() != 3 * triangleCount)
+  {
+    return false;
+  }
+  const auto same = [xyz](std::uint32_t a, std::uint32_t b)
+  {
+    const double* p = xyz + 3 * std::size_t(a);
+    const double* q = xyz + 3 * std::size_t(b);
+    return p[0] == q[0] && p[1] == q[1] && p[2] == q[2];
+  };
+  for (std::size_t t = 0; t < triangleCount; ++t)
+  {
+    const std::uint32_t* tri = indices + 3 * t;
+    if (tri[0] >= pointCount || tri[1] >= pointCount || tri[2] >= pointCount)
+    {
+      return false;
+    }
+    const bool degenerate = same(tri[0], tri[1]) || same(tri[1], tri[2]) || same(tri[2], tri[0]);
+    if (!degenerate &&
+      (neighbors[3 * t] == kNoNeighbor || neighbors[3 * t + 1] == kNoNeighbor ||
+        neighbors[3 * t + 2] == kNoNeighbor))
+    {
+      return false;
+    }
+  }
+  return true;
 }
 
 } // namespace occlusion

@@ -179,9 +179,8 @@ vtkOccluderRasterizer::Mesh* vtkOccluderRasterizer::MeshOf(vtkPolyData* data)
       mesh.Triangles.data(), mesh.Triangles.size() / 3);
     mesh.Clusters = so::buildTriangleClusters(xyz.data(), static_cast<std::size_t>(pointCount),
       mesh.Triangles.data(), mesh.Triangles.size() / 3, kTrianglesPerCluster);
-    mesh.Closed = !mesh.Triangles.empty() &&
-      std::find(mesh.Neighbors.begin(), mesh.Neighbors.end(), so::kNoNeighbor) ==
-        mesh.Neighbors.end();
+    mesh.Closed = so::closedSurface(xyz.data(), static_cast<std::size_t>(pointCount),
+      mesh.Triangles.data(), mesh.Triangles.size() / 3, mesh.Neighbors);
     double volume = 0.0;
     for (std::size_t t = 0; t + 2 < mesh.Triangles.size(); t += 3)
     {

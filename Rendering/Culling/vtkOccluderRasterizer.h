@@ -96,8 +96,9 @@ private:
     std::vector<std::uint32_t> Neighbors; // 3 per triangle
     /// Model-space boxes of runs of kTrianglesPerCluster triangles (buildTriangleClusters).
     std::vector<double> Clusters;
-    /// Closed and consistently oriented (every edge has a neighbour): only the faces of one
-    /// side can be nearest, those facing out (Outward: the signed volume is positive).
+    /// Closed and consistently oriented (scenevis::occlusion::closedSurface(): every edge of a
+    /// triangle with three distinct points has a neighbour): only the faces of one side can be
+    /// nearest, those facing out (Outward: the signed volume is positive).
     bool Closed = false;
     bool Outward = true;
     std::uint64_t LastFrame = 0;

@@ -136,10 +136,23 @@ constexpr std::uint32_t kNoNeighbor = 0xFFFFFFFFu;
  * welded by exact coordinates (meshes that duplicate points at creases still count as one
  * surface). An edge counts as shared only when exactly two triangles use it, in opposite
  * directions (consistently oriented); anything else (boundary, non-manifold, flipped) has no
- * neighbour, which is always conservative. @p xyz: 3 coordinates per point.
+ * neighbour, which is always conservative. A triangle with two points in one place (real CAD
+ * meshes have many; OpenGL draws nothing of it) is left out: it has no neighbours and is no
+ * neighbour, so that the edge it lies on still joins the two triangles on either side.
+ * @p xyz: 3 coordinates per point.
  */
 std::vector<std::uint32_t> buildTriangleNeighbors(
   const double* xyz, std::size_t pointCount, const std::uint32_t* indices, std::size_t triangleCount);
+
+/**
+ * Whether the triangles form closed, consistently oriented surfaces: every triangle with three
+ * distinct points has a neighbour across each edge in @p neighbors (buildTriangleNeighbors() of
+ * the same triangles). Then every back face lies behind a front face of the same surface from
+ * any eye outside it, and an occluder drawn with its back faces culled hides as much. False for
+ * no triangles or an index out of range.
+ */
+bool closedSurface(const double* xyz, std::size_t pointCount, const std::uint32_t* indices,
+  std::size_t triangleCount, const std::vector<std::uint32_t>& neighbors);
 
 /**
  * Bounds of consecutive runs of an occluder's triangles, for MaskedDepthBuffer::drawTriangles:
