@@ -765,6 +765,10 @@ bool PortalTraversal::boxVisible(std::int32_t node, const Box& box) const
   {
     return !f.valid() || !culling::boxOutside(f, box.lo, box.hi);
   }
+  if (this->NodeRegions[static_cast<std::size_t>(node)].empty())
+  {
+    return false; // not reached (most rooms of a big building, for most props)
+  }
   const double slack = this->PlaneSlack;
   if (culling::pVertexDistance(f.planes[culling::kNear], box.lo, box.hi) < -slack ||
     culling::pVertexDistance(f.planes[culling::kFar], box.lo, box.hi) < -slack)

@@ -80,6 +80,12 @@ public:
 
   std::vector<Slot> Slots;
   std::unordered_map<vtkProp*, std::size_t> SlotOf;
+  // The last list handed to Cull() (before compaction) and each entry's slot (kNoSlot: none):
+  // the renderer hands the same list frame after frame, so its props are looked up only when it
+  // changes or the slots are rebuilt.
+  static constexpr std::size_t kNoSlot = static_cast<std::size_t>(-1);
+  std::vector<vtkProp*> LastList;
+  std::vector<std::size_t> ListSlots;
   scenevis::PolygonMesh Mesh;
   std::vector<std::int32_t> MeshRooms;
   sp::PortalGraph Graph;
@@ -345,16 +351,24 @@ double vtkPortalCuller::Cull(
   }
 
   // --- 3. Drawn props first (relative order kept), culled ones after. ------------------------
+  if (n != in.LastList.size() || !std::equal(propList, propList + n, in.LastList.begin()))
+  {
+    in.LastList.assign(propList, propList + n);
+    in.ListSlots.resize(n);
+    for (std::size_t i = 0; i < n; ++i)
+    {
+      const auto found = in.SlotOf.find(propList[i]);
+      in.ListSlots[i] = found != in.SlotOf.end() ? found->second : vtkInternals::kNoSlot;
+    }
+  }
   in.Keep.resize(n);
   for (std::size_t i = 0; i < n; ++i)
   {
-    vtkProp* prop = propList[i];
     bool visible = true;
     vtkIdType triangles = 0;
-    const auto found = in.SlotOf.find(prop);
-    if (found != in.SlotOf.end())
+    if (in.ListSlots[i] != vtkInternals::kNoSlot)
     {
-      const Slot& slot = in.Slots[found->second];
+      const Slot& slot = in.Slots[in.ListSlots[i]];
       triangles = slot.Triangles;
       if (usable && !slot.Never)
       {
@@ -413,6 +427,7 @@ bool vtkPortalCuller::EnsureScene(vtkRenderer* ren)
   in.PortalsTime = portalsTime;
   in.Slots.clear();
   in.SlotOf.clear();
+  in.LastList.clear(); // its slots are gone
   in.Mesh = scenevis::PolygonMesh();
   in.MeshRooms.clear();
   in.HaveGraph = false;
