@@ -765,7 +765,7 @@ bool PortalTraversal::boxVisible(std::int32_t node, const Box& box) const
   {
     return !f.valid() || !culling::boxOutside(f, box.lo, box.hi);
   }
-  if (this->NodeRegions[static_cast<std::size_t>(node)].empty())
+  if (!this->nodeVisible(node))
   {
     return false; // not reached (most rooms of a big building, for most props)
   }

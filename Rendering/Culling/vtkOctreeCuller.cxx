@@ -814,8 +814,9 @@ double vtkOctreeCuller::Cull(
     }
     this->NumberOfNodesVisited = static_cast<vtkIdType>(stats.nodesVisited);
     this->NumberOfPropsTested = static_cast<vtkIdType>(stats.objectsTested);
-    // By reason, over all props the hierarchy knows (the renderer's: equal to this list's
-    // unless another culler ran first and passed a subset). Triangles drawn: this list's (below).
+    // By reason: over all props the hierarchy knows (the renderer's: equal to this list's unless
+    // another culler ran first and passed a subset), over this list's with occlusion (its
+    // traversal leaves the others out). Triangles drawn: this list's (below).
     this->NumberOfPropsCulledByFrustum = static_cast<vtkIdType>(stats.culledFrustum);
     this->NumberOfPropsCulledBySize = static_cast<vtkIdType>(stats.culledContribution);
     this->NumberOfPropsCulledByDistance = static_cast<vtkIdType>(stats.culledDistance);

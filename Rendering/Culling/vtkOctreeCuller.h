@@ -84,10 +84,10 @@
  * in.
  *
  * Statistics of the last Cull(): nodes visited, props tested / culled (by reason) / drawn,
- * triangles drawn (polygons of the props' polydata). After another culler, the props culled by
- * each reason (whole subtrees) and the props tested count the hierarchy's props, those that
- * culler removed included (vtkOcclusionCuller tests only this list's props one by one); drawn
- * and triangles drawn count this list's.
+ * triangles drawn (polygons of the props' polydata). After another culler, vtkOctreeCuller's
+ * props culled by each reason (whole subtrees) and props tested count the hierarchy's props,
+ * those that culler removed included; vtkOcclusionCuller's count only this list's (its traversal
+ * leaves the others out). Drawn and triangles drawn count this list's.
  *
  * vtkInstancedActor: each placement is a prop of its own in the hierarchy (its box: the mesh's
  * box corners through the placement's model matrix), culled by frustum, distance, size and, in
