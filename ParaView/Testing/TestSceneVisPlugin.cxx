@@ -28,6 +28,7 @@
 #include "vtkSceneVisRenderView.h"
 
 #include "PluginTesting.h"
+#include "RetryXOpenDisplay.h"
 
 #include "vtkAlgorithm.h"
 #include "vtkCellArray.h"
@@ -572,6 +573,7 @@ int main(int argc, char* argv[])
       stateFile = argv[i];
     }
   }
+  Check(scenevis_pvtest::XOpenDisplayRetries(), "XOpenDisplay tries again when Xvfb hangs up");
   vtkInitializationHelper::Initialize(argv[0], vtkProcessModule::PROCESS_BATCH);
   {
     vtkNew<vtkSMParaViewPipelineController> controller;

@@ -23,6 +23,7 @@
 #include "vtkSceneVisRenderView.h"
 
 #include "PluginTesting.h"
+#include "RetryXOpenDisplay.h"
 
 #include "vtkCompositeDataGeometryFilter.h"
 #include "vtkGLTFReader.h"
@@ -308,6 +309,7 @@ int main(int argc, char* argv[])
     return EXIT_SUCCESS;
   }
   {
+    Check(scenevis_pvtest::XOpenDisplayRetries(), "XOpenDisplay tries again when Xvfb hangs up");
     Check(vtksys::SystemTools::MakeDirectory(options.out).IsSuccess(),
       "the output directory " + options.out);
     const vtkIdType id = vtkSMSession::ConnectToSelf();
