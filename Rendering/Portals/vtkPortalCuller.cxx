@@ -86,6 +86,24 @@ public:
   static constexpr std::size_t kNoSlot = static_cast<std::size_t>(-1);
   std::vector<vtkProp*> LastList;
   std::vector<std::size_t> ListSlots;
+  /// Per entry of LastList: drawn whatever the traversal finds (no slot, or a prop that cannot
+  /// be tested), and its triangles.
+  std::vector<unsigned char> ListAlways;
+  std::vector<vtkIdType> ListTriangles;
+  vtkIdType ListTrianglesTotal = 0;
+
+  // The props of each room: per node of the graph the slots with a cell in that room (CSR), and
+  // the slots that the frustum alone tests (no room, or a room id the graph does not know).
+  // A frame tests the props of the rooms the traversal reached, not every prop of the list;
+  // built at the first cull after the slots.
+  bool RoomSlotsReady = false;
+  std::vector<std::size_t> NodeSlotStart, NodeSlots, FrustumSlots;
+  std::vector<std::uint32_t> SlotVisibleFrame; // per slot: the last frame it was found visible
+  std::uint32_t Frame = 0;
+
+  void BuildRoomSlots();
+  /// Marks the slots the traversal finds visible this frame (SlotVisibleFrame == Frame).
+  void MarkVisibleSlots();
   scenevis::PolygonMesh Mesh;
   std::vector<std::int32_t> MeshRooms;
   sp::PortalGraph Graph;
@@ -100,6 +118,96 @@ public:
   bool WarnedCamera = false;
   bool WarnedParallel = false;
 };
+
+//------------------------------------------------------------------------------
+void vtkPortalCuller::vtkInternals::BuildRoomSlots()
+{
+  const auto nodes = static_cast<std::size_t>(this->Graph.nodeCount());
+  this->NodeSlotStart.assign(nodes + 1, 0);
+  this->NodeSlots.clear();
+  this->FrustumSlots.clear();
+  // Two passes: count per node, then place (slots in ascending order within a node).
+  for (int pass = 0; pass < 2; ++pass)
+  {
+    std::vector<std::size_t> next;
+    if (pass == 1)
+    {
+      for (std::size_t k = 0; k < nodes; ++k)
+      {
+        this->NodeSlotStart[k + 1] += this->NodeSlotStart[k];
+      }
+      next.assign(this->NodeSlotStart.begin(), this->NodeSlotStart.end() - 1);
+      this->NodeSlots.resize(this->NodeSlotStart[nodes]);
+    }
+    for (std::size_t i = 0; i < this->Slots.size(); ++i)
+    {
+      const Slot& slot = this->Slots[i];
+      if (slot.Never)
+      {
+        continue; // drawn every frame (ListAlways)
+      }
+      bool frustum = slot.Rooms.empty();
+      for (const int room : slot.Rooms)
+      {
+        const std::int32_t node = this->Graph.nodeOf(room);
+        if (node < 0)
+        {
+          frustum = true; // boxVisible(-1, ...): the frustum test
+        }
+        else if (pass == 0)
+        {
+          ++this->NodeSlotStart[static_cast<std::size_t>(node) + 1];
+        }
+        else
+        {
+          this->NodeSlots[next[static_cast<std::size_t>(node)]++] = i;
+        }
+      }
+      if (frustum && pass == 1)
+      {
+        this->FrustumSlots.push_back(i);
+      }
+    }
+  }
+  this->SlotVisibleFrame.assign(this->Slots.size(), 0);
+  this->Frame = 0;
+  this->RoomSlotsReady = true;
+}
+
+//------------------------------------------------------------------------------
+void vtkPortalCuller::vtkInternals::MarkVisibleSlots()
+{
+  if (++this->Frame == 0) // wrapped: stamps of 2^32 frames ago would read as this frame's
+  {
+    std::fill(this->SlotVisibleFrame.begin(), this->SlotVisibleFrame.end(), 0);
+    this->Frame = 1;
+  }
+  const std::uint32_t frame = this->Frame;
+  for (const std::int32_t node : this->Traversal.visibleNodes())
+  {
+    const auto k = static_cast<std::size_t>(node);
+    if (node < 0 || k + 1 >= this->NodeSlotStart.size())
+    {
+      continue;
+    }
+    for (std::size_t j = this->NodeSlotStart[k]; j < this->NodeSlotStart[k + 1]; ++j)
+    {
+      const std::size_t i = this->NodeSlots[j];
+      if (this->SlotVisibleFrame[i] != frame &&
+        this->Traversal.boxVisible(node, this->Slots[i].Bounds))
+      {
+        this->SlotVisibleFrame[i] = frame;
+      }
+    }
+  }
+  for (const std::size_t i : this->FrustumSlots)
+  {
+    if (this->SlotVisibleFrame[i] != frame && this->Traversal.boxVisible(-1, this->Slots[i].Bounds))
+    {
+      this->SlotVisibleFrame[i] = frame;
+    }
+  }
+}
 
 //------------------------------------------------------------------------------
 vtkPortalCuller::vtkPortalCuller()
@@ -355,44 +463,49 @@ double vtkPortalCuller::Cull(
   {
     in.LastList.assign(propList, propList + n);
     in.ListSlots.resize(n);
+    in.ListAlways.resize(n);
+    in.ListTriangles.resize(n);
+    in.ListTrianglesTotal = 0;
     for (std::size_t i = 0; i < n; ++i)
     {
       const auto found = in.SlotOf.find(propList[i]);
-      in.ListSlots[i] = found != in.SlotOf.end() ? found->second : vtkInternals::kNoSlot;
+      const bool known = found != in.SlotOf.end();
+      in.ListSlots[i] = known ? found->second : vtkInternals::kNoSlot;
+      in.ListAlways[i] = !known || in.Slots[found->second].Never ? 1 : 0;
+      in.ListTriangles[i] = known ? in.Slots[found->second].Triangles : 0;
+      in.ListTrianglesTotal += in.ListTriangles[i];
     }
   }
+  this->NumberOfTrianglesTotal = in.ListTrianglesTotal;
   in.Keep.resize(n);
+  if (usable && !this->FrustumOnly)
+  {
+    // The props of the rooms reached, then one stamp comparison per entry of the list.
+    if (!in.RoomSlotsReady)
+    {
+      in.BuildRoomSlots();
+    }
+    in.MarkVisibleSlots();
+    for (std::size_t i = 0; i < n; ++i)
+    {
+      in.Keep[i] = in.ListAlways[i] || in.SlotVisibleFrame[in.ListSlots[i]] == in.Frame ? 1 : 0;
+    }
+  }
+  else
+  {
+    // Everything through the frustum (a fallback: every room counts as reached), or nothing
+    // culled.
+    for (std::size_t i = 0; i < n; ++i)
+    {
+      in.Keep[i] =
+        in.ListAlways[i] || !usable || in.Traversal.boxVisible(-1, in.Slots[in.ListSlots[i]].Bounds)
+        ? 1
+        : 0;
+    }
+  }
   for (std::size_t i = 0; i < n; ++i)
   {
-    bool visible = true;
-    vtkIdType triangles = 0;
-    if (in.ListSlots[i] != vtkInternals::kNoSlot)
-    {
-      const Slot& slot = in.Slots[in.ListSlots[i]];
-      triangles = slot.Triangles;
-      if (usable && !slot.Never)
-      {
-        if (slot.Rooms.empty())
-        {
-          visible = in.Traversal.boxVisible(-1, slot.Bounds);
-        }
-        else
-        {
-          visible = false;
-          for (const int room : slot.Rooms)
-          {
-            if (in.Traversal.boxVisible(in.Graph.nodeOf(room), slot.Bounds))
-            {
-              visible = true;
-              break;
-            }
-          }
-        }
-      }
-    }
-    this->NumberOfTrianglesTotal += triangles;
-    in.Keep[i] = visible ? 1 : 0;
-    this->NumberOfTrianglesDrawn += visible ? triangles : 0;
+    this->NumberOfTrianglesDrawn += in.Keep[i] ? in.ListTriangles[i] : 0;
   }
   const int kept = this->CompactPropList(propList, listLength, in.Keep.data());
   this->NumberOfPropsCulled = listLength - kept;
@@ -428,6 +541,7 @@ bool vtkPortalCuller::EnsureScene(vtkRenderer* ren)
   in.Slots.clear();
   in.SlotOf.clear();
   in.LastList.clear(); // its slots are gone
+  in.RoomSlotsReady = false;
   in.Mesh = scenevis::PolygonMesh();
   in.MeshRooms.clear();
   in.HaveGraph = false;
