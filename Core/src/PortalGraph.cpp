@@ -3,6 +3,8 @@
 #include "scenevis/PortalGeometry.h"
 #include "scenevis/Scenes.h"
 
+#include "PortalRays.h"
+
 #include <glm/geometric.hpp>
 
 #include <algorithm>
@@ -535,6 +537,7 @@ PortalGraph PortalGraph::build(const CellSceneInput& input, PortalGraphReport* r
   g.AnyLeaky = g.AnyLeaky || g.Rooms.back().leaky;
 
   g.buildGrid();
+  g.buildRayGrids();
 
   // --- Fingerprint: topology and portal geometry. --------------------------------------------
   std::uint64_t h = kFnvOffset;
@@ -662,13 +665,36 @@ void PortalGraph::buildGrid()
     grid.portalStart, grid.portals);
 }
 
-int PortalGraph::parity(std::int32_t room, const glm::dvec3& p, const glm::dvec3& dir) const
+int PortalGraph::parity(std::int32_t room, const glm::dvec3& p, int direction) const
 {
   const GraphRoom& r = this->Rooms[static_cast<std::size_t>(room)];
-  int crossings = 0;
-  for (std::uint32_t i = r.firstPolygon; i < r.firstPolygon + r.polygonCount; ++i)
+  const glm::dvec3& dir = rays::direction(direction);
+  // The room's polygons, or those of the grid cell that holds p's projection (none outside the
+  // grid: no polygon's projection holds it).
+  const std::uint32_t* listed = nullptr;
+  std::uint32_t first = r.firstPolygon, count = r.polygonCount;
+  const RayGrid* grid = this->RayGrids.empty()
+    ? nullptr
+    : &this->RayGrids[static_cast<std::size_t>(room) * rays::kCount + direction];
+  if (grid && grid->nu > 0)
   {
-    const BoundaryPolygon& bp = this->Polygons[i];
+    glm::dvec3 u, v;
+    rays::basis(direction, u, v);
+    const double cu = std::floor((glm::dot(u, p) - grid->u0) * grid->inverseCell);
+    const double cv = std::floor((glm::dot(v, p) - grid->v0) * grid->inverseCell);
+    if (!(cu >= 0.0 && cu < grid->nu && cv >= 0.0 && cv < grid->nv))
+    {
+      return 0;
+    }
+    const std::size_t cell = static_cast<std::size_t>(cv) * grid->nu + static_cast<std::size_t>(cu);
+    listed = grid->polygons.data() + grid->start[cell];
+    first = 0;
+    count = grid->start[cell + 1] - grid->start[cell];
+  }
+  int crossings = 0;
+  for (std::uint32_t i = 0; i < count; ++i)
+  {
+    const BoundaryPolygon& bp = this->Polygons[listed ? listed[i] : first + i];
     const glm::dvec3 n(bp.plane);
     const double denom = glm::dot(n, dir);
     if (denom == 0.0)
@@ -725,19 +751,16 @@ bool PortalGraph::inside(std::int32_t room, const glm::dvec3& p) const
   {
     return true;
   }
-  // Three fixed directions in general position; the majority vote absorbs a ray that grazes an
-  // edge or a crack between polygons.
-  static const glm::dvec3 dirs[3] = { glm::normalize(glm::dvec3(0.5377, 0.8191, 0.2003)),
-    glm::normalize(glm::dvec3(-0.7071, 0.3156, 0.6321)),
-    glm::normalize(glm::dvec3(0.1234, -0.5871, -0.8001)) };
-  // Two agreeing rays decide the vote; the third is cast only when they disagree.
-  const int first = this->parity(room, p, dirs[0]);
-  const int second = this->parity(room, p, dirs[1]);
+  // Three fixed directions in general position (src/PortalRays.h); the majority vote absorbs a
+  // ray that grazes an edge or a crack between polygons. Two agreeing rays decide the vote; the
+  // third is cast only when they disagree.
+  const int first = this->parity(room, p, 0);
+  const int second = this->parity(room, p, 1);
   if (first == second)
   {
     return first == 1;
   }
-  return this->parity(room, p, dirs[2]) == 1;
+  return this->parity(room, p, 2) == 1;
 }
 
 EyeLocation PortalGraph::locate(const glm::dvec3& eye, double nearDistance,

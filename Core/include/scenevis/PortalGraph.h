@@ -199,7 +199,8 @@ public:
    *
    * Cost: sub-linear in the number of rooms and portals. A uniform grid over the building (about
    * one cell per room, built by build()) lists the rooms and portals whose bounds touch each
-   * cell; only the rooms listed in the eye's cell get the ray-parity test, and only the portals
+   * cell; only the rooms listed in the eye's cell get the ray-parity test (which reads only the
+   * polygons whose projection along the ray holds the eye, see RayGrid), and only the portals
    * of the cells within @p nearDistance get the distance test.
    */
   EyeLocation locate(const glm::dvec3& eye,
@@ -235,7 +236,26 @@ private:
     /// rounding) a point has no crossing to its right.
     double yLo = 0.0, yHi = 0.0, xBeyond = 0.0;
   };
-  int parity(std::int32_t room, const glm::dvec3& p, const glm::dvec3& dir) const;
+  /// Crossings (mod 2) of the ray from @p p along ray direction @p direction (src/PortalRays.h)
+  /// with room @p room's boundary polygons.
+  int parity(std::int32_t room, const glm::dvec3& p, int direction) const;
+
+  /**
+   * Per room and ray direction: the room's boundary polygons bucketed by their bounds projected
+   * along the direction (grown by a margin far above the rounding of the crossing test), in a
+   * uniform 2D grid. A ray's line meets a polygon only where the polygon's projection holds the
+   * ray's start, so parity() reads only the polygons of that cell: the same crossings, for
+   * rooms of thousands of polygons (real levels' merged rooms). Rooms with fewer polygons than
+   * kRayGridMinPolygons have no grid (cells 0) and every polygon is read.
+   */
+  struct RayGrid
+  {
+    double u0 = 0.0, v0 = 0.0, inverseCell = 0.0;
+    int nu = 0, nv = 0;
+    std::vector<std::uint32_t> start, polygons; ///< CSR per cell (u + nu v): polygon indices
+  };
+  static constexpr std::uint32_t kRayGridMinPolygons = 32;
+  void buildRayGrids();
 
   std::int32_t RoomCount = 0;
   std::vector<GraphRoom> Rooms;
@@ -244,6 +264,7 @@ private:
   std::vector<glm::dvec3> PolygonPoints;
   Box BuildingBounds;
   BoxGrid Grid;
+  std::vector<RayGrid> RayGrids; ///< 3 per room (src/PortalRays.h's directions)
   double Tolerance = 1e-12;
   bool AnyLeaky = false;
   std::uint64_t Fingerprint = 0;
