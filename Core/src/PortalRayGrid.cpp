@@ -92,6 +92,20 @@ void PortalGraph::buildRayGrids()
       grid.nv = std::clamp(static_cast<int>(std::floor((v1 - v0) * grid.inverseCell)) + 1, 1, 257);
       const std::size_t cellCount = std::size_t(grid.nu) * std::size_t(grid.nv);
       grid.start.assign(cellCount + 1, 0);
+      // Polygons whose projected bounds span many cells (long slanted slivers) could make the
+      // lists quadratic in the polygons: past 64 entries per polygon, no grid.
+      std::size_t entries = 0;
+      for (std::uint32_t i = 0; i < r.polygonCount; ++i)
+      {
+        entries +=
+          std::size_t(cellOf(hi[2 * i], u0, grid.nu) - cellOf(lo[2 * i], u0, grid.nu) + 1) *
+          std::size_t(cellOf(hi[2 * i + 1], v0, grid.nv) - cellOf(lo[2 * i + 1], v0, grid.nv) + 1);
+      }
+      if (entries > 64u * std::size_t(r.polygonCount))
+      {
+        grid = RayGrid();
+        continue;
+      }
       for (int pass = 0; pass < 2; ++pass)
       {
         std::vector<std::uint32_t> next;
