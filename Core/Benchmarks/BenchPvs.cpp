@@ -56,9 +56,10 @@ using namespace scenevis::portals;
 
 namespace
 {
-/// A fingerprint of an exact traversal's result: the rooms reached and every region rectangle,
-/// bit for bit (to show that a faster traversal gives the same answer), chained onto @p h.
-std::uint64_t TraversalFingerprint(const PortalTraversal& t, std::uint64_t h)
+/// A fingerprint of an exact traversal's result, chained onto @p h: the rooms reached and, with
+/// @p regions, every region rectangle, bit for bit (to show that a faster traversal gives the same
+/// answer); without, two traversals that reach the same rooms from every camera give one value.
+std::uint64_t TraversalFingerprint(const PortalTraversal& t, std::uint64_t h, bool regions = true)
 {
   const auto mix = [&h](std::uint64_t v) { h ^= v + 0x9e3779b97f4a7c15ull + (h << 6) + (h >> 2); };
   std::vector<std::int32_t> nodes = t.visibleNodes();
@@ -66,7 +67,7 @@ std::uint64_t TraversalFingerprint(const PortalTraversal& t, std::uint64_t h)
   for (const std::int32_t n : nodes)
   {
     mix(static_cast<std::uint64_t>(n));
-    for (const glm::dvec4& r : t.regionRectangles(n))
+    for (const glm::dvec4& r : regions ? t.regionRectangles(n) : std::vector<glm::dvec4>())
     {
       for (int k = 0; k < 4; ++k)
       {
@@ -75,6 +76,10 @@ std::uint64_t TraversalFingerprint(const PortalTraversal& t, std::uint64_t h)
         mix(bits);
       }
     }
+  }
+  if (!regions)
+  {
+    mix(0xffffffffull); // end of this camera's rooms
   }
   return h;
 }
@@ -213,7 +218,8 @@ int benchSceneFile(const std::string& scene, const std::string& portalsFile,
   std::size_t exactRooms = 0, pvsRooms = 0, outsidePvs = 0, fallbacks = 0;
   std::size_t outsideRegions = 0, outsideBelowPixel = 0, outsideSeenByRay = 0;
   std::size_t rayRooms = 0, rayMisses = 0;
-  std::uint64_t fingerprint = 0;
+  std::uint64_t fingerprint = 0, roomsFingerprint = 0;
+  std::size_t expanded = 0, merged = 0, crossings = 0;
   const auto portalsOf = bench::PortalsOfNodes(graph);
   double largestOutside = 0.0;
   PortalTraversal t;
@@ -243,6 +249,10 @@ int benchSceneFile(const std::string& scene, const std::string& portalsFile,
     std::vector<std::int32_t> reached = t.visibleNodes();
     exactRooms += reached.size();
     fingerprint = TraversalFingerprint(t, fingerprint);
+    roomsFingerprint = TraversalFingerprint(t, roomsFingerprint, false);
+    expanded += t.stats().regionsExpanded;
+    merged += t.stats().regionsMerged;
+    crossings += t.stats().portalsTraversed;
     for (std::size_t r = 0; r < std::max<std::size_t>(repeats, 1); ++r)
     {
       auto s = Clock::now();
@@ -335,14 +345,17 @@ int benchSceneFile(const std::string& scene, const std::string& portalsFile,
     std::printf(
       "traversal from %zu cameras (%zu runs each; per camera the median): exact frustum "
       "narrowing median %.3f ms, 90th percentile %.3f ms, max %.3f ms, %.1f nodes "
-      "reached (result fingerprint %016llx); portal-flow PVS lookup median %.3f ms, %.1f nodes; "
+      "reached (result fingerprint %016llx, rooms %016llx; per frame %.1f regions expanded, %.1f "
+      "crossings made a region, %.2f merges); portal-flow PVS lookup median %.3f ms, %.1f nodes; "
       "%zu frustum-only "
       "fallbacks; rooms the exact traversal reaches outside the PVS: %zu (through %zu regions, "
       "%zu of them narrower than a pixel of 1024x1024; the widest %.2f pixels; %zu of these rooms "
       "reached by a ray from the eye through portals: PVS misses)\n",
       cameras.size(), std::max<std::size_t>(repeats, 1), median(exactMs), percentile(exactMs, 0.9),
       percentile(exactMs, 1.0), static_cast<double>(exactRooms) / n,
-      static_cast<unsigned long long>(fingerprint), median(pvsMs),
+      static_cast<unsigned long long>(fingerprint),
+      static_cast<unsigned long long>(roomsFingerprint), static_cast<double>(expanded) / n,
+      static_cast<double>(crossings) / n, static_cast<double>(merged) / n, median(pvsMs),
       static_cast<double>(pvsRooms) / n, fallbacks, outsidePvs, outsideRegions, outsideBelowPixel,
       largestOutside, outsideSeenByRay);
   }

@@ -104,7 +104,7 @@ void PortalTraversal::fallBack(Fallback why)
 {
   this->FrustumOnly = true;
   this->Stats.fallback = why;
-  this->Stack.clear();
+  this->WorkList.clear();
   this->Visible.clear();
   if (this->Graph)
   {
@@ -168,7 +168,7 @@ bool PortalTraversal::begin(const PortalGraph& graph, const PortalView& view,
   this->Planes.clear();
   this->Vertices.clear();
   this->Visible.clear();
-  this->Stack.clear();
+  this->WorkList.clear();
   this->PlaneSlack = 10.0 * graph.tolerance();
 
   this->ViewFrustum = culling::Frustum::fromViewProjection(view.clipFromWorld);
@@ -342,11 +342,18 @@ bool PortalTraversal::attach(std::int32_t node, std::uint32_t region, bool check
     list.assign(1, merged);
     ++generation;
     ++this->Stats.regionsMerged;
-    this->Stack.push_back(Work{ node, merged, generation });
+    this->push(node, merged, generation);
     return true;
   }
-  this->Stack.push_back(Work{ node, region, generation });
+  this->push(node, region, generation);
   return true;
+}
+
+void PortalTraversal::push(std::int32_t node, std::uint32_t region, std::uint32_t generation)
+{
+  const glm::dvec4& r = this->Regions[region].rect;
+  this->WorkList.push_back(Work{ (r.z - r.x) * (r.w - r.y), node, region, generation });
+  std::push_heap(this->WorkList.begin(), this->WorkList.end(), narrower);
 }
 
 const PortalTraversal::ClippedPortal& PortalTraversal::clippedPortal(std::uint32_t index)
@@ -694,10 +701,11 @@ void PortalTraversal::run(const PortalGraph& graph, const PortalView& view,
       return;
     }
   }
-  while (!this->Stack.empty() && !this->FrustumOnly)
+  while (!this->WorkList.empty() && !this->FrustumOnly)
   {
-    const Work w = this->Stack.back();
-    this->Stack.pop_back();
+    std::pop_heap(this->WorkList.begin(), this->WorkList.end(), narrower);
+    const Work w = this->WorkList.back();
+    this->WorkList.pop_back();
     if (w.generation != this->NodeGeneration[static_cast<std::size_t>(w.node)])
     {
       continue; // merged into a bigger region since it was queued

@@ -22,6 +22,11 @@
  *   portal plane only once, so walking back adds nothing new and is absorbed this way).
  * - A room with more than maxRegionsPerRoom regions has them merged into their bounding rectangle
  *   (bigger, so still conservative), which bounds the work per frame.
+ * - The work list expands the widest region first (the area of its screen rectangle): a room
+ *   reached by several paths then tends to get its widest region before the narrower ones, which
+ *   are found contained and not expanded, and rooms fill up to the merge bound less often (Freedoom
+ *   MAP12 from its player starts: 385 -> 270 regions expanded and 25 -> 12 merges a frame, against
+ *   the last-in first-out order). Any order reaches every room some ray reaches.
  * - Portals are clipped at the eye plane, not the near plane: a ray may cross a doorway before the
  *   near plane and still show what is behind it. A portal closer to the eye than the near-plane
  *   corners (the eye stands in it) makes both its rooms start rooms with the whole frustum; a
@@ -209,10 +214,17 @@ private:
   };
   struct Work
   {
+    double area; ///< Of the region's rectangle (NDC): the work list expands the widest first.
     std::int32_t node;
     std::uint32_t region;
     std::uint32_t generation; ///< Stale when the node's regions were merged since.
   };
+  /// The work list's heap order: the widest region on top, the oldest of equally wide ones.
+  static bool narrower(const Work& a, const Work& b)
+  {
+    return a.area < b.area || (a.area == b.area && a.region > b.region);
+  }
+  void push(std::int32_t node, std::uint32_t region, std::uint32_t generation);
 
   bool begin(const PortalGraph& graph, const PortalView& view, const TraversalOptions& options);
   void fallBack(Fallback why);
@@ -288,7 +300,7 @@ private:
   std::vector<std::vector<std::uint32_t>> NodeRegions;
   std::vector<std::uint32_t> NodeGeneration;
   std::vector<std::int32_t> Visible;
-  std::vector<Work> Stack;
+  std::vector<Work> WorkList; ///< The work list: a heap by narrower().
   std::vector<glm::dvec3> ClipA, ClipB;
   std::vector<ClippedPortal> Clipped;
   /// Per node, its exits: Exits[ExitStart[n] .. ExitStart[n + 1]) (rebuilt with the graph).
