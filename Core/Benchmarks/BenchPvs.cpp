@@ -22,7 +22,7 @@
 // --budget S (flow budget, 0 = none)  --max-steps N (flow steps per portal before it closes)
 // --passages 0|1 (passage might-see in the flow, default 0)
 // --merge-after N (flow steps before the merged flow finishes a source, 0 = never; default 2000)
-// --max-regions N (regions per room before the exact traversal merges them, default 8)
+// --max-regions N (regions per room before the exact traversal merges them, default 16)
 // --ray-oracle N (N x N rays per camera walked through the portals: each room they enter must be
 // in the PVS; exit 1 otherwise)
 // --old-seconds S (limit of the separating-plane run, 0 skips it)  --segments N (oracle samples)
