@@ -15,6 +15,7 @@
 #   SCENEVIS_FUZZ_PORTAL_SECONDS     length of the portal generation fuzz run after that (default 30)
 #   SCENEVIS_FUZZ_RECORDING_SECONDS  length of the occlusion recording fuzz run after that (default 20)
 #   SCENEVIS_FUZZ_INSIDE_SECONDS     length of the rooms' inside test fuzz run after that (default 20)
+#   SCENEVIS_FUZZ_TRAVERSAL_SECONDS  length of the portal traversal fuzz run after that (default 20)
 #   SCENEVIS_SANITIZE_CXX     compiler for the ASan build (default: CMake's default, g++ on Debian)
 #
 # Only SceneVis' own code is instrumented (CMake option SCENEVIS_SANITIZE); VTK, GoogleTest and the
@@ -30,6 +31,7 @@ partorderseconds=${SCENEVIS_FUZZ_PART_ORDER_SECONDS:-20}
 portalseconds=${SCENEVIS_FUZZ_PORTAL_SECONDS:-30}
 recordingseconds=${SCENEVIS_FUZZ_RECORDING_SECONDS:-20}
 insideseconds=${SCENEVIS_FUZZ_INSIDE_SECONDS:-20}
+traversalseconds=${SCENEVIS_FUZZ_TRAVERSAL_SECONDS:-20}
 jobs=$(nproc)
 start=$(date +%s)
 
@@ -56,8 +58,8 @@ export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
 cmake --build "$build" -j"$jobs" --target scenevis_core_tests scenevis_fuzz_bsp_replay \
   scenevis_fuzz_occlusion_replay scenevis_fuzz_part_order_replay scenevis_fuzz_portal_generation_replay \
   scenevis_fuzz_make_portal_corpus scenevis_fuzz_recording_replay scenevis_fuzz_make_recording_corpus \
-  scenevis_fuzz_portal_inside_replay scenevis_split_parts_tests scenevis_instances_tests \
-  scenevis_huge_pages_tests \
+  scenevis_fuzz_portal_inside_replay scenevis_fuzz_portal_traversal_replay \
+  scenevis_split_parts_tests scenevis_instances_tests scenevis_huge_pages_tests \
   SceneVisFiltersSortingCxxTests SceneVisFiltersSortingRenderingCxxTests \
   SceneVisFiltersSourcesCxxTests SceneVisFiltersPortalsCxxTests SceneVisIOModelsCxxTests \
   SceneVisRenderingCullingCxxTests \
@@ -109,7 +111,8 @@ cmake -S "$root" -B "$fuzzbuild" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   -DSCENEVIS_WRAP_PYTHON=OFF >"$fuzzbuild.configure.log" 2>&1 || { cat "$fuzzbuild.configure.log"; exit 1; }
 cmake --build "$fuzzbuild" -j"$jobs" --target scenevis_fuzz_bsp scenevis_fuzz_occlusion \
   scenevis_fuzz_part_order scenevis_fuzz_portal_generation scenevis_fuzz_make_portal_corpus \
-  scenevis_fuzz_recording scenevis_fuzz_make_recording_corpus scenevis_fuzz_portal_inside
+  scenevis_fuzz_recording scenevis_fuzz_make_recording_corpus scenevis_fuzz_portal_inside \
+  scenevis_fuzz_portal_traversal
 # New inputs go to a scratch directory; the committed seed corpus is only read.
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
@@ -153,5 +156,9 @@ fuzz recording scenevis_fuzz_recording "$recordingseconds" "$work/recording-seed
 # The rooms' inside test against the box rooms it is given (Core/Fuzz/FuzzPortalInside.cpp).
 fuzz inside scenevis_fuzz_portal_inside "$insideseconds" "$root/Core/Fuzz/inside-corpus" \
   "rooms' inside test"
-echo "sanitize: fuzzing ${fuzzseconds} s + occlusion ${occlusionseconds} s + two-level order ${partorderseconds} s + portal generation ${portalseconds} s + recordings ${recordingseconds} s + inside ${insideseconds} s passed (build+run $(( $(date +%s) - fuzzstart )) s)"
+# The exact portal traversal against sight lines through the portals
+# (Core/Fuzz/FuzzPortalTraversal.cpp).
+fuzz traversal scenevis_fuzz_portal_traversal "$traversalseconds" \
+  "$root/Core/Fuzz/traversal-corpus" "portal traversal"
+echo "sanitize: fuzzing ${fuzzseconds} s + occlusion ${occlusionseconds} s + two-level order ${partorderseconds} s + portal generation ${portalseconds} s + recordings ${recordingseconds} s + inside ${insideseconds} s + traversal ${traversalseconds} s passed (build+run $(( $(date +%s) - fuzzstart )) s)"
 echo "sanitize: done in $(( $(date +%s) - start )) s"

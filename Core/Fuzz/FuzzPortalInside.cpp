@@ -11,6 +11,7 @@
 //
 // SCENEVIS_FUZZ_SELFTEST=1 flips the expected answer of the first point checked (must abort on
 // any input with a point).
+#include "FuzzBytes.h"
 #include "scenevis/PolygonMesh.h"
 #include "scenevis/PortalGraph.h"
 
@@ -29,14 +30,7 @@ namespace
 using scenevis::PolygonMesh;
 using namespace scenevis::portals;
 
-struct Bytes
-{
-  const std::uint8_t* data;
-  std::size_t size;
-  std::size_t at = 0;
-  bool more() const { return at < size; }
-  unsigned next() { return at < size ? data[at++] : 0u; }
-};
+using scenevis::fuzz::Bytes;
 
 [[noreturn]] void fail(const char* what, const glm::dvec3& q)
 {

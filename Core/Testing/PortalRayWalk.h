@@ -118,6 +118,16 @@ void RayWalk(const portals::PortalGraph& graph,
   }
 }
 
+/// A box of half size @p half around @p p: PortalTraversal::boxVisible() of it asks whether a
+/// region of the room holds p (the sight-line checks).
+inline Box TinyBox(const glm::dvec3& p, double half)
+{
+  Box b;
+  b.extend(p - glm::dvec3(half));
+  b.extend(p + glm::dvec3(half));
+  return b;
+}
+
 /// Whether RayWalk() from @p start enters node @p target.
 inline bool RayReaches(const portals::PortalGraph& graph,
   const std::vector<std::vector<std::uint32_t>>& portalsOf, std::int32_t start, std::int32_t target,

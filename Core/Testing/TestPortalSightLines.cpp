@@ -3,7 +3,7 @@
 // lets the culler keep every object such a ray can meet; the oracle walks the ray through the
 // portals itself (PortalRayWalk.h), so it does not share the traversal's clipping, region
 // containment or merging.
-#include "AxisQuad.h"
+#include "OpenFloorScene.h"
 #include "PortalRayWalk.h"
 #include "scenevis/PortalGraph.h"
 #include "scenevis/PortalTraversal.h"
@@ -21,6 +21,7 @@
 
 using namespace scenevis;
 using namespace scenevis::portals;
+using scenevis::portaltest::OpenFloor;
 
 namespace
 {
@@ -44,110 +45,6 @@ std::vector<scenes::MazeConfig> openMazes()
     configs.push_back(c);
   }
   return configs;
-}
-
-/// An open floor as game levels have it: nx x ny cells of jittered widths, one storey, every face
-/// between two cells either open from wall to wall (a full-face portal, 70 %) or a wall. A room
-/// is reached along many chains of portals whose cones nest, so the traversal's regions are
-/// often contained in others (and merged), unlike in the mazes, whose openings sit inside walls.
-struct OpenFloor
-{
-  PolygonMesh mesh;
-  std::vector<std::int32_t> roomOfPolygon;
-  std::vector<PortalDesc> portals;
-  std::vector<Box> cells;
-
-  OpenFloor(int nx, int ny, std::uint64_t seed)
-  {
-    std::mt19937_64 rng(seed);
-    std::uniform_real_distribution<double> u(0.0, 1.0);
-    std::vector<double> xs{ 0.0 }, ys{ 0.0 };
-    for (int i = 0; i < nx; ++i)
-    {
-      xs.push_back(xs.back() + 0.3 + 2.0 * u(rng));
-    }
-    for (int j = 0; j < ny; ++j)
-    {
-      ys.push_back(ys.back() + 0.3 + 2.0 * u(rng));
-    }
-    const double h = 3.0;
-    const auto id = [nx](int i, int j) { return j * nx + i; };
-    const auto face = [this](std::int32_t room, int axis, double at, bool positive, double u0,
-                        double u1, double v0, double v1)
-    {
-      portaltest::addAxisQuad(this->mesh, axis, at, positive, u0, u1, v0, v1);
-      this->roomOfPolygon.push_back(room);
-    };
-    for (int j = 0; j < ny; ++j)
-    {
-      for (int i = 0; i < nx; ++i)
-      {
-        Box cell;
-        cell.extend(glm::dvec3(xs[i], ys[j], 0.0));
-        cell.extend(glm::dvec3(xs[i + 1], ys[j + 1], h));
-        this->cells.push_back(cell);
-        face(id(i, j), 2, 0.0, true, xs[i], xs[i + 1], ys[j], ys[j + 1]);
-        face(id(i, j), 2, h, false, xs[i], xs[i + 1], ys[j], ys[j + 1]);
-        // The face to +x (axis 0: u = y, v = z) and to +y (axis 1: u = z, v = x).
-        for (const int axis : { 0, 1 })
-        {
-          const bool last = axis == 0 ? i + 1 == nx : j + 1 == ny;
-          const double at = axis == 0 ? xs[i + 1] : ys[j + 1];
-          const double u0 = axis == 0 ? ys[j] : 0.0, u1 = axis == 0 ? ys[j + 1] : h;
-          const double v0 = axis == 0 ? 0.0 : xs[i], v1 = axis == 0 ? h : xs[i + 1];
-          const std::int32_t next =
-            axis == 0 ? (last ? -1 : id(i + 1, j)) : (last ? -1 : id(i, j + 1));
-          if (!last && u(rng) < 0.8)
-          {
-            std::vector<glm::dvec3> quad;
-            for (int k = 0; k < 4; ++k)
-            {
-              glm::dvec3 p(0.0);
-              p[axis] = at;
-              p[(axis + 1) % 3] = (k == 1 || k == 2) ? u1 : u0;
-              p[(axis + 2) % 3] = k >= 2 ? v1 : v0;
-              quad.push_back(p);
-            }
-            this->portals.push_back(PortalDesc{ quad, id(i, j), next });
-            continue;
-          }
-          face(id(i, j), axis, at, false, u0, u1, v0, v1);
-          if (next >= 0)
-          {
-            face(next, axis, at, true, u0, u1, v0, v1);
-          }
-        }
-        // Exterior walls to -x and -y.
-        if (i == 0)
-        {
-          face(id(i, j), 0, 0.0, true, ys[j], ys[j + 1], 0.0, h);
-        }
-        if (j == 0)
-        {
-          face(id(i, j), 1, 0.0, true, 0.0, h, xs[i], xs[i + 1]);
-        }
-      }
-    }
-  }
-
-  CellSceneInput input() const
-  {
-    CellSceneInput in;
-    in.mesh = &this->mesh;
-    in.roomOfPolygon = this->roomOfPolygon;
-    in.portals = this->portals;
-    in.roomCount = static_cast<std::int32_t>(this->cells.size());
-    return in;
-  }
-};
-
-/// A tiny box around @p p: boxVisible() of it asks whether a region of the room holds p.
-Box around(const glm::dvec3& p, double half)
-{
-  Box b;
-  b.extend(p - glm::dvec3(half));
-  b.extend(p + glm::dvec3(half));
-  return b;
 }
 
 /// What the sight-line checks went through.
@@ -205,7 +102,7 @@ void expectSightLinesInRegions(const PortalGraph& graph, const std::vector<Box>&
             // A point on the ray just beyond the portal, well inside the view's depth range.
             const glm::dvec3 p = eye + (t + 1e-4 * size) * d;
             ++count.crossings;
-            EXPECT_TRUE(traversal.boxVisible(node, around(p, 1e-9 * size)))
+            EXPECT_TRUE(traversal.boxVisible(node, bench::TinyBox(p, 1e-9 * size)))
               << name << ", view " << v << ", ray " << i << ": room " << node
               << " entered at t = " << t << " is outside every region of it";
             return !::testing::Test::HasFailure();
