@@ -19,6 +19,8 @@ namespace
 {
 /// Rectangles grow by this much (NDC) whenever they are computed: float noise never shrinks them.
 constexpr double kRectSlack = 1e-9;
+/// Merges of one room's regions in a frame after which its region is the whole view.
+constexpr std::uint32_t kMergesPerRoom = 4;
 
 /// The part of rectangle @p a (xmin, ymin, xmax, ymax) inside @p b; empty when min > max.
 glm::dvec4 intersectRects(const glm::dvec4& a, const glm::dvec4& b)
@@ -337,6 +339,14 @@ bool PortalTraversal::attach(std::int32_t node, std::uint32_t region, bool check
     {
       const glm::dvec4& q = this->Regions[r].rect;
       u = glm::dvec4(std::min(u.x, q.x), std::min(u.y, q.y), std::max(u.z, q.z), std::max(u.w, q.w));
+    }
+    if (generation >= kMergesPerRoom)
+    {
+      // The room keeps merging: each merged rectangle lets through a little more, which comes
+      // back round a cycle of rooms as a region not quite inside it (clipping keeps points
+      // within the slack), so the rectangles can creep by rounding for millions of merges. The
+      // whole view holds every region the room can get: it ends the room's merging.
+      u = glm::dvec4(-1.0, -1.0, 1.0, 1.0);
     }
     const std::uint32_t merged = this->addRegion(u);
     list.assign(1, merged);

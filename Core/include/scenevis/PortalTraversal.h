@@ -21,7 +21,10 @@
  *   because a region contained in one the room already has is not expanded again (a ray crosses a
  *   portal plane only once, so walking back adds nothing new and is absorbed this way).
  * - A room with more than maxRegionsPerRoom (16) regions has them merged into their bounding
- *   rectangle (bigger, so still conservative), which bounds the work per frame.
+ *   rectangle (bigger, so still conservative); a room merged 4 times in a frame gets the whole
+ *   view as its region (merged rectangles, which have no entry plane, can otherwise creep by the
+ *   clipping slack round a cycle of rooms for millions of merges). Together these bound the work
+ *   per frame: a room attaches at most (maxRegionsPerRoom + 1) x 5 regions.
  * - The work list expands the widest region first (the area of its screen rectangle): a room
  *   reached by several paths then tends to get its widest region before the narrower ones, which
  *   are found contained and not expanded, and rooms fill up to the merge bound less often.
