@@ -67,7 +67,11 @@ std::uint64_t TraversalFingerprint(const PortalTraversal& t, std::uint64_t h, bo
   for (const std::int32_t n : nodes)
   {
     mix(static_cast<std::uint64_t>(n));
-    for (const glm::dvec4& r : regions ? t.regionRectangles(n) : std::vector<glm::dvec4>())
+    if (!regions)
+    {
+      continue;
+    }
+    for (const glm::dvec4& r : t.regionRectangles(n))
     {
       for (int k = 0; k < 4; ++k)
       {

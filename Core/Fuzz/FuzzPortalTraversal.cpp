@@ -104,63 +104,47 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     traversal.run(graph, view, options);
     const Fallback fallback = traversal.stats().fallback;
 
-    // The rays, from the camera's frame as glm::lookAt() makes it (not from the matrix: no
-    // rounding of its inverse 1e7 from the origin), through the centres of a 12 x 12 grid over
-    // the near rectangle: 1/24 of it inside the frustum's side planes.
-    const glm::dvec3 right = glm::normalize(glm::cross(forward, glm::dvec3(0, 0, 1)));
-    const glm::dvec3 up = glm::cross(right, forward);
-    const double halfWidth = std::tan(glm::radians(fov) / 2.0);
+    // 12 x 12 rays over the view: 1/24 of it inside the frustum's side planes.
     const EyeLocation start = graph.locate(eye, 0.0, OutsidePolicy::ExteriorPortals);
-    for (int i = 0; i < kRays * kRays; ++i)
-    {
-      const double x = -1.0 + 2.0 * ((i % kRays) + 0.5) / kRays;
-      const double y = -1.0 + 2.0 * ((i / kRays) + 0.5) / kRays;
-      const glm::dvec3 d = glm::normalize(forward + halfWidth * (x * right + y * up));
-      for (const std::int32_t room : start.nodes)
+    scenevis::bench::WalkViewRays(graph, portalsOf, start.nodes, eye, forward, fov, kRays,
+      [&](int ray, std::int32_t node, double t, const glm::dvec3& d)
       {
-        scenevis::bench::RayWalk(graph, portalsOf, room, eye, d,
-          [&](std::int32_t node, double t)
-          {
-            // A point on the ray just beyond the portal (as the test). Where that is nearer than
-            // the near plane (an eye close to the portal), the point where the ray is as far
-            // beyond the near plane: regions are cones from the eye (the traversal clips portals
-            // at the eye plane, not the near plane), so any point of the ray in the view's depth
-            // range asks the same, and boxVisible() drops boxes before the near plane.
-            const double beyond = 1e-4 * sceneSize;
-            const double s = std::max(t + beyond, (nearPlane + beyond) / glm::dot(d, forward));
-            const glm::dvec3 p = eye + s * d;
-            // The box: 1e-9 of the building's size as the test, plus 4 units of rounding of p's
-            // coordinates. 1e7 from the origin a double resolves 1.9e-9 and p (and the ray's
-            // crossing) is rounded by as much: 1e-9 of a building 3 to 36 across is 1.6 to 19
-            // units of rounding only. At the origin the second term is below 1e-13.
-            const double coordinate = std::max({ std::abs(p.x), std::abs(p.y), std::abs(p.z) });
-            const double half =
-              1e-9 * sceneSize + 4.0 * std::numeric_limits<double>::epsilon() * coordinate;
-            bool expected = true;
-            if (selftest && !flipped)
-            {
-              expected = false;
-              flipped = true;
-            }
-            if (traversal.boxVisible(node, scenevis::bench::TinyBox(p, half)) != expected)
-            {
-              std::fprintf(stderr,
-                "FuzzPortalTraversal: view %d, ray %d (from room %d): room %d entered at t = "
-                "%.17g is %s\n  eye (%.17g, %.17g, %.17g), d (%.17g, %.17g, %.17g), point at "
-                "s = %.17g\n  floor %d x %d seed %llu flags %u, %s, %zu regions per room, fallback "
-                "%d, "
-                "near %.17g, view angle %.17g\n",
-                v, i, room, node, t,
-                expected ? "outside every region of it" : "in a region (self-test)", eye.x, eye.y,
-                eye.z, d.x, d.y, d.z, s, nx, ny, static_cast<unsigned long long>(seed), flags,
-                options.mode == NarrowingMode::ExactFrustum ? "exact" : "rectangles",
-                options.maxRegionsPerRoom, static_cast<int>(fallback), nearPlane, fov);
-              std::abort();
-            }
-            return true;
-          });
-      }
-    }
+        // A point on the ray just beyond the portal (as the test). Where that is nearer than the
+        // near plane (an eye close to the portal), the point where the ray is as far beyond the
+        // near plane: regions are cones from the eye (the traversal clips portals at the eye
+        // plane, not the near plane), so any point of the ray in the view's depth range asks the
+        // same, and boxVisible() drops boxes before the near plane.
+        const double beyond = 1e-4 * sceneSize;
+        const double s = std::max(t + beyond, (nearPlane + beyond) / glm::dot(d, forward));
+        const glm::dvec3 p = eye + s * d;
+        // The box: 1e-9 of the building's size as the test, plus 4 units of rounding of p's
+        // coordinates. 1e7 from the origin a double resolves 1.9e-9 and p (and the ray's
+        // crossing) is rounded by as much: 1e-9 of a building 3 to 36 across is 1.6 to 19 units
+        // of rounding only. At the origin the second term is below 1e-13.
+        const double coordinate = std::max({ std::abs(p.x), std::abs(p.y), std::abs(p.z) });
+        const double half =
+          1e-9 * sceneSize + 4.0 * std::numeric_limits<double>::epsilon() * coordinate;
+        bool expected = true;
+        if (selftest && !flipped)
+        {
+          expected = false;
+          flipped = true;
+        }
+        if (traversal.boxVisible(node, scenevis::bench::TinyBox(p, half)) != expected)
+        {
+          std::fprintf(stderr,
+            "FuzzPortalTraversal: view %d, ray %d: room %d entered at t = %.17g is %s\n  eye "
+            "(%.17g, %.17g, %.17g), d (%.17g, %.17g, %.17g), point at s = %.17g\n  floor %d x %d "
+            "seed %llu flags %u, %s, %zu regions per room, fallback %d, near %.17g, view angle "
+            "%.17g\n",
+            v, ray, node, t, expected ? "outside every region of it" : "in a region (self-test)",
+            eye.x, eye.y, eye.z, d.x, d.y, d.z, s, nx, ny, static_cast<unsigned long long>(seed),
+            flags, options.mode == NarrowingMode::ExactFrustum ? "exact" : "rectangles",
+            options.maxRegionsPerRoom, static_cast<int>(fallback), nearPlane, fov);
+          std::abort();
+        }
+        return true;
+      });
   }
   return 0;
 }

@@ -11,6 +11,7 @@
 #include <glm/geometric.hpp>
 #include <glm/glm.hpp>
 
+#include <cmath>
 #include <cstdint>
 #include <limits>
 #include <vector>
@@ -114,6 +115,36 @@ void RayWalk(const portals::PortalGraph& graph,
     if (!enter(node, best))
     {
       return;
+    }
+  }
+}
+
+/**
+ * The sight lines of a perspective view, walked: @p raysPerSide x @p raysPerSide rays from @p eye
+ * through the centres of a grid over the view (unit direction @p forward, up towards +z as
+ * glm::lookAt(eye, eye + forward, (0, 0, 1)) makes it, view angle @p fovDegrees on a square
+ * image), built from the camera's frame rather than an inverted matrix (no rounding of the inverse
+ * far from the origin). Each ray is walked by RayWalk() from every node of @p starts;
+ * @p visit(ray, node, t, d) for every node entered (return false to stop that walk).
+ */
+template <typename Visit>
+void WalkViewRays(const portals::PortalGraph& graph,
+  const std::vector<std::vector<std::uint32_t>>& portalsOf, const std::vector<std::int32_t>& starts,
+  const glm::dvec3& eye, const glm::dvec3& forward, double fovDegrees, int raysPerSide,
+  Visit&& visit)
+{
+  const glm::dvec3 right = glm::normalize(glm::cross(forward, glm::dvec3(0, 0, 1)));
+  const glm::dvec3 up = glm::cross(right, forward);
+  const double halfWidth = std::tan(glm::radians(fovDegrees) / 2.0);
+  for (int i = 0; i < raysPerSide * raysPerSide; ++i)
+  {
+    const double x = -1.0 + 2.0 * ((i % raysPerSide) + 0.5) / raysPerSide;
+    const double y = -1.0 + 2.0 * ((i / raysPerSide) + 0.5) / raysPerSide;
+    const glm::dvec3 d = glm::normalize(forward + halfWidth * (x * right + y * up));
+    for (const std::int32_t room : starts)
+    {
+      RayWalk(graph, portalsOf, room, eye, d,
+        [&](std::int32_t node, double t) { return visit(i, node, t, d); });
     }
   }
 }

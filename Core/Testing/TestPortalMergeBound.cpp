@@ -65,29 +65,16 @@ TEST(PortalTraversal, RoomsThatKeepMergingEndWithTheWholeViewAndLoseNoSightLine)
 
       // The whole view is bigger than any region: still every sight line through the portals
       // lies in a region of each room it enters (as TestPortalSightLines.cpp checks).
-      const glm::dvec3 right = glm::normalize(glm::cross(forward, glm::dvec3(0, 0, 1)));
-      const glm::dvec3 up = glm::cross(right, forward);
-      const double halfWidth = std::tan(glm::radians(fov) / 2.0);
-      constexpr int kRays = 24;
-      for (int i = 0; i < kRays * kRays; ++i)
-      {
-        const double x = -1.0 + 2.0 * ((i % kRays) + 0.5) / kRays;
-        const double y = -1.0 + 2.0 * ((i / kRays) + 0.5) / kRays;
-        const glm::dvec3 d = glm::normalize(forward + halfWidth * (x * right + y * up));
-        for (const std::int32_t room : start.nodes)
+      bench::WalkViewRays(graph, portalsOf, start.nodes, eye, forward, fov, 24,
+        [&](int ray, std::int32_t node, double t, const glm::dvec3& d)
         {
-          bench::RayWalk(graph, portalsOf, room, eye, d,
-            [&](std::int32_t node, double t)
-            {
-              const double s = std::max(t, zNear / glm::dot(d, forward)) + 1e-4 * size;
-              ++crossings;
-              EXPECT_TRUE(traversal.boxVisible(node, bench::TinyBox(eye + s * d, 1e-9 * size)))
-                << "pitch " << pitch << ", " << regions << " regions per room, ray " << i
-                << ": room " << node << " entered at t = " << t << " is outside every region";
-              return !::testing::Test::HasFailure();
-            });
-        }
-      }
+          const double s = std::max(t, zNear / glm::dot(d, forward)) + 1e-4 * size;
+          ++crossings;
+          EXPECT_TRUE(traversal.boxVisible(node, bench::TinyBox(eye + s * d, 1e-9 * size)))
+            << "pitch " << pitch << ", " << regions << " regions per room, ray " << ray
+            << ": room " << node << " entered at t = " << t << " is outside every region";
+          return !::testing::Test::HasFailure();
+        });
     }
   }
   EXPECT_EQ(views, 12u);
