@@ -1,18 +1,21 @@
 // libFuzzer target for the exact portal traversal (PortalTraversal) against sight lines: arbitrary
-// bytes -> an open floor (Core/Testing/OpenFloorScene.h: 1..12 x 1..10 box rooms of one storey
+// bytes -> an open floor (Core/Testing/OpenFloorScene.h: 1..12 x 1..10 box cells of one storey
 // 1..6 high, each face between two rooms a portal with a drawn probability, the whole face or an
-// opening inside a wall, now and then 1e7 from the origin), traversal options (either narrowing
-// mode, 1..16 regions per room), then up to 6 views: the eye anywhere in a room or within 1e-6
-// of the room's size of one of its faces (a portal's plane or a wall), any yaw, pitch within
+// opening inside a wall, now and then 1e7 from the origin; with flag 8 half the faces between
+// cells open, joining cells into rooms of 2..6 cells that are not convex), traversal options
+// (either narrowing mode, 1..16 regions per room), then up to 6 views: the eye anywhere in a room
+// or within 1e-6 of the room's size of one of its faces (a portal's plane or a wall), any yaw,
+// pitch within
 // +-81 degrees, a view angle of 20..150 degrees, a near plane 1e-7..0.1 of the building's size.
 // One PortalTraversal runs every view, as a culler reuses it frame after frame.
 //
 // Oracle (as TestPortalSightLines.cpp): 12 x 12 rays per view are walked through the portals by
 // bench::RayWalk (Core/Testing/PortalRayWalk.h), which shares none of the traversal's clipping,
-// containment or merging; beyond each portal a ray crosses, the room it enters must hold the
-// ray's point in a region (boxVisible() of a tiny box around it). A frame that fell back
-// (stats().fallback) makes every room visible and tests boxes against the view frustum only
-// (PortalTraversal.h), so the same check holds for it.
+// containment or merging (in rooms of several cells a ray that passes through a wall between two
+// crossings ends there: OpenFloor::segmentInRoom); beyond each portal a ray crosses, the room it
+// enters must hold the ray's point in a region (boxVisible() of a tiny box around it). A frame that
+// fell back (stats().fallback) makes every room visible and tests boxes against the view frustum
+// only (PortalTraversal.h), so the same check holds for it.
 //
 // SCENEVIS_FUZZ_SELFTEST=1 expects the first crossing checked to be outside every region of its
 // room (must abort on any input whose rays cross a portal).
@@ -58,6 +61,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const unsigned flags = in.next();
   floorOptions.offset = (flags & 1u) ? glm::dvec3(1e7, -3e6, 2.5e6) : glm::dvec3(0.0);
   floorOptions.openings = (flags & 2u) != 0;
+  floorOptions.joinProbability = (flags & 8u) ? 0.5 : 0.0;
+  floorOptions.maxCellsPerRoom = 2 + static_cast<int>((flags >> 4) % 5);
   TraversalOptions options;
   options.mode = (flags & 4u) ? NarrowingMode::ScreenRectangles : NarrowingMode::ExactFrustum;
   options.maxRegionsPerRoom = 1 + in.next() % 16;
@@ -106,7 +111,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
 
     // 12 x 12 rays over the view: 1/24 of it inside the frustum's side planes.
     const EyeLocation start = graph.locate(eye, 0.0, OutsidePolicy::ExteriorPortals);
-    scenevis::bench::WalkViewRays(graph, portalsOf, start.nodes, eye, forward, fov, kRays,
+    scenevis::bench::WalkViewRays(
+      graph, portalsOf, start.nodes, eye, forward, fov, kRays,
       [&](int ray, std::int32_t node, double t, const glm::dvec3& d)
       {
         // A point on the ray just beyond the portal (as the test). Where that is nearer than the
@@ -144,7 +150,9 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
           std::abort();
         }
         return true;
-      });
+      },
+      [&floor](std::int32_t room, const glm::dvec3& from, const glm::dvec3& to)
+      { return floor.segmentInRoom(room, from, to); });
   }
   return 0;
 }

@@ -8,7 +8,9 @@
 
 #include <glm/vec3.hpp>
 
+#include <algorithm>
 #include <cstdint>
+#include <numeric>
 #include <random>
 #include <vector>
 
@@ -30,6 +32,12 @@ struct OpenFloorOptions
   /// from a second generator), the rest of the face a wall on each side, instead of the whole
   /// face. Which faces are portals does not change: the same seed makes the same rooms.
   bool openings = false;
+  /// Chance that the face between two neighbouring cells is open: the two cells are one room
+  /// (an L, a U, a room round a pillar of wall; at most maxCellsPerRoom cells). Between cells of
+  /// one room that are not joined directly the face is a wall (never a portal). Drawn from a third
+  /// generator: 0 (default) makes the floors above.
+  double joinProbability = 0.0;
+  int maxCellsPerRoom = 4;
 };
 
 /**
@@ -37,34 +45,54 @@ struct OpenFloorOptions
  * storey, every face between two cells either a portal (80 % by default: the whole face) or a
  * wall; exterior walls all round, a floor and a ceiling per cell. A room is reached along many
  * chains of portals whose cones nest, so the traversal's regions are often contained in others
- * (and merged), unlike in the mazes, whose openings sit inside walls.
+ * (and merged), unlike in the mazes, whose openings sit inside walls. A room is one cell, or
+ * several joined ones (OpenFloorOptions::joinProbability): then it is not convex.
  */
 struct OpenFloor
 {
   PolygonMesh mesh;
   std::vector<std::int32_t> roomOfPolygon;
   std::vector<portals::PortalDesc> portals;
-  /// Per room (id j * nx + i): its box.
+  /// Per cell (j * nx + i): its box, and the room it is part of (the cell's index when no cells
+  /// are joined).
   std::vector<Box> cells;
+  std::vector<std::int32_t> roomOfCell;
+  std::int32_t roomCount = 0;
+  /// The cells' edges along x and y, before the offset.
+  std::vector<double> xs{ 0.0 }, ys{ 0.0 };
+  glm::dvec3 offset{ 0.0 };
+  double height = 0.0;
 
   OpenFloor(int nx, int ny, std::uint64_t seed, const OpenFloorOptions& options = {})
   {
     std::mt19937_64 rng(seed);
     std::mt19937_64 openingRng(seed ^ 0x9e3779b97f4a7c15ull);
+    std::mt19937_64 joinRng(seed ^ 0x5bd1e9955bd1e995ull);
     std::uniform_real_distribution<double> u(0.0, 1.0);
-    std::vector<double> xs{ 0.0 }, ys{ 0.0 };
+    this->offset = options.offset;
+    this->height = options.storeyHeight;
+    std::vector<double>& xEdges = this->xs;
+    std::vector<double>& yEdges = this->ys;
     for (int i = 0; i < nx; ++i)
     {
-      xs.push_back(xs.back() + 0.3 + 2.0 * u(rng));
+      xEdges.push_back(xEdges.back() + 0.3 + 2.0 * u(rng));
     }
     for (int j = 0; j < ny; ++j)
     {
-      ys.push_back(ys.back() + 0.3 + 2.0 * u(rng));
+      yEdges.push_back(yEdges.back() + 0.3 + 2.0 * u(rng));
     }
-    const auto x = [&xs](int i) { return xs[static_cast<std::size_t>(i)]; };
-    const auto y = [&ys](int j) { return ys[static_cast<std::size_t>(j)]; };
+    const auto x = [&xEdges](int i) { return xEdges[static_cast<std::size_t>(i)]; };
+    const auto y = [&yEdges](int j) { return yEdges[static_cast<std::size_t>(j)]; };
     const double h = options.storeyHeight;
-    const auto id = [nx](int i, int j) { return j * nx + i; };
+    const auto cellId = [nx](int i, int j) { return j * nx + i; };
+    joinCells(nx, ny, options, joinRng);
+    const auto id = [this, &cellId](int i, int j)
+    { return this->roomOfCell[static_cast<std::size_t>(cellId(i, j))]; };
+    const auto joined = [this, &cellId](int i, int j, int axis)
+    {
+      return this->joinedFace[2 * static_cast<std::size_t>(cellId(i, j)) +
+               static_cast<std::size_t>(axis)] != 0;
+    };
     const auto face = [this](std::int32_t room, int axis, double at, bool positive, double u0,
                         double u1, double v0, double v1)
     {
@@ -93,7 +121,11 @@ struct OpenFloor
           const double v0 = axis == 0 ? 0.0 : x(i), v1 = axis == 0 ? h : x(i + 1);
           const std::int32_t next =
             axis == 0 ? (last ? -1 : id(i + 1, j)) : (last ? -1 : id(i, j + 1));
-          if (!last && u(rng) < options.portalProbability)
+          if (!last && next == id(i, j) && joined(i, j, axis))
+          {
+            continue; // open: one room on both sides
+          }
+          if (!last && next != id(i, j) && u(rng) < options.portalProbability)
           {
             // The portal's extent in the face: all of it, or an opening with a wall round it.
             double a0 = u0, a1 = u1, b0 = v0, b1 = v1;
@@ -170,8 +202,109 @@ struct OpenFloor
     in.mesh = &this->mesh;
     in.roomOfPolygon = this->roomOfPolygon;
     in.portals = this->portals;
-    in.roomCount = static_cast<std::int32_t>(this->cells.size());
+    in.roomCount = this->roomCount;
     return in;
+  }
+
+  /**
+   * Whether the segment from @p a to @p b (world points between floor and ceiling) stays inside
+   * room @p room: every stretch between its crossings of the cells' edges has its middle in a
+   * cell of the room. A line of sight crossing a room of several cells must not pass through a
+   * wall between two portals (bench::RayWalk's `clear`).
+   */
+  bool segmentInRoom(std::int32_t room, const glm::dvec3& a, const glm::dvec3& b) const
+  {
+    const glm::dvec3 p = a - this->offset, q = b - this->offset;
+    std::vector<double> ts{ 0.0, 1.0 };
+    for (int axis = 0; axis < 2; ++axis)
+    {
+      const std::vector<double>& edges = axis == 0 ? this->xs : this->ys;
+      const double d = q[axis] - p[axis];
+      for (std::size_t k = 1; d != 0.0 && k + 1 < edges.size(); ++k)
+      {
+        const double t = (edges[k] - p[axis]) / d;
+        if (t > 0.0 && t < 1.0)
+        {
+          ts.push_back(t);
+        }
+      }
+    }
+    std::sort(ts.begin(), ts.end());
+    for (std::size_t k = 0; k + 1 < ts.size(); ++k)
+    {
+      const glm::dvec3 m = p + (0.5 * (ts[k] + ts[k + 1])) * (q - p);
+      const auto cell = [](const std::vector<double>& edges, double v) {
+        return static_cast<int>(std::upper_bound(edges.begin(), edges.end(), v) - edges.begin()) -
+          1;
+      };
+      const int i = cell(this->xs, m.x), j = cell(this->ys, m.y);
+      const int nx = static_cast<int>(this->xs.size()) - 1,
+                ny = static_cast<int>(this->ys.size()) - 1;
+      if (i < 0 || j < 0 || i >= nx || j >= ny ||
+        this->roomOfCell[static_cast<std::size_t>(j * nx + i)] != room)
+      {
+        return false;
+      }
+    }
+    return true;
+  }
+
+private:
+  /// Per cell and axis (2 c + axis): the face to +x / +y of cell c joins it to its neighbour.
+  std::vector<std::uint8_t> joinedFace;
+
+  /// Joins neighbouring cells into rooms (union-find, at most maxCellsPerRoom cells a room) and
+  /// numbers the rooms in the order of their first cell: roomOfCell, roomCount, joinedFace.
+  void joinCells(int nx, int ny, const OpenFloorOptions& options, std::mt19937_64& rng)
+  {
+    const std::size_t count = static_cast<std::size_t>(nx) * static_cast<std::size_t>(ny);
+    std::vector<std::size_t> parent(count), size(count, 1);
+    std::iota(parent.begin(), parent.end(), std::size_t{ 0 });
+    const auto find = [&parent](std::size_t c)
+    {
+      while (parent[c] != c)
+      {
+        c = parent[c] = parent[parent[c]];
+      }
+      return c;
+    };
+    this->joinedFace.assign(2 * count, 0);
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    for (int j = 0; options.joinProbability > 0.0 && j < ny; ++j)
+    {
+      for (int i = 0; i < nx; ++i)
+      {
+        for (const int axis : { 0, 1 })
+        {
+          if (axis == 0 ? i + 1 == nx : j + 1 == ny)
+          {
+            continue;
+          }
+          const std::size_t c = static_cast<std::size_t>(j * nx + i);
+          const std::size_t n = axis == 0 ? c + 1 : c + static_cast<std::size_t>(nx);
+          const std::size_t rc = find(c), rn = find(n);
+          if (u(rng) < options.joinProbability && rc != rn &&
+            size[rc] + size[rn] <= static_cast<std::size_t>(options.maxCellsPerRoom))
+          {
+            parent[rn] = rc;
+            size[rc] += size[rn];
+            this->joinedFace[2 * c + static_cast<std::size_t>(axis)] = 1;
+          }
+        }
+      }
+    }
+    std::vector<std::int32_t> number(count, -1);
+    this->roomOfCell.assign(count, -1);
+    this->roomCount = 0;
+    for (std::size_t c = 0; c < count; ++c)
+    {
+      std::int32_t& r = number[find(c)];
+      if (r < 0)
+      {
+        r = this->roomCount++;
+      }
+      this->roomOfCell[c] = r;
+    }
   }
 };
 

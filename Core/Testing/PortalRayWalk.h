@@ -65,16 +65,27 @@ inline std::vector<std::vector<std::uint32_t>> PortalsOfNodes(const portals::Por
   return of;
 }
 
+/// RayWalk()'s default `clear`: the segment between two crossings of a room's boundary lies in the
+/// room, as in a convex room (a ray that left it through a wall meets its portals from outside,
+/// which the walk finds by itself).
+struct ConvexRooms
+{
+  bool operator()(std::int32_t, const glm::dvec3&, const glm::dvec3&) const { return true; }
+};
+
 /// Walks the ray from @p eye along @p d, starting in node @p start, across the portals it meets:
 /// each time the nearest portal of the node it is in (never the one it came through), crossed
 /// from inside that room into the other; @p enter(node) for every node entered (return false to
 /// stop). A ray from the eye may leave a room through a wall and meet one of its portals from the
 /// far side; such a path is no line of sight, and the walk ends there. @p enter also gets the
-/// ray parameter of the crossing (the point eye + t d on the portal).
-template <typename Enter>
+/// ray parameter of the crossing (the point eye + t d on the portal). In rooms that are not
+/// convex a ray can also pass through a wall and come back into the room: @p clear(room, from,
+/// to) says whether the segment from where the ray entered the room (or the eye) to its next
+/// crossing stays in the room; if not, the walk ends.
+template <typename Enter, typename Clear = ConvexRooms>
 void RayWalk(const portals::PortalGraph& graph,
   const std::vector<std::vector<std::uint32_t>>& portalsOf, std::int32_t start,
-  const glm::dvec3& eye, const glm::dvec3& d, Enter&& enter)
+  const glm::dvec3& eye, const glm::dvec3& d, Enter&& enter, const Clear& clear = Clear())
 {
   std::int32_t node = start;
   double tNow = 0.0;
@@ -109,6 +120,10 @@ void RayWalk(const portals::PortalGraph& graph,
     {
       return;
     }
+    if (node != graph.outsideNode() && !clear(node, eye + tNow * d, x))
+    {
+      return;
+    }
     node = to;
     tNow = best;
     came = next;
@@ -125,13 +140,14 @@ void RayWalk(const portals::PortalGraph& graph,
  * glm::lookAt(eye, eye + forward, (0, 0, 1)) makes it, view angle @p fovDegrees on a square
  * image), built from the camera's frame rather than an inverted matrix (no rounding of the inverse
  * far from the origin). Each ray is walked by RayWalk() from every node of @p starts;
- * @p visit(ray, node, t, d) for every node entered (return false to stop that walk).
+ * @p visit(ray, node, t, d) for every node entered (return false to stop that walk); @p clear as
+ * RayWalk()'s.
  */
-template <typename Visit>
+template <typename Visit, typename Clear = ConvexRooms>
 void WalkViewRays(const portals::PortalGraph& graph,
   const std::vector<std::vector<std::uint32_t>>& portalsOf, const std::vector<std::int32_t>& starts,
   const glm::dvec3& eye, const glm::dvec3& forward, double fovDegrees, int raysPerSide,
-  Visit&& visit)
+  Visit&& visit, const Clear& clear = Clear())
 {
   const glm::dvec3 right = glm::normalize(glm::cross(forward, glm::dvec3(0, 0, 1)));
   const glm::dvec3 up = glm::cross(right, forward);
@@ -143,8 +159,9 @@ void WalkViewRays(const portals::PortalGraph& graph,
     const glm::dvec3 d = glm::normalize(forward + halfWidth * (x * right + y * up));
     for (const std::int32_t room : starts)
     {
-      RayWalk(graph, portalsOf, room, eye, d,
-        [&](std::int32_t node, double t) { return visit(i, node, t, d); });
+      RayWalk(
+        graph, portalsOf, room, eye, d,
+        [&](std::int32_t node, double t) { return visit(i, node, t, d); }, clear);
     }
   }
 }
