@@ -199,8 +199,19 @@ void MaskedDepthBuffer::drawTrianglesFrom(const glm::dvec4* clip, const ModelVer
   // on; the vertices of skipped clusters are never projected). State: 0 not finite, 1 in front
   // of the near plane (window coordinates valid), 2 finite but behind it (its triangles are
   // clipped), 3 not projected yet.
-  window_.resize(vertexCount);
-  centres_.resize(vertexCount);
+  // The scratch only grows: a draw after a bigger one neither reallocates nor fills it again
+  // (resize() to a larger size value-initializes the new elements: a cull's draws alternate
+  // between sizes, and that filling was about 1 % of the engine row's cull). Only the entries
+  // below vertexCount are read, each after it is written.
+  const auto grow = [vertexCount](auto& scratch)
+  {
+    if (scratch.size() < vertexCount)
+    {
+      scratch.resize(vertexCount);
+    }
+  };
+  grow(window_);
+  grow(centres_);
   vertexState_.assign(vertexCount, kVertexUnseen);
   if (neighbors)
   {
@@ -208,7 +219,7 @@ void MaskedDepthBuffer::drawTrianglesFrom(const glm::dvec4* clip, const ModelVer
   }
   if (model)
   {
-    clip_.resize(vertexCount); // grows only: no allocation per call once warm
+    grow(clip_);
     clip = clip_.data();
   }
   auto state = [&](std::uint32_t i) -> unsigned
