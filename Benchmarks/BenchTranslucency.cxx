@@ -466,6 +466,8 @@ void Frame(benchmark::State& state, Mode mode, Scene scene)
     state.counters["fragment_tris"] =
       static_cast<double>(bspMapper->GetNumberOfFragmentTriangles());
     state.counters["fragments"] = static_cast<double>(bspMapper->GetNumberOfFragments());
+    state.counters["fragment_vertices"] =
+      static_cast<double>(bspMapper->GetNumberOfFragmentVertices());
     state.counters["vbo_builds"] = static_cast<double>(bspMapper->GetNumberOfVertexBufferBuilds());
     state.counters["ibo_uploads"] = static_cast<double>(bspMapper->GetNumberOfIndexUploads());
     // Of the frames' uploads: the share that sent only changed ranges, and the indices sent per

@@ -35,6 +35,9 @@
 #include <chrono>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
+#include <string>
+#include <unordered_map>
 
 vtkStandardNewMacro(vtkBSPSortedPolyDataMapper);
 
@@ -64,6 +67,51 @@ bool NeedsCellExpansion(vtkMapper* mapper, vtkPolyData* input)
   }
   return input->GetCellData()->GetNormals() != nullptr &&
     input->GetPointData()->GetNormals() == nullptr;
+}
+
+/**
+ * Classes of cells whose values are the same bits in every cell array of @p cellData: cells of
+ * one class may share expanded vertices (each vertex carries its cell's values). Every cell is a
+ * class of its own when an array is not numeric.
+ */
+std::vector<std::uint32_t> CellValueClasses(vtkCellData* cellData, vtkIdType cellCount)
+{
+  std::vector<std::uint32_t> classOf(static_cast<std::size_t>(cellCount));
+  std::vector<vtkDataArray*> arrays;
+  std::size_t width = 0;
+  for (int a = 0; a < cellData->GetNumberOfArrays(); ++a)
+  {
+    vtkDataArray* array = vtkDataArray::SafeDownCast(cellData->GetAbstractArray(a));
+    if (!array || array->GetNumberOfTuples() < cellCount)
+    {
+      for (vtkIdType c = 0; c < cellCount; ++c)
+      {
+        classOf[static_cast<std::size_t>(c)] = static_cast<std::uint32_t>(c);
+      }
+      return classOf;
+    }
+    arrays.push_back(array);
+    width += static_cast<std::size_t>(array->GetNumberOfComponents());
+  }
+  std::unordered_map<std::string, std::uint32_t> classes;
+  std::vector<double> tuple(width);
+  std::string key(width * sizeof(double), '\0');
+  for (vtkIdType c = 0; c < cellCount; ++c)
+  {
+    std::size_t at = 0;
+    for (vtkDataArray* array : arrays)
+    {
+      array->GetTuple(c, tuple.data() + at);
+      at += static_cast<std::size_t>(array->GetNumberOfComponents());
+    }
+    if (width > 0)
+    {
+      std::memcpy(&key[0], tuple.data(), width * sizeof(double));
+    }
+    classOf[static_cast<std::size_t>(c)] =
+      classes.emplace(key, static_cast<std::uint32_t>(classes.size())).first->second;
+  }
+  return classOf;
 }
 
 /// The scalar mode that finds, in the expanded point data, what `mode` found in the cell data.
@@ -303,29 +351,60 @@ void vtkBSPSortedPolyDataMapper::Internals::BuildRenderData(vtkMapper* mapper, b
   }
   else
   {
-    // Every fragment gets its own vertices, carrying its cell's values as point values.
-    const vtkIdType numExpanded = static_cast<vtkIdType>(set.Vertices.size());
+    // Each fragment's vertices carry its cell's values as point values. A vertex is shared by
+    // the fragments that use the same point and whose cells have the same values in every cell
+    // array (the parts of one colour, say): the same attributes, so the same image, with a
+    // fraction of the vertices to shade (a vertex of its own per fragment corner was 5.3M
+    // vertices for the 1M-triangle sphere grid).
+    const std::vector<std::uint32_t> cellClass =
+      CellValueClasses(input->GetCellData(), input->GetNumberOfCells());
+    const std::size_t corners = set.Vertices.size();
+    std::vector<std::pair<std::uint64_t, std::uint32_t>> keyed(corners);
+    for (std::size_t f = 0; f < fragmentCount; ++f)
+    {
+      const std::uint64_t cls = cellClass[static_cast<std::size_t>(set.Cells[f])];
+      for (std::uint32_t i = set.Offsets[f]; i < set.Offsets[f + 1]; ++i)
+      {
+        keyed[i] = { (cls << 32) | set.Vertices[i], i };
+      }
+    }
+    std::sort(keyed.begin(), keyed.end());
+    std::vector<std::uint32_t> vertexOf(corners);
+    std::vector<vtkIdType> sourcePoint, sourceCell;
+    std::vector<std::uint32_t> fragmentOfCorner(corners);
+    for (std::size_t f = 0; f < fragmentCount; ++f)
+    {
+      std::fill(fragmentOfCorner.begin() + set.Offsets[f],
+        fragmentOfCorner.begin() + set.Offsets[f + 1], static_cast<std::uint32_t>(f));
+    }
+    for (std::size_t k = 0; k < corners; ++k)
+    {
+      if (k == 0 || keyed[k].first != keyed[k - 1].first)
+      {
+        const std::uint32_t corner = keyed[k].second;
+        sourcePoint.push_back(set.Vertices[corner]);
+        sourceCell.push_back(set.Cells[fragmentOfCorner[corner]]);
+      }
+      vertexOf[keyed[k].second] = static_cast<std::uint32_t>(sourcePoint.size() - 1);
+    }
+    const vtkIdType numExpanded = static_cast<vtkIdType>(sourcePoint.size());
     vtkNew<vtkPoints> expandedPoints;
     expandedPoints->SetDataType(points->GetDataType());
     expandedPoints->SetNumberOfPoints(numExpanded);
-    std::vector<vtkIdType> sourcePoint(static_cast<std::size_t>(numExpanded));
-    std::vector<vtkIdType> sourceCell(static_cast<std::size_t>(numExpanded));
+    for (vtkIdType i = 0; i < numExpanded; ++i)
+    {
+      expandedPoints->SetPoint(i, points->GetPoint(sourcePoint[static_cast<std::size_t>(i)]));
+    }
     for (std::size_t f = 0; f < fragmentCount; ++f)
     {
       const std::uint32_t first = set.Offsets[f];
       const std::uint32_t n = set.Offsets[f + 1] - first;
       unsigned int* out = this->TriIndices.data() + this->TriOffsets[f];
-      for (std::uint32_t k = 0; k < n; ++k)
-      {
-        sourcePoint[first + k] = set.Vertices[first + k];
-        sourceCell[first + k] = set.Cells[f];
-        expandedPoints->SetPoint(first + k, points->GetPoint(set.Vertices[first + k]));
-      }
       for (std::uint32_t k = 1; k + 1 < n; ++k)
       {
-        *out++ = first;
-        *out++ = first + k;
-        *out++ = first + k + 1;
+        *out++ = vertexOf[first];
+        *out++ = vertexOf[first + k];
+        *out++ = vertexOf[first + k + 1];
       }
     }
     auto gather = [numExpanded](vtkAbstractArray* source, const std::vector<vtkIdType>& from)
@@ -469,6 +548,12 @@ vtkIdType vtkBSPSortedPolyDataMapper::GetNumberOfFragments() const
 vtkIdType vtkBSPSortedPolyDataMapper::GetNumberOfFragmentTriangles() const
 {
   return static_cast<vtkIdType>(this->Internal->TriOffsets.back() / 3);
+}
+
+vtkIdType vtkBSPSortedPolyDataMapper::GetNumberOfFragmentVertices() const
+{
+  const vtkPolyData* data = this->Internal->RenderData;
+  return data ? const_cast<vtkPolyData*>(data)->GetNumberOfPoints() : 0;
 }
 
 bool vtkBSPSortedPolyDataMapper::GetLastRenderDrewFragments() const

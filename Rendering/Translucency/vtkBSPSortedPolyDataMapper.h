@@ -127,6 +127,13 @@ public:
   vtkIdType GetNumberOfFragmentTriangles() const;
   ///@}
 
+  /**
+   * Vertices of the fragment geometry's vertex buffer (0 before the first translucent render).
+   * Cell colours or cell normals give fragments vertices of their own, carrying their cell's
+   * values; fragments whose cells have the same values in every cell array share them.
+   */
+  vtkIdType GetNumberOfFragmentVertices() const;
+
   /// Whether the last render drew the split fragments (sorted) rather than the input (opaque).
   bool GetLastRenderDrewFragments() const;
 
