@@ -36,8 +36,6 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
-#include <string>
-#include <unordered_map>
 
 vtkStandardNewMacro(vtkBSPSortedPolyDataMapper);
 
@@ -72,11 +70,14 @@ bool NeedsCellExpansion(vtkMapper* mapper, vtkPolyData* input)
 /**
  * Classes of cells whose values are the same bits in every cell array of @p cellData: cells of
  * one class may share expanded vertices (each vertex carries its cell's values). Every cell is a
- * class of its own when an array is not numeric.
+ * class of its own when an array is not numeric. Cells are sorted by a hash of their values, and
+ * neighbours in that order compared in full: 16 bytes a cell however many distinct values there
+ * are (cell normals, a scalar field).
  */
 std::vector<std::uint32_t> CellValueClasses(vtkCellData* cellData, vtkIdType cellCount)
 {
-  std::vector<std::uint32_t> classOf(static_cast<std::size_t>(cellCount));
+  const auto n = static_cast<std::size_t>(cellCount);
+  std::vector<std::uint32_t> classOf(n);
   std::vector<vtkDataArray*> arrays;
   std::size_t width = 0;
   for (int a = 0; a < cellData->GetNumberOfArrays(); ++a)
@@ -84,32 +85,59 @@ std::vector<std::uint32_t> CellValueClasses(vtkCellData* cellData, vtkIdType cel
     vtkDataArray* array = vtkDataArray::SafeDownCast(cellData->GetAbstractArray(a));
     if (!array || array->GetNumberOfTuples() < cellCount)
     {
-      for (vtkIdType c = 0; c < cellCount; ++c)
+      for (std::size_t c = 0; c < n; ++c)
       {
-        classOf[static_cast<std::size_t>(c)] = static_cast<std::uint32_t>(c);
+        classOf[c] = static_cast<std::uint32_t>(c);
       }
       return classOf;
     }
     arrays.push_back(array);
     width += static_cast<std::size_t>(array->GetNumberOfComponents());
   }
-  std::unordered_map<std::string, std::uint32_t> classes;
-  std::vector<double> tuple(width);
-  std::string key(width * sizeof(double), '\0');
-  for (vtkIdType c = 0; c < cellCount; ++c)
+  // The values of cell c, as bytes (8 per component).
+  const auto values = [&arrays](vtkIdType c, std::vector<double>& out)
   {
     std::size_t at = 0;
     for (vtkDataArray* array : arrays)
     {
-      array->GetTuple(c, tuple.data() + at);
+      array->GetTuple(c, out.data() + at);
       at += static_cast<std::size_t>(array->GetNumberOfComponents());
     }
-    if (width > 0)
+  };
+  std::vector<double> tuple(width), other(width);
+  std::vector<std::pair<std::uint64_t, std::uint32_t>> hashed(n);
+  for (std::size_t c = 0; c < n; ++c)
+  {
+    values(static_cast<vtkIdType>(c), tuple);
+    std::uint64_t h = 1469598103934665603ull; // FNV-1a over the bytes
+    const auto* bytes = reinterpret_cast<const unsigned char*>(tuple.data());
+    for (std::size_t b = 0; b < width * sizeof(double); ++b)
     {
-      std::memcpy(&key[0], tuple.data(), width * sizeof(double));
+      h = (h ^ bytes[b]) * 1099511628211ull;
     }
-    classOf[static_cast<std::size_t>(c)] =
-      classes.emplace(key, static_cast<std::uint32_t>(classes.size())).first->second;
+    hashed[c] = { h, static_cast<std::uint32_t>(c) };
+  }
+  std::sort(hashed.begin(), hashed.end());
+  // Within a run of equal hashes, a cell joins the class of the first earlier cell of the run
+  // with the same bytes (runs of different values are rare: hash collisions).
+  std::uint32_t classes = 0;
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    const std::uint32_t c = hashed[i].second;
+    values(c, tuple);
+    std::size_t j = i;
+    while (j > 0 && hashed[j - 1].first == hashed[i].first)
+    {
+      --j;
+      values(hashed[j].second, other);
+      if (std::memcmp(tuple.data(), other.data(), width * sizeof(double)) == 0)
+      {
+        break;
+      }
+    }
+    const bool same = j < i && hashed[j].first == hashed[i].first &&
+      std::memcmp(tuple.data(), other.data(), width * sizeof(double)) == 0;
+    classOf[c] = same ? classOf[hashed[j].second] : classes++;
   }
   return classOf;
 }
