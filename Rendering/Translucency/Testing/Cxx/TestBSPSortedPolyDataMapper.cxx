@@ -7,6 +7,7 @@
 //  (e) small camera steps send only the changed index ranges, and draw what a full upload draws;
 //  (d) an opaque actor builds no tree at all; one that turned translucent and then opaque again
 //      draws its input (not the split fragments) and keeps its tree;
+//  (g) cell normals without point normals: the filter's image, vertices shared within a cell;
 //  (f) with ordered leaves (a bumpy sphere): the order of vtkBSPSortFilter with the same leaf size,
 //  fewer
 //      fragments drawn than the tree without leaves has, and the 100-peel image.
@@ -21,12 +22,14 @@
 #include "scenevis/testing/StrictVtkOutput.h"
 
 #include <vtkActor.h>
+#include <vtkAppendPolyData.h>
 #include <vtkCamera.h>
 #include <vtkCellData.h>
 #include <vtkIdTypeArray.h>
 #include <vtkImageData.h>
 #include <vtkNew.h>
 #include <vtkPolyDataMapper.h>
+#include <vtkPolyDataNormals.h>
 #include <vtkProperty.h>
 #include <vtkRenderWindow.h>
 #include <vtkRenderer.h>
@@ -362,6 +365,72 @@ int TestBSPSortedPolyDataMapper(int, char*[])
   ok &= Check(
     leafMapper->GetNumberOfTreeBuilds() == 1 && leafMapper->GetNumberOfVertexBufferBuilds() == 1,
     "ordered leaves: one tree and one vertex buffer for every view");
+
+  // (g) Cell normals and no point normals (flat shading): every fragment carries its cell's
+  // normal, and vertices are shared only between fragments of cells with the same normal, so the
+  // image is vtkBSPSortFilter's (a vertex shared across cells would shade with a neighbour's
+  // normal). Two overlapping spheres: fragments of one cell meet at split points.
+  {
+    vtkNew<vtkAppendPolyData> spheres;
+    for (int k = 0; k < 2; ++k)
+    {
+      vtkNew<vtkSphereSource> sphere;
+      sphere->SetCenter(0.6 * k, 0.1 * k, 0.0);
+      sphere->SetThetaResolution(18);
+      sphere->SetPhiResolution(12);
+      spheres->AddInputConnection(sphere->GetOutputPort());
+    }
+    vtkNew<vtkPolyDataNormals> flat;
+    flat->SetInputConnection(spheres->GetOutputPort());
+    flat->ComputeCellNormalsOn();
+    flat->ComputePointNormalsOff();
+    flat->SplittingOff();
+    vtkNew<vtkBSPSortedPolyDataMapper> flatMapper;
+    flatMapper->SetInputConnection(flat->GetOutputPort());
+    vtkNew<vtkActor> flatActor;
+    flatActor->SetMapper(flatMapper);
+    flatActor->GetProperty()->SetOpacity(0.5);
+    vtkNew<vtkRenderer> flatRenderer;
+    flatRenderer->AddActor(flatActor);
+    vtkNew<vtkOrderedTranslucentPass> flatPass;
+    flatRenderer->SetPass(flatPass);
+    vtkNew<vtkCamera> flatCamera;
+    flatRenderer->SetActiveCamera(flatCamera);
+    vtkNew<vtkBSPSortFilter> flatFilter;
+    flatFilter->SetInputConnection(flat->GetOutputPort());
+    flatFilter->SetCamera(flatCamera);
+    vtkNew<vtkPolyDataMapper> flatFilterMapper;
+    flatFilterMapper->SetInputConnection(flatFilter->GetOutputPort());
+    vtkNew<vtkActor> flatFilterActor;
+    flatFilterActor->SetMapper(flatFilterMapper);
+    flatFilterActor->GetProperty()->SetOpacity(0.5);
+    vtkNew<vtkRenderer> flatFilterRenderer;
+    flatFilterRenderer->AddActor(flatFilterActor);
+    vtkNew<vtkOrderedTranslucentPass> flatFilterPass;
+    flatFilterRenderer->SetPass(flatFilterPass);
+    flatFilterRenderer->SetActiveCamera(flatCamera);
+    flatRenderer->ResetCamera();
+    flatCamera->Azimuth(35);
+    flatCamera->Elevation(25);
+    flatCamera->OrthogonalizeViewUp();
+    flatRenderer->ResetCamera();
+    auto mapperImage = RenderWith(window, flatRenderer);
+    auto filterImage = RenderWith(window, flatFilterRenderer);
+    std::string why;
+    const auto vsFilter = st::CompareImages(mapperImage, filterImage);
+    ok &= Check(st::WithinThresholds(vsFilter, st::Thresholds(0.1, 0.001), &why) &&
+        st::CoveredFraction(mapperImage) > 0.05,
+      "cell normals: mapper vs filter: " + vsFilter.Summary() + " " + why);
+    const vtkIdType corners =
+      flatMapper->GetNumberOfFragmentTriangles() + 2 * flatMapper->GetNumberOfFragments();
+    ok &= Check(flatMapper->GetNumberOfFragments() > flat->GetOutput()->GetNumberOfCells() &&
+        flatMapper->GetNumberOfFragmentVertices() < corners,
+      "cell normals: " + std::to_string(flatMapper->GetNumberOfFragments()) + " fragments of " +
+        std::to_string(flat->GetOutput()->GetNumberOfCells()) + " cells, " +
+        std::to_string(flatMapper->GetNumberOfFragmentVertices()) + " vertices for " +
+        std::to_string(corners) + " fragment corners");
+    st::WritePng(mapperImage, st::TemporaryDirectory() + "/TestBSPSortedPolyDataMapper_flat.png");
+  }
 
   window->GetRenderers()->RemoveAllItems();
   return vtkOutput.ExitCode(ok ? EXIT_SUCCESS : EXIT_FAILURE);
