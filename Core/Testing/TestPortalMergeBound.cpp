@@ -43,14 +43,14 @@ TEST(PortalTraversal, RoomsThatKeepMergingEndWithTheWholeViewAndLoseNoSightLine)
   // The pitch of the fuzzer's input (1.358), and around it.
   for (const double pitch : { 1.3582768237579399, 1.2, 1.45, 0.9 })
   {
+    const glm::dvec3 forward(
+      std::cos(yaw) * std::cos(pitch), std::sin(yaw) * std::cos(pitch), std::sin(pitch));
+    PortalView view;
+    view.eye = eye;
+    view.clipFromWorld = glm::perspective(glm::radians(fov), 1.0, zNear, 2.0 * size) *
+      glm::lookAt(eye, eye + forward, glm::dvec3(0, 0, 1));
     for (const std::size_t regions : { 1u, 2u, 3u })
     {
-      const glm::dvec3 forward(
-        std::cos(yaw) * std::cos(pitch), std::sin(yaw) * std::cos(pitch), std::sin(pitch));
-      PortalView view;
-      view.eye = eye;
-      view.clipFromWorld = glm::perspective(glm::radians(fov), 1.0, zNear, 2.0 * size) *
-        glm::lookAt(eye, eye + forward, glm::dvec3(0, 0, 1));
       TraversalOptions options;
       options.maxRegionsPerRoom = regions;
       traversal.run(graph, view, options);

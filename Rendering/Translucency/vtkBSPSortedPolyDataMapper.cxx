@@ -388,30 +388,26 @@ void vtkBSPSortedPolyDataMapper::Internals::BuildRenderData(vtkMapper* mapper, b
       CellValueClasses(input->GetCellData(), input->GetNumberOfCells());
     const std::size_t corners = set.Vertices.size();
     std::vector<std::pair<std::uint64_t, std::uint32_t>> keyed(corners);
+    std::vector<vtkIdType> cellOfCorner(corners);
     for (std::size_t f = 0; f < fragmentCount; ++f)
     {
       const std::uint64_t cls = cellClass[static_cast<std::size_t>(set.Cells[f])];
       for (std::uint32_t i = set.Offsets[f]; i < set.Offsets[f + 1]; ++i)
       {
         keyed[i] = { (cls << 32) | set.Vertices[i], i };
+        cellOfCorner[i] = set.Cells[f];
       }
     }
     std::sort(keyed.begin(), keyed.end());
+    // One vertex per distinct key, from the first corner with it.
     std::vector<std::uint32_t> vertexOf(corners);
     std::vector<vtkIdType> sourcePoint, sourceCell;
-    std::vector<std::uint32_t> fragmentOfCorner(corners);
-    for (std::size_t f = 0; f < fragmentCount; ++f)
-    {
-      std::fill(fragmentOfCorner.begin() + set.Offsets[f],
-        fragmentOfCorner.begin() + set.Offsets[f + 1], static_cast<std::uint32_t>(f));
-    }
     for (std::size_t k = 0; k < corners; ++k)
     {
       if (k == 0 || keyed[k].first != keyed[k - 1].first)
       {
-        const std::uint32_t corner = keyed[k].second;
-        sourcePoint.push_back(set.Vertices[corner]);
-        sourceCell.push_back(set.Cells[fragmentOfCorner[corner]]);
+        sourcePoint.push_back(set.Vertices[keyed[k].second]);
+        sourceCell.push_back(cellOfCorner[keyed[k].second]);
       }
       vertexOf[keyed[k].second] = static_cast<std::uint32_t>(sourcePoint.size() - 1);
     }

@@ -53,6 +53,32 @@ vtkSmartPointer<vtkImageData> RenderWith(vtkRenderWindow* window, vtkRenderer* r
   return st::CaptureImage(window);
 }
 
+/// A renderer drawing @p mapper in one orange at opacity 0.4 with @p camera: ordered alpha
+/// blending (vtkOrderedTranslucentPass), or 100-peel dual depth peeling if @p peel.
+vtkSmartPointer<vtkRenderer> TranslucentRenderer(vtkMapper* mapper, vtkCamera* camera, bool peel)
+{
+  vtkNew<vtkActor> actor;
+  actor->SetMapper(mapper);
+  actor->GetProperty()->SetOpacity(0.4);
+  actor->GetProperty()->SetColor(0.9, 0.5, 0.2);
+  vtkSmartPointer<vtkRenderer> renderer = vtkSmartPointer<vtkRenderer>::New();
+  renderer->AddActor(actor);
+  if (peel)
+  {
+    renderer->SetUseDepthPeeling(1);
+    renderer->SetMaximumNumberOfPeels(100);
+    renderer->SetOcclusionRatio(0.0);
+  }
+  else
+  {
+    vtkNew<vtkOrderedTranslucentPass> pass;
+    renderer->SetPass(pass);
+  }
+  renderer->SetActiveCamera(camera);
+  renderer->ResetCameraClippingRange();
+  return renderer;
+}
+
 bool Check(bool ok, const std::string& what)
 {
   std::cout << (ok ? "ok   " : "FAIL ") << what << "\n";
@@ -282,28 +308,7 @@ int TestBSPSortedPolyDataMapper(int, char*[])
   leafCamera->SetFocalPoint(0, 0, 0);
   leafCamera->SetViewUp(0, 0, 1);
   auto translucentRenderer = [&](vtkMapper* mapper, bool peel)
-  {
-    vtkNew<vtkActor> actor;
-    actor->SetMapper(mapper);
-    actor->GetProperty()->SetOpacity(0.4);
-    actor->GetProperty()->SetColor(0.9, 0.5, 0.2);
-    vtkSmartPointer<vtkRenderer> renderer = vtkSmartPointer<vtkRenderer>::New();
-    renderer->AddActor(actor);
-    if (peel)
-    {
-      renderer->SetUseDepthPeeling(1);
-      renderer->SetMaximumNumberOfPeels(100);
-      renderer->SetOcclusionRatio(0.0);
-    }
-    else
-    {
-      vtkNew<vtkOrderedTranslucentPass> pass;
-      renderer->SetPass(pass);
-    }
-    renderer->SetActiveCamera(leafCamera);
-    renderer->ResetCameraClippingRange();
-    return renderer;
-  };
+  { return TranslucentRenderer(mapper, leafCamera, peel); };
   vtkNew<vtkBSPSortedPolyDataMapper> leafMapper;
   leafMapper->SetInputData(bumpy);
   leafMapper->SetOrderedLeafSize(64);
@@ -385,30 +390,17 @@ int TestBSPSortedPolyDataMapper(int, char*[])
     flat->ComputeCellNormalsOn();
     flat->ComputePointNormalsOff();
     flat->SplittingOff();
+    vtkNew<vtkCamera> flatCamera;
     vtkNew<vtkBSPSortedPolyDataMapper> flatMapper;
     flatMapper->SetInputConnection(flat->GetOutputPort());
-    vtkNew<vtkActor> flatActor;
-    flatActor->SetMapper(flatMapper);
-    flatActor->GetProperty()->SetOpacity(0.5);
-    vtkNew<vtkRenderer> flatRenderer;
-    flatRenderer->AddActor(flatActor);
-    vtkNew<vtkOrderedTranslucentPass> flatPass;
-    flatRenderer->SetPass(flatPass);
-    vtkNew<vtkCamera> flatCamera;
-    flatRenderer->SetActiveCamera(flatCamera);
+    vtkSmartPointer<vtkRenderer> flatRenderer = TranslucentRenderer(flatMapper, flatCamera, false);
     vtkNew<vtkBSPSortFilter> flatFilter;
     flatFilter->SetInputConnection(flat->GetOutputPort());
     flatFilter->SetCamera(flatCamera);
     vtkNew<vtkPolyDataMapper> flatFilterMapper;
     flatFilterMapper->SetInputConnection(flatFilter->GetOutputPort());
-    vtkNew<vtkActor> flatFilterActor;
-    flatFilterActor->SetMapper(flatFilterMapper);
-    flatFilterActor->GetProperty()->SetOpacity(0.5);
-    vtkNew<vtkRenderer> flatFilterRenderer;
-    flatFilterRenderer->AddActor(flatFilterActor);
-    vtkNew<vtkOrderedTranslucentPass> flatFilterPass;
-    flatFilterRenderer->SetPass(flatFilterPass);
-    flatFilterRenderer->SetActiveCamera(flatCamera);
+    vtkSmartPointer<vtkRenderer> flatFilterRenderer =
+      TranslucentRenderer(flatFilterMapper, flatCamera, false);
     flatRenderer->ResetCamera();
     flatCamera->Azimuth(35);
     flatCamera->Elevation(25);
