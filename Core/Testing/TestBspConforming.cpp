@@ -5,6 +5,7 @@
 // fragments, sources and (doubled) areas, only collinear vertices added. Without the option the
 // same check finds T-junctions on every scene, so it can fail.
 #include "scenevis/BspBuilder.h"
+#include "scenevis/ConvexTriangulation.h"
 #include "scenevis/Scenes.h"
 
 #include "PolygonSoups.h"
@@ -188,11 +189,19 @@ TEST(BspConforming, SameFragmentsSameAreasOnlyCollinearVerticesAdded)
       added += q.count - p.count;
       const double area = doubledArea(plain, p);
       EXPECT_NEAR(doubledArea(conforming, q), area, 1e-9 * (1.0 + area)) << c.name;
-      // The plain fragment's vertices, in the same cyclic order, are a subsequence.
+      // The plain fragment's vertices, in the same cyclic order, are a subsequence (from
+      // wherever the conforming fragment starts: makeConforming picks its fan apex).
+      std::uint32_t start = 0;
+      while (start < q.count &&
+        conforming.fragmentVertices[q.first + start] != plain.fragmentVertices[p.first])
+      {
+        ++start;
+      }
       std::uint32_t next = 0;
       for (std::uint32_t k = 0; k < q.count && next < p.count; ++k)
       {
-        if (conforming.fragmentVertices[q.first + k] == plain.fragmentVertices[p.first + next])
+        if (conforming.fragmentVertices[q.first + (start + k) % q.count] ==
+          plain.fragmentVertices[p.first + next])
         {
           ++next;
         }
@@ -200,6 +209,45 @@ TEST(BspConforming, SameFragmentsSameAreasOnlyCollinearVerticesAdded)
       EXPECT_EQ(next, p.count) << c.name << ": fragment " << i;
     }
     EXPECT_EQ(added, conforming.statistics.conformingVertices) << c.name;
+  }
+}
+
+/// What an OpenGL mapper draws of a fragment is the fan from its first vertex. Conforming
+/// fragments have points on their sides; a fan from a vertex on such a side makes flat
+/// triangles and spans the side with one edge, a T-junction again. Each fragment must start at
+/// a vertex whose fan has the fewest flat triangles (brute force over every vertex).
+TEST(BspConforming, FragmentsStartAtTheirCleanestFanApex)
+{
+  for (const Case& c : surfaces())
+  {
+    const Tree tree = scenevis::bsp::build(c.mesh);
+    std::size_t withPoints = 0, flatFromZero = 0;
+    std::vector<glm::dvec3> v;
+    for (const auto& f : tree.fragments)
+    {
+      v.clear();
+      for (std::uint32_t k = 0; k < f.count; ++k)
+      {
+        v.push_back(tree.points[tree.fragmentVertices[f.first + k]]);
+      }
+      std::size_t fewest = f.count;
+      for (std::size_t apex = 0; apex < f.count; ++apex)
+      {
+        fewest = std::min(fewest, scenevis::flatFanTriangles(v.data(), f.count, apex));
+      }
+      const std::size_t fromZero = scenevis::flatFanTriangles(v.data(), f.count, 0);
+      EXPECT_EQ(fromZero, fewest) << c.name;
+      bool onSide = false;
+      for (std::size_t k = 0; k < f.count; ++k)
+      {
+        onSide =
+          onSide || scenevis::collinear(v[(k + f.count - 1) % f.count], v[k], v[(k + 1) % f.count]);
+      }
+      withPoints += onSide;
+      flatFromZero += fromZero;
+    }
+    EXPECT_GT(withPoints, 10u) << c.name << ": the scene must put points on fragment sides";
+    RecordProperty(c.name + " flat fan triangles", static_cast<int>(flatFromZero));
   }
 }
 

@@ -1,6 +1,7 @@
 // makeConforming (BspBuilder.h): split points inserted into the fragment edges they lie on, so
 // that the fragments meet edge to edge (no T-junctions).
 #include "scenevis/BspBuilder.h"
+#include "scenevis/ConvexTriangulation.h"
 
 #include <algorithm>
 #include <cstdint>
@@ -160,6 +161,7 @@ std::size_t makeConforming(Tree& tree)
   std::vector<std::uint32_t> vertices;
   vertices.reserve(tree.fragmentVertices.size());
   std::size_t inserted = 0;
+  std::vector<glm::dvec3> corners;
   for (Fragment& f : tree.fragments)
   {
     const auto first = static_cast<std::uint32_t>(vertices.size());
@@ -172,8 +174,22 @@ std::size_t makeConforming(Tree& tree)
       carriers.between(u, v, vertices);
       inserted += vertices.size() - before;
     }
+    const std::uint32_t count = static_cast<std::uint32_t>(vertices.size()) - first;
+    if (count > f.count)
+    {
+      // The inserted points lie on the fragment's sides, so a fan from a vertex on such a side
+      // makes flat triangles and spans the side with one edge (the T-junction again, for the
+      // fan triangulation renderers use): start the polygon at the cleanest apex.
+      corners.clear();
+      for (std::uint32_t k = first; k < first + count; ++k)
+      {
+        corners.push_back(tree.points[vertices[k]]);
+      }
+      const std::size_t apex = cleanestFanApex(corners.data(), count);
+      std::rotate(vertices.begin() + first, vertices.begin() + first + apex, vertices.end());
+    }
     f.first = first;
-    f.count = static_cast<std::uint32_t>(vertices.size()) - first;
+    f.count = count;
   }
   tree.fragmentVertices = std::move(vertices);
   return inserted;

@@ -13,6 +13,10 @@
 #include "vtkTypeInt32Array.h"
 #include "vtkTypeInt64Array.h"
 
+#include "scenevis/ConvexTriangulation.h"
+
+#include <glm/vec3.hpp>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -158,6 +162,56 @@ void vtkBSPSortUtilities::InterpolateSplitPoints(vtkPolyData* input,
       {
         normals->SetTuple3(i, n[0] / length, n[1] / length, n[2] / length);
       }
+    }
+  }
+}
+
+//------------------------------------------------------------------------------
+void vtkBSPSortUtilities::TriangulateFragments(vtkPolyData* input,
+  const scenevis::bsp::SplitPoint* splits, std::size_t splitCount, const std::uint32_t* offsets,
+  std::size_t fragmentCount, const std::uint32_t* vertices, std::vector<std::uint32_t>& corners)
+{
+  const vtkIdType numIn = input->GetNumberOfPoints();
+  const auto inputPoint = [input](vtkIdType id)
+  {
+    double p[3];
+    input->GetPoint(id, p);
+    return glm::dvec3(p[0], p[1], p[2]);
+  };
+  // Split points in double, as the builder makes them (lo + (hi - lo) t, ends made first).
+  std::vector<glm::dvec3> split(splitCount);
+  const auto position = [&](std::uint32_t id)
+  {
+    return static_cast<vtkIdType>(id) < numIn ? inputPoint(static_cast<vtkIdType>(id))
+                                              : split[id - static_cast<std::uint32_t>(numIn)];
+  };
+  for (std::size_t s = 0; s < splitCount; ++s)
+  {
+    const glm::dvec3 lo = position(splits[s].a), hi = position(splits[s].b);
+    split[s] = lo + (hi - lo) * splits[s].t;
+  }
+  std::vector<glm::dvec3> polygon;
+  std::vector<std::uint32_t> local;
+  for (std::size_t f = 0; f < fragmentCount; ++f)
+  {
+    const std::uint32_t first = offsets[f], n = offsets[f + 1] - first;
+    local.clear();
+    if (n > 3)
+    {
+      polygon.resize(n);
+      for (std::uint32_t k = 0; k < n; ++k)
+      {
+        polygon[k] = position(vertices[first + k]);
+      }
+      scenevis::triangulateConvex(polygon.data(), n, local);
+      for (const std::uint32_t k : local)
+      {
+        corners.push_back(first + k);
+      }
+    }
+    else if (n == 3)
+    {
+      corners.insert(corners.end(), { first, first + 1, first + 2 });
     }
   }
 }

@@ -63,6 +63,20 @@ public:
     vtkPointData* pointData);
 
   /**
+   * The triangles of convex fragments (fragment f: vertices[offsets[f] .. offsets[f + 1]), point
+   * ids as InterpolateSplitPoints numbers them) for an index buffer: for every fragment in turn,
+   * its size - 2 triangles as triples of indices into @p vertices, appended to @p corners. The
+   * fan from the fragment's first vertex, unless that fan has flat triangles (conforming
+   * fragments carry their neighbours' split points on their sides): then ears clipped at its
+   * corners (scenevis/ConvexTriangulation.h), so that every piece of every side is a triangle
+   * edge. Collinearity is judged on the points in double, split points interpolated as the BSP
+   * core does.
+   */
+  static void TriangulateFragments(vtkPolyData* input, const scenevis::bsp::SplitPoint* splits,
+    std::size_t splitCount, const std::uint32_t* offsets, std::size_t fragmentCount,
+    const std::uint32_t* vertices, std::vector<std::uint32_t>& corners);
+
+  /**
    * The view of @p camera in the data coordinates of a prop with matrix @p propMatrix (nullptr:
    * world coordinates). Returns false when the camera has a non-finite position or no view
    * direction (then @p view is unchanged).

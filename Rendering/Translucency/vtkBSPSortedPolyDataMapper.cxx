@@ -179,7 +179,7 @@ struct vtkBSPSortedPolyDataMapper::Internals
   const vtkBSPFragmentSet* RenderDataFor = nullptr;
   bool RenderDataExpanded = false;
   vtkMTimeType RenderDataMapperMTime = 0;
-  std::vector<unsigned int> TriIndices;       // fan triangles of every fragment, fragment id order
+  std::vector<unsigned int> TriIndices;       // triangles of every fragment, fragment id order
   std::vector<std::uint32_t> TriOffsets{ 0 }; // fragment f: TriIndices[TriOffsets[f]..[f+1])
   vtkPolyData* BuffersBuiltFrom = nullptr;    // compared only
   bool DrewFragments = false;
@@ -348,7 +348,8 @@ void vtkBSPSortedPolyDataMapper::Internals::BuildRenderData(vtkMapper* mapper, b
   vtkBSPSortUtilities::InterpolateSplitPoints(
     input, set.Splits.data(), set.Splits.size(), points, pointData);
 
-  // Fan triangles of every fragment.
+  // The triangles of every fragment (size - 2 each; no flat ones where its sides carry split
+  // points), as indices into set.Vertices.
   const std::size_t fragmentCount = set.FragmentCount();
   this->TriOffsets.assign(fragmentCount + 1, 0);
   for (std::size_t f = 0; f < fragmentCount; ++f)
@@ -356,22 +357,16 @@ void vtkBSPSortedPolyDataMapper::Internals::BuildRenderData(vtkMapper* mapper, b
     const std::uint32_t n = set.Offsets[f + 1] - set.Offsets[f];
     this->TriOffsets[f + 1] = this->TriOffsets[f] + 3 * (n - 2);
   }
+  std::vector<std::uint32_t> triangleCorners;
+  triangleCorners.reserve(this->TriOffsets.back());
+  vtkBSPSortUtilities::TriangulateFragments(input, set.Splits.data(), set.Splits.size(),
+    set.Offsets.data(), fragmentCount, set.Vertices.data(), triangleCorners);
   this->TriIndices.resize(this->TriOffsets.back());
   auto result = vtkSmartPointer<vtkPolyData>::New();
   if (!expand)
   {
-    for (std::size_t f = 0; f < fragmentCount; ++f)
-    {
-      const std::uint32_t* v = set.Vertices.data() + set.Offsets[f];
-      const std::uint32_t n = set.Offsets[f + 1] - set.Offsets[f];
-      unsigned int* out = this->TriIndices.data() + this->TriOffsets[f];
-      for (std::uint32_t k = 1; k + 1 < n; ++k)
-      {
-        *out++ = v[0];
-        *out++ = v[k];
-        *out++ = v[k + 1];
-      }
-    }
+    std::transform(triangleCorners.begin(), triangleCorners.end(), this->TriIndices.begin(),
+      [&set](std::uint32_t corner) { return set.Vertices[corner]; });
     result->SetPoints(points);
     result->GetPointData()->ShallowCopy(pointData);
     result->SetVerts(input->GetVerts());
@@ -419,18 +414,8 @@ void vtkBSPSortedPolyDataMapper::Internals::BuildRenderData(vtkMapper* mapper, b
     {
       expandedPoints->SetPoint(i, points->GetPoint(sourcePoint[static_cast<std::size_t>(i)]));
     }
-    for (std::size_t f = 0; f < fragmentCount; ++f)
-    {
-      const std::uint32_t first = set.Offsets[f];
-      const std::uint32_t n = set.Offsets[f + 1] - first;
-      unsigned int* out = this->TriIndices.data() + this->TriOffsets[f];
-      for (std::uint32_t k = 1; k + 1 < n; ++k)
-      {
-        *out++ = vertexOf[first];
-        *out++ = vertexOf[first + k];
-        *out++ = vertexOf[first + k + 1];
-      }
-    }
+    std::transform(triangleCorners.begin(), triangleCorners.end(), this->TriIndices.begin(),
+      [&vertexOf](std::uint32_t corner) { return vertexOf[corner]; });
     auto gather = [numExpanded](vtkAbstractArray* source, const std::vector<vtkIdType>& from)
     {
       vtkAbstractArray* array = source->NewInstance();

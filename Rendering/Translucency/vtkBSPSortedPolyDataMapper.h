@@ -10,7 +10,9 @@
  *    changes), splitting polygons that straddle partition planes;
  * 2. builds the vertex buffers ONCE from the fragment geometry: the input's points followed by the
  *    split points, with all point data interpolated (normals re-normalised, scalars/colours,
- *    texture coordinates, ...), and the fragments fan-triangulated;
+ *    texture coordinates, ...), and the fragments triangulated (a fan from the first vertex, or
+ *    ears at the corners where the fan would make flat triangles of the split points on a side:
+ *    vtkBSPSortUtilities::TriangulateFragments);
  * 3. per frame, only when the camera (taken into the actor's data coordinates through the actor's
  *    matrix; perspective or parallel) has moved, brings the BSP order up to date incrementally
  *    (scenevis::bsp::IncrementalOrder) and re-uploads the triangle index buffer in that order.

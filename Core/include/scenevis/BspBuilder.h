@@ -149,8 +149,11 @@ Tree build(const PolygonMesh& mesh, const BuildConfig& config = {},
  * Makes @p tree's fragments meet edge to edge: every split point that lies strictly inside a
  * fragment's edge (made by splitting a polygon on the other side of that edge, or the same line
  * further along) is inserted into it, in order. The fragments keep their shape and convexity (the
- * inserted points are on their edges: collinear vertices). Returns the number of vertices
- * inserted. build() calls it unless BuildConfig::conformingFragments is off.
+ * inserted points are on their edges: collinear vertices). A fragment that gets points starts at
+ * the vertex a fan triangulation (the one OpenGL mappers use: vertex 0 with each edge) from which
+ * has the fewest flat triangles (ConvexTriangulation.h), so that the fan keeps the inserted
+ * points as triangle corners. Returns the number of vertices inserted. build() calls it unless
+ * BuildConfig::conformingFragments is off.
  */
 std::size_t makeConforming(Tree& tree);
 
