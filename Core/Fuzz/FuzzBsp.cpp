@@ -19,7 +19,11 @@
 //     and the oracle (as in 4, for the first view) finds no confirmed violation in what is drawn;
 //  6. conforming fragments (BuildConfig::conformingFragments, on unless the input turns it off):
 //     no fragment edge joins the two end points of an edge a split point was made on (the split
-//     point lies on that segment: a T-junction); exact, no tolerance.
+//     point lies on that segment: a T-junction); exact, no tolerance;
+//  7. fragment triangles (scenevis/ConvexTriangulation.h, what the sorted mapper draws): every
+//     fragment gets size - 2 triangles of its own vertices, and every edge of the fragment (each
+//     piece between collinear vertices) is an edge of exactly one of them, in the fragment's
+//     direction (so neighbours that share the pieces meet edge to edge); exact, for any input.
 //
 // Guards (when checks 3 and 4 are meaningful):
 //  - "conditioned" input: every point finite and within 1e8 of the origin (the optional 1e7
@@ -45,6 +49,7 @@
 
 #include "scenevis/BspBuilder.h"
 #include "scenevis/BspTraversal.h"
+#include "scenevis/ConvexTriangulation.h"
 #include "scenevis/OrderOracle.h"
 #include "scenevis/PolygonMesh.h"
 #include "scenevis/View.h"
@@ -367,6 +372,52 @@ void checkConforming(const Tree& tree)
       if (splitEdges.count((static_cast<std::uint64_t>(std::min(u, v)) << 32) | std::max(u, v)))
       {
         fail("a fragment edge passes through a split point (T-junction)", u, v);
+      }
+    }
+  }
+}
+
+/// Check 7 (see the file comment).
+void checkFragmentTriangles(const Tree& tree)
+{
+  std::vector<glm::dvec3> vertices;
+  std::vector<std::uint32_t> triangles;
+  std::vector<std::uint32_t> edgeUses;
+  for (const auto& f : tree.fragments)
+  {
+    vertices.clear();
+    for (std::uint32_t k = 0; k < f.count; ++k)
+    {
+      vertices.push_back(tree.points[tree.fragmentVertices[f.first + k]]);
+    }
+    triangles.clear();
+    scenevis::triangulateConvex(vertices.data(), f.count, triangles);
+    if (triangles.size() != 3 * (static_cast<std::size_t>(f.count) - 2))
+    {
+      fail("fragment triangles: not size - 2", static_cast<double>(triangles.size()), f.count);
+    }
+    // edgeUses[k]: triangles with the directed edge (k, k + 1).
+    edgeUses.assign(f.count, 0);
+    for (std::size_t t = 0; t < triangles.size(); t += 3)
+    {
+      for (int e = 0; e < 3; ++e)
+      {
+        const std::uint32_t a = triangles[t + e], b = triangles[t + (e + 1) % 3];
+        if (a >= f.count || b >= f.count)
+        {
+          fail("fragment triangles: vertex out of range", a, b);
+        }
+        if ((a + 1) % f.count == b)
+        {
+          ++edgeUses[a];
+        }
+      }
+    }
+    for (std::uint32_t k = 0; k < f.count; ++k)
+    {
+      if (edgeUses[k] != 1)
+      {
+        fail("fragment triangles: a fragment edge is not the edge of one triangle", k, edgeUses[k]);
       }
     }
   }
@@ -976,6 +1027,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   {
     checkConforming(tree);
   }
+  checkFragmentTriangles(tree);
 
   std::vector<std::uint32_t> forward;
   std::vector<std::uint32_t> backward;
