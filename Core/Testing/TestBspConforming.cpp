@@ -1,11 +1,12 @@
 // Conforming fragments (BuildConfig::conformingFragments, makeConforming): the fragments of a BSP
-// tree meet edge to edge. No fragment vertex may lie strictly inside another fragment's edge (a
-// T-junction, where OpenGL covers pixels twice or not at all), checked by brute force over every
-// vertex and every edge. The fragments keep covering exactly what they covered: the same
-// fragments, sources and (doubled) areas, only collinear vertices added. Without the option the
-// same check finds T-junctions on every scene, so it can fail.
+// tree, and of the painter's algorithm, meet edge to edge. No fragment vertex may lie strictly
+// inside another fragment's edge (a T-junction, where OpenGL covers pixels twice or not at all),
+// checked by brute force over every vertex and every edge. The fragments keep covering exactly what
+// they covered: the same fragments, sources and (doubled) areas, only collinear vertices added.
+// Without the option the same check finds T-junctions on every scene, so it can fail.
 #include "scenevis/BspBuilder.h"
 #include "scenevis/ConvexTriangulation.h"
+#include "scenevis/PainterSort.h"
 #include "scenevis/Scenes.h"
 
 #include "PolygonSoups.h"
@@ -36,7 +37,8 @@ namespace
  * surfaces that pass through each other meet along their intersection line with vertices on
  * each other's edges; OpenGL needs no common edge between them, so those are not counted.)
  */
-std::size_t countTJunctions(const PolygonMesh& mesh, const Tree& tree)
+template <typename Fragments> // bsp::Tree or painter::Result
+std::size_t countTJunctions(const PolygonMesh& mesh, const Fragments& tree)
 {
   // Input polygons sharing an input edge.
   std::map<std::pair<std::uint32_t, std::uint32_t>, std::vector<std::uint32_t>> byEdge;
@@ -248,6 +250,25 @@ TEST(BspConforming, FragmentsStartAtTheirCleanestFanApex)
     }
     EXPECT_GT(withPoints, 10u) << c.name << ": the scene must put points on fragment sides";
     RecordProperty(c.name + " flat fan triangles", static_cast<int>(flatFromZero));
+  }
+}
+
+/// The painter's algorithm (PainterSort.h) splits per view, with the BSP's point conventions: its
+/// fragments meet edge to edge too, and without the option they do not.
+TEST(BspConforming, PainterFragmentsMeetEdgeToEdge)
+{
+  scenevis::painter::Config off;
+  off.conformingFragments = false;
+  for (const Case& c : surfaces())
+  {
+    const auto view = scenevis::View::perspective({ 3.1, 2.2, 4.3 });
+    const scenevis::painter::Result plain = scenevis::painter::sort(c.mesh, view, off);
+    const scenevis::painter::Result conforming = scenevis::painter::sort(c.mesh, view);
+    EXPECT_GT(conforming.statistics.splits, 0u) << c.name << ": the view must split something";
+    EXPECT_GT(conforming.statistics.conformingVertices, 0u) << c.name;
+    EXPECT_EQ(plain.fragments.size(), conforming.fragments.size()) << c.name;
+    EXPECT_GT(countTJunctions(c.mesh, plain), 0u) << c.name;
+    EXPECT_EQ(countTJunctions(c.mesh, conforming), 0u) << c.name;
   }
 }
 

@@ -33,15 +33,15 @@ std::uint64_t edgeKey(std::uint32_t a, std::uint32_t b)
 class Carriers
 {
 public:
-  explicit Carriers(const Tree& tree)
-    : Base(static_cast<std::uint32_t>(tree.inputPointCount))
+  Carriers(std::size_t inputPointCount, const std::vector<SplitPoint>& splitPoints)
+    : Base(static_cast<std::uint32_t>(inputPointCount))
   {
-    const std::size_t n = tree.splitPoints.size();
+    const std::size_t n = splitPoints.size();
     CarrierOf.resize(n);
     ParameterOf.resize(n);
     for (std::size_t i = 0; i < n; ++i)
     {
-      const SplitPoint& s = tree.splitPoints[i];
+      const SplitPoint& s = splitPoints[i];
       double pa = 0.0, pb = 0.0;
       const std::uint32_t c = carrierOf(s.a, s.b, &pa, &pb, true);
       CarrierOf[i] = c;
@@ -153,22 +153,30 @@ private:
 
 std::size_t makeConforming(Tree& tree)
 {
-  if (tree.splitPoints.empty())
+  return makeConforming(
+    tree.fragments, tree.fragmentVertices, tree.points, tree.inputPointCount, tree.splitPoints);
+}
+
+std::size_t makeConforming(std::vector<Fragment>& fragments,
+  std::vector<std::uint32_t>& fragmentVertices, const std::vector<glm::dvec3>& points,
+  std::size_t inputPointCount, const std::vector<SplitPoint>& splitPoints)
+{
+  if (splitPoints.empty())
   {
     return 0;
   }
-  Carriers carriers(tree);
+  Carriers carriers(inputPointCount, splitPoints);
   std::vector<std::uint32_t> vertices;
-  vertices.reserve(tree.fragmentVertices.size());
+  vertices.reserve(fragmentVertices.size());
   std::size_t inserted = 0;
   std::vector<glm::dvec3> corners;
-  for (Fragment& f : tree.fragments)
+  for (Fragment& f : fragments)
   {
     const auto first = static_cast<std::uint32_t>(vertices.size());
     for (std::uint32_t k = 0; k < f.count; ++k)
     {
-      const std::uint32_t u = tree.fragmentVertices[f.first + k];
-      const std::uint32_t v = tree.fragmentVertices[f.first + (k + 1 == f.count ? 0 : k + 1)];
+      const std::uint32_t u = fragmentVertices[f.first + k];
+      const std::uint32_t v = fragmentVertices[f.first + (k + 1 == f.count ? 0 : k + 1)];
       vertices.push_back(u);
       const std::size_t before = vertices.size();
       carriers.between(u, v, vertices);
@@ -183,7 +191,7 @@ std::size_t makeConforming(Tree& tree)
       corners.clear();
       for (std::uint32_t k = first; k < first + count; ++k)
       {
-        corners.push_back(tree.points[vertices[k]]);
+        corners.push_back(points[vertices[k]]);
       }
       const std::size_t apex = cleanestFanApex(corners.data(), count);
       std::rotate(vertices.begin() + first, vertices.begin() + first + apex, vertices.end());
@@ -191,7 +199,7 @@ std::size_t makeConforming(Tree& tree)
     f.first = first;
     f.count = count;
   }
-  tree.fragmentVertices = std::move(vertices);
+  fragmentVertices = std::move(vertices);
   return inserted;
 }
 

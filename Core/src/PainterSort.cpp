@@ -1,5 +1,7 @@
 #include "scenevis/PainterSort.h"
 
+#include "scenevis/BspBuilder.h"
+
 #include "PolygonPieces.h"
 #include "Triangulate.h"
 
@@ -843,6 +845,11 @@ void Sorter::Impl::run(const View& view, Result& result)
       ++St->forcedEmissions;
       emit(p);
     }
+  }
+  if (Cfg.conformingFragments)
+  {
+    St->conformingVertices = bsp::makeConforming(result.fragments, result.fragmentVertices,
+      result.points, result.inputPointCount, result.splitPoints);
   }
   St->fragments = result.fragments.size();
   St->sortSeconds =

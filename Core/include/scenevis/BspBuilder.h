@@ -157,5 +157,14 @@ Tree build(const PolygonMesh& mesh, const BuildConfig& config = {},
  */
 std::size_t makeConforming(Tree& tree);
 
+/**
+ * makeConforming() on the fragments of anything with a bsp::Tree's point and split-point
+ * conventions (a painter::Result: PainterSort.h): @p points holds the input points, then the
+ * split points that @p splitPoints describes.
+ */
+std::size_t makeConforming(std::vector<Fragment>& fragments,
+  std::vector<std::uint32_t>& fragmentVertices, const std::vector<glm::dvec3>& points,
+  std::size_t inputPointCount, const std::vector<SplitPoint>& splitPoints);
+
 } // namespace bsp
 } // namespace scenevis

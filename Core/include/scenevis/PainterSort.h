@@ -50,7 +50,9 @@
  * Splits (as in the BSP). A point is on a plane when its distance is within the tolerance
  * (Config::relativeTolerance times the diagonal of the input bounds); classification is a pure
  * function of (point, plane), and a split edge yields one split point per (edge, plane), shared by
- * every fragment that has that edge, so neighbours split by the same plane stay crack-free.
+ * every fragment that has that edge, so neighbours split by the same plane stay crack-free; and
+ * after the sort each split point is inserted into the other fragments' edges it lies on
+ * (Config::conformingFragments), so no fragment edge passes through another's vertex.
  * Geometry is evaluated relative to the centre of the input bounds.
  *
  * Termination: every step emits a fragment, moves an unmarked one (at most as many as remain) or
@@ -92,6 +94,13 @@ struct Config
   /// false: the plain depth sort (by farthest depth, no Newell tests, no splits). Wrong on cycles
   /// and overlapping depth ranges; kept for comparison and to show the oracle can fail.
   bool newellTests = true;
+  /**
+   * Fragments that meet edge to edge, as bsp::BuildConfig::conformingFragments: after the sort,
+   * every split point is inserted into the fragment edges it lies on (bsp::makeConforming), so
+   * no fragment edge passes through a neighbour's vertex (a T-junction, where OpenGL covers
+   * pixels twice or not at all). Default on; off: the fragments of the splits alone.
+   */
+  bool conformingFragments = true;
 };
 
 /// How often a test was evaluated on a (head, other) pair and how often it decided the pair.
@@ -123,6 +132,7 @@ struct Statistics
   std::size_t undecidedProjections = 0; ///< (5) not decidable (perspective), taken as overlap.
   std::size_t moves = 0;                ///< Fragments moved to the head of the list.
   std::size_t splits = 0;               ///< Each adds one fragment.
+  std::size_t conformingVertices = 0;   ///< Split points inserted into fragment edges.
   std::size_t intersectionSplits = 0;   ///< Neither of the pair may go first.
   std::size_t cyclesResolved = 0;       ///< Splits made because a marked fragment had to move.
   std::size_t fallbackSplits = 0;       ///< Cycle without a straddling pair: bisected.
