@@ -21,7 +21,10 @@
  * with all point data interpolated (normals re-normalised); verts and lines pass through first,
  * then the polygon fragments in visibility order. Cell data are copied from each fragment's
  * input cell; the cell-data arrays OriginalCellId and SortRank (-1 for verts and lines) are added
- * unless GenerateOrderArrays is off.
+ * unless GenerateOrderArrays is off. The fragments meet edge to edge (scenevis::painter::Config::
+ * conformingFragments: every split point is also a vertex of the neighbours whose edges it lies
+ * on, and each fragment starts at a vertex from which VTK's fan keeps those points as corners),
+ * so blending shows no cracks or doubled pixels along split edges.
  *
  * The order is exact unless the split cap (MaxSplitsPerPolygon) is reached, in which case
  * conflicts are emitted unresolved; GetNumberOfForcedEmissions() counts them.
