@@ -74,15 +74,18 @@ void triangulateConvex(
   {
     return;
   }
+  if (flatFanTriangles(vertices, n, 0) == 0)
+  {
+    for (std::uint32_t k = 1; k + 1 < n; ++k)
+    {
+      triangles.insert(triangles.end(), { 0u, k, k + 1 });
+    }
+    return;
+  }
   std::vector<std::uint32_t> ring(n);
   for (std::size_t k = 0; k < n; ++k)
   {
     ring[k] = static_cast<std::uint32_t>(k);
-  }
-  if (flatFanTriangles(vertices, n, 0) == 0)
-  {
-    fan(ring, triangles);
-    return;
   }
   // Ear clipping at corners. A corner b between a and c gives the triangle (a, b, c) area; after
   // it is clipped, a and c are neighbours, and only their own corner status can change. An ear is

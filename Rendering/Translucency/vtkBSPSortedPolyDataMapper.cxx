@@ -118,26 +118,27 @@ std::vector<std::uint32_t> CellValueClasses(vtkCellData* cellData, vtkIdType cel
     hashed[c] = { h, static_cast<std::uint32_t>(c) };
   }
   std::sort(hashed.begin(), hashed.end());
-  // Within a run of equal hashes, a cell joins the class of the first earlier cell of the run
+  // Within a run of equal hashes, a cell joins the class of the nearest earlier cell of the run
   // with the same bytes (runs of different values are rare: hash collisions).
   std::uint32_t classes = 0;
   for (std::size_t i = 0; i < n; ++i)
   {
     const std::uint32_t c = hashed[i].second;
     values(c, tuple);
-    std::size_t j = i;
-    while (j > 0 && hashed[j - 1].first == hashed[i].first)
+    bool found = false;
+    for (std::size_t j = i; !found && j > 0 && hashed[j - 1].first == hashed[i].first; --j)
     {
-      --j;
-      values(hashed[j].second, other);
+      values(hashed[j - 1].second, other);
       if (std::memcmp(tuple.data(), other.data(), width * sizeof(double)) == 0)
       {
-        break;
+        classOf[c] = classOf[hashed[j - 1].second];
+        found = true;
       }
     }
-    const bool same = j < i && hashed[j].first == hashed[i].first &&
-      std::memcmp(tuple.data(), other.data(), width * sizeof(double)) == 0;
-    classOf[c] = same ? classOf[hashed[j].second] : classes++;
+    if (!found)
+    {
+      classOf[c] = classes++;
+    }
   }
   return classOf;
 }
